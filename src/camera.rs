@@ -1,0 +1,176 @@
+//! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
+
+use crate::math::{Ray, Vec3, sampling::concentric_disk};
+use glam::Vec2;
+
+/// Where the camera is and what it sees.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position (the lens centre).
+    pub position: Vec3,
+    /// The point looked at.
+    pub look_at: Vec3,
+    /// Which way is up (need not be perpendicular to the view direction).
+    pub up: Vec3,
+    /// Vertical field of view, degrees.
+    pub fov_deg: f32,
+    /// Lens radius; 0 is a pinhole (everything sharp).
+    pub aperture: f32,
+    /// Distance from the lens to the plane in focus, along the view direction.
+    pub focus_distance: f32,
+    /// The shutter opens at this time...
+    pub shutter_open: f32,
+    /// ...and closes at this one; equal times freeze motion.
+    pub shutter_close: f32,
+}
+
+/// The camera's frame, computed once per render.
+#[derive(Clone, Debug)]
+pub struct CameraFrame {
+    origin: Vec3,
+    forward: Vec3,
+    // Image-plane axes at distance 1, scaled by the half-extent of the view.
+    right: Vec3,
+    up: Vec3,
+    lens_u: Vec3,
+    lens_v: Vec3,
+    aperture: f32,
+    focus_distance: f32,
+    shutter: (f32, f32),
+}
+
+impl Camera {
+    /// A pinhole camera at `position` looking at `look_at`, focused there.
+    pub fn looking_at(position: Vec3, look_at: Vec3, up: Vec3, fov_deg: f32) -> Self {
+        Camera {
+            position,
+            look_at,
+            up,
+            fov_deg,
+            aperture: 0.0,
+            focus_distance: (look_at - position).length(),
+            shutter_open: 0.0,
+            shutter_close: 0.0,
+        }
+    }
+
+    /// The frame for an image of the given aspect ratio (width / height).
+    pub fn frame(&self, aspect: f32) -> CameraFrame {
+        let forward = (self.look_at - self.position).normalize();
+        let right = forward.cross(self.up).normalize();
+        let up = right.cross(forward);
+        let half_h = (self.fov_deg.to_radians() * 0.5).tan();
+        CameraFrame {
+            origin: self.position,
+            forward,
+            right: right * half_h * aspect,
+            up: up * half_h,
+            lens_u: right,
+            lens_v: up,
+            aperture: self.aperture,
+            focus_distance: self.focus_distance,
+            shutter: (self.shutter_open, self.shutter_close),
+        }
+    }
+}
+
+impl CameraFrame {
+    /// The eye ray through `film`, the image position with (0, 0) at the top-left corner and
+    /// (1, 1) at the bottom-right, from lens sample `lens` (unit square), at time sample
+    /// `time_u` (unit interval, mapped onto the shutter).
+    ///
+    /// Thin lens: every ray through one film point meets the plane of focus at the point the
+    /// pinhole ray meets it, so that plane is sharp and everything else blurs.
+    pub fn ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> Ray {
+        let (x, y) = (2.0 * film.x - 1.0, 1.0 - 2.0 * film.y);
+        // The pinhole direction, with unit length along `forward`.
+        let d = self.forward + x * self.right + y * self.up;
+        let time = self.shutter.0 + time_u * (self.shutter.1 - self.shutter.0);
+        if self.aperture <= 0.0 {
+            return Ray::new(self.origin, d, time);
+        }
+        let focus_point = self.origin + self.focus_distance * d;
+        let l = self.aperture * concentric_disk(lens);
+        let origin = self.origin + l.x * self.lens_u + l.y * self.lens_v;
+        Ray::new(origin, focus_point - origin, time)
+    }
+
+    /// The unit view direction.
+    pub fn forward(&self) -> Vec3 {
+        self.forward
+    }
+
+    /// The film position (as in [`CameraFrame::ray`]) where the point `p` appears, if it
+    /// is in front of the camera.
+    pub fn project(&self, p: Vec3) -> Option<Vec2> {
+        let rel = p - self.origin;
+        let depth = rel.dot(self.forward);
+        if depth <= 0.0 {
+            return None;
+        }
+        let x = rel.dot(self.right) / (depth * self.right.length_squared());
+        let y = rel.dot(self.up) / (depth * self.up.length_squared());
+        Some(Vec2::new(0.5 * (x + 1.0), 0.5 * (1.0 - y)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cam() -> Camera {
+        Camera::looking_at(
+            Vec3::new(0.0, 1.0, 5.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::Y,
+            60.0,
+        )
+    }
+
+    #[test]
+    fn centre_ray_looks_at_the_target_and_corners_span_the_fov() {
+        let f = cam().frame(2.0);
+        let r = f.ray(Vec2::splat(0.5), Vec2::ZERO, 0.0);
+        assert!((r.dir - -Vec3::Z).length() < 1e-6);
+        let top = f.ray(Vec2::new(0.5, 0.0), Vec2::ZERO, 0.0);
+        assert!((top.dir.angle_between(r.dir).to_degrees() - 30.0).abs() < 1e-3);
+        assert!(top.dir.y > 0.0, "film y = 0 is the top of the image");
+        let right = f.ray(Vec2::new(1.0, 0.5), Vec2::ZERO, 0.0);
+        assert!(right.dir.x > 0.0);
+        let expected = (2.0 * (30f32).to_radians().tan()).atan().to_degrees();
+        assert!((right.dir.angle_between(r.dir).to_degrees() - expected).abs() < 1e-3);
+    }
+
+    #[test]
+    fn project_inverts_ray() {
+        let f = cam().frame(1.5);
+        let film = Vec2::new(0.3, 0.8);
+        let p = f.ray(film, Vec2::ZERO, 0.0).at(7.0);
+        assert!((f.project(p).unwrap() - film).length() < 1e-5);
+    }
+
+    #[test]
+    fn thin_lens_rays_meet_on_the_focus_plane() {
+        let mut c = cam();
+        c.aperture = 0.5;
+        c.focus_distance = 3.0;
+        let f = c.frame(1.0);
+        let film = Vec2::new(0.7, 0.2);
+        let pin = {
+            let mut p = c.clone();
+            p.aperture = 0.0;
+            p.frame(1.0).ray(film, Vec2::ZERO, 0.0)
+        };
+        // The pinhole ray reaches the focus plane (depth 3 along -z) at t = 3 / cos.
+        let target = pin.at(3.0 / pin.dir.dot(-Vec3::Z));
+        for lens in [
+            Vec2::new(0.1, 0.9),
+            Vec2::new(0.8, 0.3),
+            Vec2::new(0.5, 0.5),
+        ] {
+            let r = f.ray(film, lens, 0.0);
+            let t = (r.origin.z - target.z) / -r.dir.z;
+            assert!((r.at(t) - target).length() < 1e-4);
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! Spheres, parallelograms and planes.
+
+use super::SurfaceHit;
+use crate::math::{Ray, Vec3, orthonormal_basis};
+use glam::Vec2;
+use obvhs::aabb::Aabb;
+use std::f32::consts::PI;
+
+/// A sphere.
+#[derive(Clone, Debug)]
+pub struct Sphere {
+    /// Centre.
+    pub center: Vec3,
+    /// Radius, > 0.
+    pub radius: f32,
+}
+
+impl Sphere {
+    /// Bounds of the sphere.
+    pub fn bounds(&self) -> Aabb {
+        Aabb::new(self.center - self.radius, self.center + self.radius)
+    }
+
+    /// Nearest root of |o + t d - c|² = r² in (0, t_max).
+    ///
+    /// Computed as in "Precision Improvements for Ray/Sphere Intersection" (Haines et al.,
+    /// Ray Tracing Gems ch. 7): the discriminant as r² - |f - (f·d)d|² with f = o - c, and
+    /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
+    #[inline]
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let f = ray.origin - self.center;
+        let b = -f.dot(ray.dir);
+        let l = f + b * ray.dir;
+        let r2 = self.radius * self.radius;
+        let disc = r2 - l.length_squared();
+        if disc < 0.0 {
+            return None;
+        }
+        let c = f.length_squared() - r2;
+        let q = b + disc.sqrt().copysign(b);
+        if q == 0.0 {
+            return None;
+        }
+        let (t0, t1) = {
+            let (a, b) = (c / q, q);
+            if a < b { (a, b) } else { (b, a) }
+        };
+        if t0 > 0.0 && t0 < t_max {
+            Some(t0)
+        } else if t1 > 0.0 && t1 < t_max {
+            Some(t1)
+        } else {
+            None
+        }
+    }
+
+    /// The hit record at `t`, with the point reprojected onto the sphere.
+    pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
+        let n = (ray.at(t) - self.center).normalize();
+        let p = self.center + self.radius * n;
+        // Longitude around +y and colatitude from +y, each in [0, 1].
+        let uv = Vec2::new(
+            0.5 + n.z.atan2(n.x) / (2.0 * PI),
+            n.y.clamp(-1.0, 1.0).acos() / PI,
+        );
+        SurfaceHit {
+            t,
+            p,
+            n_geom: n,
+            n_shade: n,
+            uv,
+        }
+    }
+}
+
+/// A parallelogram `corner + a edge_u + b edge_v` for a, b in [0, 1]; its normal is
+/// `edge_u × edge_v`.
+#[derive(Clone, Debug)]
+pub struct Quad {
+    /// One corner.
+    pub corner: Vec3,
+    /// First edge from the corner.
+    pub edge_u: Vec3,
+    /// Second edge from the corner.
+    pub edge_v: Vec3,
+    normal: Vec3,
+    // w = n / (n·n) with the unnormalized n: gives the (a, b) coordinates of a point.
+    w: Vec3,
+}
+
+impl Quad {
+    /// The parallelogram on `corner` spanned by `edge_u` and `edge_v` (not parallel).
+    pub fn new(corner: Vec3, edge_u: Vec3, edge_v: Vec3) -> Self {
+        let n = edge_u.cross(edge_v);
+        Quad {
+            corner,
+            edge_u,
+            edge_v,
+            normal: n.normalize(),
+            w: n / n.length_squared(),
+        }
+    }
+
+    /// The unit normal, `edge_u × edge_v` normalized.
+    pub fn normal(&self) -> Vec3 {
+        self.normal
+    }
+
+    /// Bounds of the four corners.
+    pub fn bounds(&self) -> Aabb {
+        let c = self.corner;
+        let pts = [
+            c,
+            c + self.edge_u,
+            c + self.edge_v,
+            c + self.edge_u + self.edge_v,
+        ];
+        Aabb::from_points(&pts)
+    }
+
+    /// Hit distance and surface coordinates (a, b), if hit in (0, t_max).
+    #[inline]
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+        let denom = self.normal.dot(ray.dir);
+        if denom.abs() < 1e-12 {
+            return None;
+        }
+        let t = self.normal.dot(self.corner - ray.origin) / denom;
+        if !(t > 0.0 && t < t_max) {
+            return None;
+        }
+        let rel = ray.at(t) - self.corner;
+        let a = self.w.dot(rel.cross(self.edge_v));
+        let b = self.w.dot(self.edge_u.cross(rel));
+        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some((t, Vec2::new(a, b)))
+    }
+
+    /// The hit record at `t`, with the point rebuilt from its surface coordinates.
+    pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
+        let rel = ray.at(t) - self.corner;
+        let a = self.w.dot(rel.cross(self.edge_v)).clamp(0.0, 1.0);
+        let b = self.w.dot(self.edge_u.cross(rel)).clamp(0.0, 1.0);
+        SurfaceHit {
+            t,
+            p: self.corner + a * self.edge_u + b * self.edge_v,
+            n_geom: self.normal,
+            n_shade: self.normal,
+            uv: Vec2::new(a, b),
+        }
+    }
+}
+
+/// An infinite plane through `point` with unit `normal`.
+#[derive(Clone, Debug)]
+pub struct Plane {
+    /// A point on the plane.
+    pub point: Vec3,
+    /// Unit normal.
+    pub normal: Vec3,
+    tangent: Vec3,
+    bitangent: Vec3,
+}
+
+impl Plane {
+    /// The plane through `point` with normal `normal` (normalized here).
+    pub fn new(point: Vec3, normal: Vec3) -> Self {
+        let normal = normal.normalize();
+        let (tangent, bitangent) = orthonormal_basis(normal);
+        Plane {
+            point,
+            normal,
+            tangent,
+            bitangent,
+        }
+    }
+
+    /// Hit distance in (0, t_max), if any.
+    #[inline]
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let denom = self.normal.dot(ray.dir);
+        if denom.abs() < 1e-12 {
+            return None;
+        }
+        let t = self.normal.dot(self.point - ray.origin) / denom;
+        (t > 0.0 && t < t_max).then_some(t)
+    }
+
+    /// The hit record at `t`, with the point projected onto the plane. The surface
+    /// coordinates are world-space distances along two tangents (for checkers in world units).
+    pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
+        let q = ray.at(t);
+        let p = q - self.normal * self.normal.dot(q - self.point);
+        let rel = p - self.point;
+        SurfaceHit {
+            t,
+            p,
+            n_geom: self.normal,
+            n_shade: self.normal,
+            uv: Vec2::new(rel.dot(self.tangent), rel.dot(self.bitangent)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sphere_hit_distances() {
+        let s = Sphere {
+            center: Vec3::new(0.0, 0.0, -5.0),
+            radius: 1.0,
+        };
+        let ray = Ray::new(Vec3::ZERO, -Vec3::Z, 0.0);
+        assert!((s.intersect_t(&ray, f32::INFINITY).unwrap() - 4.0).abs() < 1e-6);
+        // From inside: the far side.
+        let inside = Ray::new(Vec3::new(0.0, 0.0, -5.0), Vec3::X, 0.0);
+        assert!((s.intersect_t(&inside, f32::INFINITY).unwrap() - 1.0).abs() < 1e-6);
+        // Behind, beside, and beyond t_max.
+        assert!(
+            s.intersect_t(&Ray::new(Vec3::ZERO, Vec3::Z, 0.0), f32::INFINITY)
+                .is_none()
+        );
+        assert!(
+            s.intersect_t(
+                &Ray::new(Vec3::new(1.01, 0.0, 0.0), -Vec3::Z, 0.0),
+                f32::INFINITY
+            )
+            .is_none()
+        );
+        assert!(s.intersect_t(&ray, 3.9).is_none());
+        let hit = s.surface_hit(&ray, 4.0);
+        assert!((hit.p - Vec3::new(0.0, 0.0, -4.0)).length() < 1e-6);
+        assert!((hit.n_geom - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn tiny_far_sphere_is_hit_exactly() {
+        // The naive quadratic loses this to cancellation.
+        let s = Sphere {
+            center: Vec3::new(0.0, 0.0, -10000.0),
+            radius: 0.01,
+        };
+        let ray = Ray::new(Vec3::new(0.005, 0.0, 0.0), -Vec3::Z, 0.0);
+        let t = s.intersect_t(&ray, f32::INFINITY).unwrap();
+        let expected = 10000.0 - (0.01f32 * 0.01 - 0.005 * 0.005).sqrt();
+        assert!((t - expected).abs() < 2e-3, "t = {t}, expected {expected}");
+    }
+
+    #[test]
+    fn quad_hits_inside_and_misses_outside() {
+        let q = Quad::new(
+            Vec3::new(-1.0, -1.0, -3.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+        );
+        let hit = q.intersect_t(
+            &Ray::new(Vec3::new(0.5, 0.5, 0.0), -Vec3::Z, 0.0),
+            f32::INFINITY,
+        );
+        let (t, uv) = hit.unwrap();
+        assert!((t - 3.0).abs() < 1e-6);
+        assert!((uv - Vec2::new(0.75, 0.75)).length() < 1e-6);
+        assert!(
+            q.intersect_t(
+                &Ray::new(Vec3::new(1.5, 0.0, 0.0), -Vec3::Z, 0.0),
+                f32::INFINITY
+            )
+            .is_none()
+        );
+        assert!((q.normal() - Vec3::Z).length() < 1e-6);
+    }
+
+    #[test]
+    fn plane_hit_and_parallel_miss() {
+        let p = Plane::new(Vec3::ZERO, Vec3::Y);
+        let ray = Ray::new(Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, -1.0, 1.0), 0.0);
+        let t = p.intersect_t(&ray, f32::INFINITY).unwrap();
+        let hit = p.surface_hit(&ray, t);
+        assert_eq!(hit.p.y, 0.0);
+        assert!((hit.p.z - 2.0).abs() < 1e-5);
+        assert!(
+            p.intersect_t(&Ray::new(Vec3::Y, Vec3::X, 0.0), f32::INFINITY)
+                .is_none()
+        );
+    }
+}

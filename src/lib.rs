@@ -1,0 +1,35 @@
+//! raylab: an interactive lab for the lecture "Dielectrics and distribution in ray tracing".
+//!
+//! A CPU ray tracer built for teaching: every concept of the lecture is a parameter of one
+//! [`params::Params`] model, and every image is reproducible bit for bit from its
+//! parameters and seed.
+//!
+//! The layers, from the bottom: [`math`] (vectors, rays, deterministic random numbers),
+//! [`optics`] (the lecture's formulas), [`geometry`] (shapes and the BVH), [`material`],
+//! [`light`] and [`camera`], [`scene`] (files, OBJ meshes, built-in scenes), [`tracer`] (the
+//! ray tree), and [`render`] (the film and the one render kernel).
+//!
+//! ```
+//! use raylab::{params::Params, render::render, scene::Scene};
+//! let scene = Scene::load("default").unwrap();
+//! let params = Params { spp: 1, ..scene.params.clone() };
+//! let (film, stats) = render(&scene, &params, 32, 18, &()).unwrap();
+//! assert_eq!(film.spp(), 1);
+//! assert_eq!(stats.camera_rays, 32 * 18);
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod camera;
+pub mod geometry;
+pub mod light;
+pub mod material;
+pub mod math;
+pub mod optics;
+pub mod params;
+pub mod render;
+pub mod scene;
+pub mod tracer;
+
+/// The version of raylab, as written into snapshot sidecars.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

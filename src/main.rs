@@ -1,0 +1,246 @@
+//! The `raylab` command: headless rendering and scene listing (the previewer window is
+//! the default command once it lands).
+
+use anyhow::{Context, Result, bail};
+use clap::{CommandFactory, Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use raylab::render::{PassObserver, Sidecar, render, sidecar_path};
+use raylab::scene::{BUILTIN_SCENES, Scene};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "raylab",
+    version,
+    about = "An interactive lab for dielectrics and distribution ray tracing",
+    after_help = "Scenes are TOML files (see scenes/README.md) or built-in names; `raylab scenes` lists them."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to a PNG or EXR without a window, with a JSON sidecar beside it.
+    Render(RenderArgs),
+    /// List the built-in scenes and the scene files in ./scenes.
+    Scenes,
+}
+
+#[derive(clap::Args)]
+struct RenderArgs {
+    /// A scene file, or the name of a built-in scene [default: the default scene, or the
+    /// scene of --params].
+    scene: Option<String>,
+    /// The image to write: .png (8-bit sRGB) or .exr (linear radiance).
+    #[arg(short, long, value_name = "OUT.png|OUT.exr")]
+    output: PathBuf,
+    /// Samples per pixel (same as --set spp=N).
+    #[arg(long, value_name = "N")]
+    spp: Option<u32>,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Random seed (same as --set seed=S).
+    #[arg(long, value_name = "S")]
+    seed: Option<u64>,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
+    /// Set any parameter by name, e.g. --set max_depth=3 --set min_weight=0.01 (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
+    /// Start from a snapshot's sidecar JSON: its scene, size and every parameter, to
+    /// reproduce its image bit for bit. Other options override it.
+    #[arg(long, value_name = "SIDECAR.json")]
+    params: Option<PathBuf>,
+    /// No progress bar and no summary line.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}` is not of the form WxH, e.g. 960x540"))?;
+    let side = |v: &str| -> Result<u32, String> {
+        let n: u32 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{v}` is not a whole number of pixels"))?;
+        if (1..=16384).contains(&n) {
+            Ok(n)
+        } else {
+            Err(format!("{n} is out of range (1 to 16384 pixels)"))
+        }
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Some(Command::Render(args)) => render_command(args),
+        Some(Command::Scenes) => scenes_command(),
+        None => Cli::command().print_help().map_err(Into::into),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Counts finished rows on a progress bar.
+struct Progress(ProgressBar);
+
+impl PassObserver for Progress {
+    fn band_done(&self, rows: u32) {
+        self.0.inc(rows as u64);
+    }
+}
+
+fn render_command(args: RenderArgs) -> Result<()> {
+    let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
+    let scene_ref = match (&args.scene, &sidecar) {
+        (Some(s), _) => s.clone(),
+        (None, Some(sc)) => sc.scene.clone(),
+        (None, None) => BUILTIN_SCENES[0].name.to_string(),
+    };
+    let scene = Scene::load(&scene_ref)?;
+    let mut params = match &sidecar {
+        Some(sc) => sc.params.clone(),
+        None => scene.params.clone(),
+    };
+    let (mut width, mut height) = match &sidecar {
+        Some(sc) => (sc.width, sc.height),
+        None => (scene.width, scene.height),
+    };
+    if let Some((w, h)) = args.size {
+        (width, height) = (w, h);
+    }
+    if let Some(spp) = args.spp {
+        params.set("spp", &spp.to_string()).context("--spp")?;
+    }
+    if let Some(seed) = args.seed {
+        params.seed = seed;
+    }
+    for assignment in &args.set {
+        params.set_assignment(assignment).context("--set")?;
+    }
+    check_output(&args.output)?;
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0) as usize)
+        .build()
+        .context("cannot start the worker threads")?;
+    let show_progress = !args.quiet && std::io::stderr().is_terminal();
+    let bar = if show_progress {
+        ProgressBar::new(height as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{spinner} rendering [{bar:40}] {percent}% rows, {elapsed} elapsed, ~{eta} left",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
+    );
+    let start = Instant::now();
+    let (film, stats) =
+        pool.install(|| render(&scene, &params, width, height, &Progress(bar.clone())))?;
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+
+    film.save(&args.output, params.exposure)?;
+    let json = sidecar_path(&args.output);
+    Sidecar {
+        raylab_version: raylab::VERSION.to_string(),
+        scene: scene.source.reference(),
+        width,
+        height,
+        params: params.clone(),
+        image: args
+            .output
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned()),
+        seconds: Some(seconds),
+        stats: Some(stats),
+    }
+    .write(&json)?;
+
+    if !args.quiet {
+        let pixels = (width as u64 * height as u64) as f64;
+        let rays = stats.total_rays();
+        eprintln!(
+            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); pruned {} by depth, {} by weight; {} non-finite samples dropped; wrote {} and {}",
+            scene.name,
+            width,
+            height,
+            params.spp,
+            seconds,
+            stats.samples as f64 / 1e6,
+            rays as f64 / 1e6,
+            rays as f64 / seconds.max(1e-9) / 1e6,
+            rays as f64 / pixels,
+            stats.pruned_by_depth,
+            stats.pruned_by_weight,
+            stats.non_finite,
+            args.output.display(),
+            json.display()
+        );
+    }
+    Ok(())
+}
+
+/// Refuses an output the film cannot write before spending time on the render.
+fn check_output(path: &Path) -> Result<()> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if !matches!(ext.as_deref(), Some("png") | Some("exr")) {
+        bail!("{}: the output must end in .png or .exr", path.display());
+    }
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        bail!(
+            "{}: the folder {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn scenes_command() -> Result<()> {
+    for b in BUILTIN_SCENES {
+        println!("{:<28} {} (built in)", b.name, b.description());
+    }
+    let dir = Path::new("scenes");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    for f in files {
+        let description = match std::fs::read_to_string(&f) {
+            Ok(text) => raylab::scene::describe(&text).unwrap_or_else(|| "(no description)".into()),
+            Err(e) => format!("(unreadable: {e})"),
+        };
+        println!("{:<28} {description}", f.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,196 @@
+//! The one parameter model: every knob of the renderer, under the names the CLI's
+//! `--set name=value`, scene files' `[params]` and snapshot sidecars all use.
+
+use serde::{Deserialize, Serialize};
+
+/// Every parameter that shapes the image (and the display exposure).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Params {
+    /// Target samples per pixel.
+    pub spp: u32,
+    /// Seed of every random number: the same seed gives the same image, bit for bit.
+    pub seed: u64,
+    /// Pruning by depth: the deepest ray-tree level traced (camera rays are level 0).
+    pub max_depth: u32,
+    /// Pruning by attenuation: a branch whose path weight (the product of the
+    /// reflectances above it, largest channel) falls below this is not traced.
+    pub min_weight: f32,
+    /// Display exposure in stops: pixel values are scaled by 2^exposure before display.
+    pub exposure: f32,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            spp: 16,
+            seed: 0,
+            max_depth: 8,
+            min_weight: 0.001,
+            exposure: 0.0,
+        }
+    }
+}
+
+/// A parameter that cannot be set.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    /// No parameter has this name.
+    #[error("unknown parameter `{name}` (known: {known})")]
+    Unknown {
+        /// The name given.
+        name: String,
+        /// The known names, comma separated.
+        known: String,
+    },
+    /// The value has the wrong type or is out of range.
+    #[error("bad value for `{name}`: {message}")]
+    Invalid {
+        /// The parameter.
+        name: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// Not of the form name=value.
+    #[error("expected NAME=VALUE, got `{0}`")]
+    Syntax(String),
+}
+
+/// The largest samples per pixel accepted.
+pub const MAX_SPP: u32 = 1 << 20;
+/// The deepest ray tree accepted.
+pub const MAX_DEPTH: u32 = 64;
+
+impl Params {
+    /// The names of all parameters, in declaration order.
+    pub fn names() -> Vec<String> {
+        match serde_json::to_value(Params::default()) {
+            Ok(serde_json::Value::Object(map)) => map.keys().cloned().collect(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// Sets parameter `name` from the text `value`, as typed after `--set name=`.
+    /// Numbers, `true`/`false` and bare words (for choices) are accepted.
+    pub fn set(&mut self, name: &str, value: &str) -> Result<(), ParamError> {
+        let value = value.trim();
+        let json = serde_json::from_str(value)
+            .unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+        self.set_value(name, json)
+    }
+
+    /// Parses `name=value` and sets it.
+    pub fn set_assignment(&mut self, assignment: &str) -> Result<(), ParamError> {
+        let (name, value) = assignment
+            .split_once('=')
+            .ok_or_else(|| ParamError::Syntax(assignment.to_string()))?;
+        self.set(name.trim(), value)
+    }
+
+    /// Sets parameter `name` to a JSON value, checking its type and range. On error
+    /// nothing changes.
+    pub fn set_value(&mut self, name: &str, value: serde_json::Value) -> Result<(), ParamError> {
+        let invalid = |message: String| ParamError::Invalid {
+            name: name.to_string(),
+            message,
+        };
+        let mut map = match serde_json::to_value(&*self) {
+            Ok(serde_json::Value::Object(map)) => map,
+            _ => return Err(invalid("parameters cannot be serialized".into())),
+        };
+        match map.get_mut(name) {
+            Some(slot) => *slot = value,
+            None => {
+                return Err(ParamError::Unknown {
+                    name: name.to_string(),
+                    known: Params::names().join(", "),
+                });
+            }
+        }
+        let updated: Params = serde_json::from_value(serde_json::Value::Object(map))
+            .map_err(|e| invalid(e.to_string()))?;
+        updated.validate()?;
+        *self = updated;
+        Ok(())
+    }
+
+    /// Checks every range; the first violation is the error.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let check = |ok: bool, name: &str, message: String| {
+            if ok {
+                Ok(())
+            } else {
+                Err(ParamError::Invalid {
+                    name: name.to_string(),
+                    message,
+                })
+            }
+        };
+        check(
+            (1..=MAX_SPP).contains(&self.spp),
+            "spp",
+            format!("must be between 1 and {MAX_SPP}, got {}", self.spp),
+        )?;
+        check(
+            self.max_depth <= MAX_DEPTH,
+            "max_depth",
+            format!("must be at most {MAX_DEPTH}, got {}", self.max_depth),
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.min_weight),
+            "min_weight",
+            format!("must be between 0 and 1, got {}", self.min_weight),
+        )?;
+        check(
+            self.exposure.is_finite() && self.exposure.abs() <= 20.0,
+            "exposure",
+            format!("must be between -20 and 20 stops, got {}", self.exposure),
+        )?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn set_by_name_parses_and_validates() {
+        let mut p = Params::default();
+        p.set("max_depth", "3").unwrap();
+        p.set_assignment("min_weight=0.01").unwrap();
+        p.set("seed", "42").unwrap();
+        assert_eq!((p.max_depth, p.min_weight, p.seed), (3, 0.01, 42));
+        let before = p.clone();
+        assert!(matches!(p.set("spp", "0"), Err(ParamError::Invalid { .. })));
+        assert!(matches!(
+            p.set("spp", "many"),
+            Err(ParamError::Invalid { .. })
+        ));
+        assert!(matches!(
+            p.set("min_weight", "2"),
+            Err(ParamError::Invalid { .. })
+        ));
+        assert!(matches!(
+            p.set("exposure", "NaN"),
+            Err(ParamError::Invalid { .. })
+        ));
+        assert!(matches!(
+            p.set("nope", "1"),
+            Err(ParamError::Unknown { .. })
+        ));
+        assert!(matches!(
+            p.set_assignment("spp"),
+            Err(ParamError::Syntax(_))
+        ));
+        assert_eq!(p, before, "a failed set changes nothing");
+    }
+
+    #[test]
+    fn names_cover_every_field() {
+        let names = Params::names();
+        for n in ["spp", "seed", "max_depth", "min_weight", "exposure"] {
+            assert!(names.iter().any(|m| m == n), "{n} missing");
+        }
+    }
+}

@@ -1,0 +1,26 @@
+//! Rendering: the film, the render kernel, and snapshots with their sidecars.
+
+mod film;
+mod kernel;
+mod snapshot;
+
+pub use film::{Film, FilmError, srgb_encode};
+pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass};
+pub use snapshot::{Sidecar, SidecarError, sidecar_path};
+
+use crate::params::Params;
+use crate::scene::Scene;
+use crate::tracer::Stats;
+
+/// Renders `params.spp` samples per pixel of a `width` × `height` image in one pass.
+pub fn render(
+    scene: &Scene,
+    params: &Params,
+    width: u32,
+    height: u32,
+    observer: &dyn PassObserver,
+) -> Result<(Film, Stats), Cancelled> {
+    let mut film = Film::new(width, height);
+    let stats = render_pass(scene, params, &mut film, params.spp, observer)?;
+    Ok((film, stats))
+}

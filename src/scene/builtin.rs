@@ -1,0 +1,84 @@
+//! Scenes embedded in the binary, so that raylab works with no files at all. They are the
+//! files of `scenes/`, compiled in: one source for both.
+
+use super::file::{Assets, parse};
+use super::{Scene, SceneError, SceneSource};
+
+/// A scene compiled into the binary.
+#[derive(Clone, Copy, Debug)]
+pub struct BuiltinScene {
+    /// Its name, as given on the command line.
+    pub name: &'static str,
+    /// Its TOML text.
+    pub text: &'static str,
+}
+
+/// Every built-in scene; the first is the default.
+pub static BUILTIN_SCENES: &[BuiltinScene] = &[
+    BuiltinScene {
+        name: "default",
+        text: include_str!("../../scenes/default.toml"),
+    },
+    BuiltinScene {
+        name: "bunny",
+        text: include_str!("../../scenes/bunny.toml"),
+    },
+];
+
+/// Files the built-in scenes refer to, by their path relative to `scenes/`.
+static ASSETS: &[(&str, &[u8])] = &[(
+    "models/bunny.obj",
+    include_bytes!("../../scenes/models/bunny.obj"),
+)];
+
+/// The built-in scene called `name`.
+pub fn builtin(name: &str) -> Option<&'static BuiltinScene> {
+    BUILTIN_SCENES.iter().find(|b| b.name == name)
+}
+
+struct Embedded;
+
+impl Assets for Embedded {
+    fn read(&self, rel: &str) -> Result<Vec<u8>, String> {
+        let rel = rel.trim_start_matches("./");
+        ASSETS
+            .iter()
+            .find(|(p, _)| *p == rel)
+            .map(|(_, bytes)| bytes.to_vec())
+            .ok_or_else(|| "not embedded in the binary".to_string())
+    }
+    fn label(&self, rel: &str) -> String {
+        format!("builtin:{rel}")
+    }
+}
+
+impl BuiltinScene {
+    /// The one-line description from the scene text.
+    pub fn description(&self) -> String {
+        super::describe(self.text).unwrap_or_default()
+    }
+
+    /// Parses the scene and builds its BVH.
+    pub fn load(&self) -> Result<Scene, SceneError> {
+        let mut desc = parse(self.text, &format!("builtin:{}", self.name), &Embedded)?;
+        desc.name = self.name.to_string();
+        Ok(Scene::new(
+            desc,
+            SceneSource::Builtin(self.name.to_string()),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_scene_loads_and_has_a_description() {
+        for b in BUILTIN_SCENES {
+            let scene = b.load().unwrap_or_else(|e| panic!("{}: {e}", b.name));
+            assert!(!b.description().is_empty(), "{} has no description", b.name);
+            assert!(!scene.shapes.is_empty());
+        }
+    }
+}

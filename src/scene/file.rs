@@ -1,0 +1,609 @@
+//! The scene file format (TOML), documented in `scenes/README.md`.
+//!
+//! Numbers are checked as they are read (finite, in range), so that serde's error carries
+//! the span of the offending value and the message can name its line and column.
+
+use super::obj::load_obj;
+use super::{Location, Object, Scene, SceneDesc, SceneError, SceneSource};
+use crate::camera::Camera;
+use crate::geometry::{Plane, Quad, Shape, Sphere};
+use crate::light::{Background, PointLight};
+use crate::material::{Material, Texture};
+use crate::math::{Color, Vec3};
+use crate::params::{ParamError, Params};
+use serde::Deserialize;
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// Where a scene's OBJ and MTL files come from.
+pub(crate) trait Assets {
+    /// The bytes of the file at `rel`, relative to the scene.
+    fn read(&self, rel: &str) -> Result<Vec<u8>, String>;
+    /// How to name `rel` in messages.
+    fn label(&self, rel: &str) -> String;
+}
+
+/// Files beside the scene file.
+pub(crate) struct FsAssets(pub PathBuf);
+
+impl Assets for FsAssets {
+    fn read(&self, rel: &str) -> Result<Vec<u8>, String> {
+        std::fs::read(self.0.join(rel)).map_err(|e| e.to_string())
+    }
+    fn label(&self, rel: &str) -> String {
+        self.0.join(rel).display().to_string()
+    }
+}
+
+/// Reads and parses a scene file; OBJ paths resolve against its folder.
+pub(crate) fn load_file(path: &Path) -> Result<Scene, SceneError> {
+    let label = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        SceneError::new(
+            Location::file(&label),
+            format!("cannot read the scene file: {e}"),
+        )
+    })?;
+    let dir = path
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let mut desc = parse(&text, &label, &FsAssets(dir))?;
+    desc.name = path
+        .file_stem()
+        .map_or_else(|| label.clone(), |s| s.to_string_lossy().into_owned());
+    let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    Ok(Scene::new(desc, SceneSource::File(full)))
+}
+
+/// The `description` of a scene text, without building the scene.
+pub fn describe(text: &str) -> Option<String> {
+    #[derive(Deserialize)]
+    struct Head {
+        description: Option<String>,
+    }
+    toml::from_str::<Head>(text).ok()?.description
+}
+
+// ---- Checked values ----
+
+/// A finite number.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct Num(f32);
+
+impl TryFrom<f64> for Num {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let f = v as f32;
+        if f.is_finite() {
+            Ok(Num(f))
+        } else {
+            Err(format!("{v} is not a finite number"))
+        }
+    }
+}
+
+/// A finite number > 0.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct Positive(f32);
+
+impl TryFrom<f64> for Positive {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let Num(f) = Num::try_from(v)?;
+        if f > 0.0 {
+            Ok(Positive(f))
+        } else {
+            Err(format!("must be greater than 0, got {v}"))
+        }
+    }
+}
+
+/// A finite number ≥ 0.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct NonNegative(f32);
+
+impl TryFrom<f64> for NonNegative {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let Num(f) = Num::try_from(v)?;
+        if f >= 0.0 {
+            Ok(NonNegative(f))
+        } else {
+            Err(format!("must not be negative, got {v}"))
+        }
+    }
+}
+
+/// A vector of three finite numbers.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+struct V3(Vec3);
+
+impl TryFrom<[f64; 3]> for V3 {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let f = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
+        if f.is_finite() {
+            Ok(V3(f))
+        } else {
+            Err(format!("{v:?} has a non-finite component"))
+        }
+    }
+}
+
+/// A non-zero direction.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+struct Dir(Vec3);
+
+impl TryFrom<[f64; 3]> for Dir {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let V3(f) = V3::try_from(v)?;
+        if f.length_squared() > 0.0 {
+            Ok(Dir(f.normalize()))
+        } else {
+            Err("a direction must not be [0, 0, 0]".into())
+        }
+    }
+}
+
+/// A colour of radiance or intensity: three finite numbers ≥ 0.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+struct Rgb(Color);
+
+impl TryFrom<[f64; 3]> for Rgb {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let V3(f) = V3::try_from(v)?;
+        if f.min_element() >= 0.0 {
+            Ok(Rgb(f))
+        } else {
+            Err(format!("colour {v:?} has a negative component"))
+        }
+    }
+}
+
+/// A reflectance: three numbers in [0, 1] (more would create energy).
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+struct Reflectance(Color);
+
+impl TryFrom<[f64; 3]> for Reflectance {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let Rgb(f) = Rgb::try_from(v)?;
+        if f.max_element() <= 1.0 {
+            Ok(Reflectance(f))
+        } else {
+            Err(format!("reflectance {v:?} must be between 0 and 1"))
+        }
+    }
+}
+
+/// An image dimension in pixels.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "i64")]
+struct Pixels(u32);
+
+/// The largest image side accepted.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+impl TryFrom<i64> for Pixels {
+    type Error = String;
+    fn try_from(v: i64) -> Result<Self, String> {
+        if (1..=MAX_IMAGE_SIDE as i64).contains(&v) {
+            Ok(Pixels(v as u32))
+        } else {
+            Err(format!(
+                "must be between 1 and {MAX_IMAGE_SIDE} pixels, got {v}"
+            ))
+        }
+    }
+}
+
+// ---- The file's shape ----
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    #[serde(default)]
+    description: String,
+    ambient: Option<Rgb>,
+    image: Option<ImageDef>,
+    #[serde(default)]
+    params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
+    camera: CameraDef,
+    background: Option<Spanned<BackgroundDef>>,
+    #[serde(default)]
+    material: BTreeMap<String, MaterialDef>,
+    #[serde(default)]
+    sphere: Vec<SphereDef>,
+    #[serde(default)]
+    plane: Vec<PlaneDef>,
+    #[serde(default)]
+    quad: Vec<Spanned<QuadDef>>,
+    #[serde(default)]
+    mesh: Vec<MeshDef>,
+    #[serde(default)]
+    point_light: Vec<PointLightDef>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ImageDef {
+    width: Pixels,
+    height: Pixels,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraDef {
+    position: V3,
+    look_at: V3,
+    up: Option<Dir>,
+    fov: Option<Spanned<Positive>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BackgroundDef {
+    color: Option<Rgb>,
+    horizon: Option<Rgb>,
+    zenith: Option<Rgb>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+enum MaterialDef {
+    Diffuse {
+        color: Reflectance,
+        checker: Option<CheckerDef>,
+        specular: Option<Reflectance>,
+        exponent: Option<Positive>,
+    },
+    Mirror {
+        reflectance: Reflectance,
+    },
+    Emissive {
+        color: Rgb,
+        strength: Option<NonNegative>,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CheckerDef {
+    color: Reflectance,
+    scale: Positive,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereDef {
+    name: Option<String>,
+    center: V3,
+    radius: Positive,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PlaneDef {
+    name: Option<String>,
+    point: V3,
+    normal: Dir,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct QuadDef {
+    name: Option<String>,
+    corner: V3,
+    edge_u: V3,
+    edge_v: V3,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshDef {
+    name: Option<String>,
+    file: Spanned<String>,
+    material: Option<Spanned<String>>,
+    scale: Option<Positive>,
+    rotate: Option<V3>,
+    translate: Option<V3>,
+    #[serde(default = "yes")]
+    smooth: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PointLightDef {
+    position: V3,
+    color: Option<Rgb>,
+    intensity: NonNegative,
+}
+
+/// The material objects get when they name none: a mid-grey diffuse.
+const DEFAULT_MATERIAL: &str = "default";
+
+/// Parses scene text into a description; `file` names it in errors.
+pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<SceneDesc, SceneError> {
+    let at = |span: std::ops::Range<usize>| Location::at_offset(file, text, span.start);
+    let f: SceneFile = toml::from_str(text).map_err(|e| {
+        let loc = e.span().map_or_else(|| Location::file(file), at);
+        SceneError::new(loc, e.message())
+    })?;
+
+    let mut materials = MaterialTable::default();
+    for (name, def) in f.material {
+        materials.add(name, material(def));
+    }
+    let resolve = |name: &Option<Spanned<String>>, materials: &mut MaterialTable| match name {
+        None => Ok(materials.add(DEFAULT_MATERIAL.to_string(), default_material())),
+        Some(s) => materials.get(s.get_ref()).ok_or_else(|| {
+            SceneError::new(
+                at(s.span()),
+                format!(
+                    "unknown material `{}` (defined: {})",
+                    s.get_ref(),
+                    materials.names()
+                ),
+            )
+        }),
+    };
+
+    let mut objects = Vec::new();
+    let name_or = |name: Option<String>, kind: &str, n: usize| {
+        name.unwrap_or_else(|| format!("{kind} {}", n + 1))
+    };
+    for (n, s) in f.sphere.into_iter().enumerate() {
+        let material = resolve(&s.material, &mut materials)?;
+        objects.push(Object {
+            name: name_or(s.name, "sphere", n),
+            shape: Shape::Sphere(Sphere {
+                center: s.center.0,
+                radius: s.radius.0,
+            }),
+            material,
+        });
+    }
+    for (n, p) in f.plane.into_iter().enumerate() {
+        let material = resolve(&p.material, &mut materials)?;
+        objects.push(Object {
+            name: name_or(p.name, "plane", n),
+            shape: Shape::Plane(Plane::new(p.point.0, p.normal.0)),
+            material,
+        });
+    }
+    for (n, q) in f.quad.into_iter().enumerate() {
+        let span = q.span();
+        let q = q.into_inner();
+        let area = q.edge_u.0.cross(q.edge_v.0).length();
+        if !(area > 0.0 && area.is_finite()) {
+            return Err(SceneError::new(
+                at(span),
+                "quad edges `edge_u` and `edge_v` must not be parallel or zero",
+            ));
+        }
+        let material = resolve(&q.material, &mut materials)?;
+        objects.push(Object {
+            name: name_or(q.name, "quad", n),
+            shape: Shape::Quad(Quad::new(q.corner.0, q.edge_u.0, q.edge_v.0)),
+            material,
+        });
+    }
+    for (n, m) in f.mesh.into_iter().enumerate() {
+        let rel = m.file.get_ref().as_str();
+        let bytes = assets.read(rel).map_err(|e| {
+            SceneError::new(
+                at(m.file.span()),
+                format!("cannot read OBJ file `{}`: {e}", assets.label(rel)),
+            )
+        })?;
+        let obj_label = assets.label(rel);
+        let obj_dir = Path::new(rel).parent().unwrap_or(Path::new(""));
+        let read_mtl = |name: &str| assets.read(&obj_dir.join(name).to_string_lossy()).ok();
+        let parts = load_obj(&bytes, &obj_label, &read_mtl)?;
+        let transform = glam::Affine3A::from_scale_rotation_translation(
+            glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
+            m.rotate.map_or(glam::Quat::IDENTITY, |r| {
+                let r = r.0 * (std::f32::consts::PI / 180.0);
+                glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x)
+            }),
+            m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
+        );
+        let base = name_or(m.name, "mesh", n);
+        let single = parts.len() == 1;
+        for part in parts {
+            let material = match (&m.material, part.material) {
+                (Some(_), _) | (None, None) => resolve(&m.material, &mut materials)?,
+                (None, Some((mtl_name, mat))) => materials.add(format!("{rel}:{mtl_name}"), mat),
+            };
+            let mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
+                SceneError::new(at(m.file.span()), format!("after its transform: {e}"))
+            })?;
+            objects.push(Object {
+                name: if single {
+                    base.clone()
+                } else {
+                    format!("{base}/{}", part.name)
+                },
+                shape: Shape::Mesh(mesh),
+                material,
+            });
+        }
+    }
+
+    let mut params = Params::default();
+    for (key, value) in &f.params {
+        let json = serde_json::to_value(value.get_ref())
+            .map_err(|e| SceneError::new(at(value.span()), e.to_string()))?;
+        params.set_value(key.get_ref(), json).map_err(|e| {
+            let span = if matches!(e, ParamError::Unknown { .. }) {
+                key.span()
+            } else {
+                value.span()
+            };
+            SceneError::new(at(span), format!("in [params]: {e}"))
+        })?;
+    }
+
+    let background = match f.background {
+        None => Background::Gradient {
+            horizon: Color::new(0.8, 0.85, 0.9),
+            zenith: Color::new(0.35, 0.5, 0.8),
+        },
+        Some(b) => {
+            let span = b.span();
+            match b.into_inner() {
+                BackgroundDef {
+                    color: Some(c),
+                    horizon: None,
+                    zenith: None,
+                } => Background::Constant(c.0),
+                BackgroundDef {
+                    color: None,
+                    horizon: Some(h),
+                    zenith: Some(z),
+                } => Background::Gradient {
+                    horizon: h.0,
+                    zenith: z.0,
+                },
+                _ => {
+                    return Err(SceneError::new(
+                        at(span),
+                        "[background] takes either `color`, or both `horizon` and `zenith`",
+                    ));
+                }
+            }
+        }
+    };
+
+    let c = f.camera;
+    if (c.look_at.0 - c.position.0).length_squared() == 0.0 {
+        return Err(SceneError::new(
+            Location::file(file),
+            "[camera] `look_at` must differ from `position`",
+        ));
+    }
+    let fov = match c.fov {
+        Some(fov) if fov.get_ref().0 >= 180.0 => {
+            return Err(SceneError::new(
+                at(fov.span()),
+                "[camera] `fov` must be below 180 degrees",
+            ));
+        }
+        Some(fov) => fov.into_inner().0,
+        None => 45.0,
+    };
+    let up = c.up.map_or(Vec3::Y, |u| u.0);
+    if up.cross(c.look_at.0 - c.position.0).length_squared() == 0.0 {
+        return Err(SceneError::new(
+            Location::file(file),
+            "[camera] `up` must not be parallel to the view direction",
+        ));
+    }
+    let camera = Camera::looking_at(c.position.0, c.look_at.0, up, fov);
+
+    let (width, height) = f.image.map_or((640, 360), |i| (i.width.0, i.height.0));
+    Ok(SceneDesc {
+        name: String::new(),
+        description: f.description,
+        camera,
+        width,
+        height,
+        params,
+        materials: materials.list,
+        objects,
+        lights: f
+            .point_light
+            .into_iter()
+            .map(|l| PointLight {
+                position: l.position.0,
+                intensity: l.color.map_or(Color::ONE, |c| c.0) * l.intensity.0,
+            })
+            .collect(),
+        ambient: f.ambient.map_or(Color::ZERO, |a| a.0),
+        background,
+    })
+}
+
+/// Materials by name, in the order they were added.
+#[derive(Default)]
+struct MaterialTable {
+    list: Vec<(String, Material)>,
+    index: HashMap<String, u32>,
+}
+
+impl MaterialTable {
+    /// The index of `name`, adding `material` under it if it is new.
+    fn add(&mut self, name: String, material: Material) -> u32 {
+        if let Some(&i) = self.index.get(&name) {
+            return i;
+        }
+        self.list.push((name.clone(), material));
+        let i = self.list.len() as u32 - 1;
+        self.index.insert(name, i);
+        i
+    }
+
+    fn get(&self, name: &str) -> Option<u32> {
+        self.index.get(name).copied()
+    }
+
+    /// The defined names, sorted, comma separated.
+    fn names(&self) -> String {
+        let mut names: Vec<_> = self.list.iter().map(|(n, _)| n.as_str()).collect();
+        names.sort();
+        names.join(", ")
+    }
+}
+
+fn default_material() -> Material {
+    Material::Diffuse {
+        albedo: Texture::Solid(Color::splat(0.6)),
+        specular: Color::ZERO,
+        exponent: 1.0,
+    }
+}
+
+fn material(def: MaterialDef) -> Material {
+    match def {
+        MaterialDef::Diffuse {
+            color,
+            checker,
+            specular,
+            exponent,
+        } => Material::Diffuse {
+            albedo: match checker {
+                None => Texture::Solid(color.0),
+                Some(c) => Texture::Checker {
+                    even: color.0,
+                    odd: c.color.0,
+                    scale: c.scale.0,
+                },
+            },
+            specular: specular.map_or(Color::ZERO, |s| s.0),
+            exponent: exponent.map_or(20.0, |e| e.0),
+        },
+        MaterialDef::Mirror { reflectance } => Material::Mirror {
+            reflectance: reflectance.0,
+        },
+        MaterialDef::Emissive { color, strength } => Material::Emissive {
+            radiance: color.0 * strength.map_or(1.0, |s| s.0),
+        },
+    }
+}

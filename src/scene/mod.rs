@@ -1,0 +1,240 @@
+//! Scenes: the immutable description the tracer reads, loaded from TOML files or built in.
+
+mod builtin;
+mod error;
+mod file;
+mod obj;
+
+pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
+pub use error::{Location, SceneError, line_col};
+pub use file::describe;
+pub use obj::{ObjPart, load_obj};
+
+use crate::camera::Camera;
+use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
+use crate::light::{Background, PointLight};
+use crate::material::Material;
+use crate::math::{Color, Ray};
+use crate::params::Params;
+use std::path::{Path, PathBuf};
+
+/// Where a scene came from, so that a snapshot can name it and it can be loaded again.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SceneSource {
+    /// A scene embedded in the binary, by name.
+    Builtin(String),
+    /// A scene file.
+    File(PathBuf),
+    /// Built in code (tests, benchmarks).
+    Code,
+}
+
+impl SceneSource {
+    /// How the source is written in a snapshot sidecar and on the command line: the
+    /// built-in name, or the file path.
+    pub fn reference(&self) -> String {
+        match self {
+            SceneSource::Builtin(name) => format!("builtin:{name}"),
+            SceneSource::File(path) => path.display().to_string(),
+            SceneSource::Code => "code".to_string(),
+        }
+    }
+}
+
+/// One object: a shape with a material and a name.
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// Name for listings and the inspector.
+    pub name: String,
+    /// Geometry.
+    pub shape: Shape,
+    /// Index into the scene's materials.
+    pub material: u32,
+}
+
+/// Everything a scene holds, before its BVH is built. Fields are public so that tests and
+/// benchmarks can build scenes in code.
+#[derive(Clone, Debug)]
+pub struct SceneDesc {
+    /// Short name.
+    pub name: String,
+    /// One-line description.
+    pub description: String,
+    /// The camera.
+    pub camera: Camera,
+    /// Default image width.
+    pub width: u32,
+    /// Default image height.
+    pub height: u32,
+    /// The scene's default parameters.
+    pub params: Params,
+    /// Named materials.
+    pub materials: Vec<(String, Material)>,
+    /// Objects.
+    pub objects: Vec<Object>,
+    /// Point lights.
+    pub lights: Vec<PointLight>,
+    /// Ambient radiance: light arriving from every direction, unshadowed.
+    pub ambient: Color,
+    /// What rays that leave the scene see.
+    pub background: Background,
+}
+
+/// A ray's nearest hit in a scene.
+#[derive(Clone, Copy, Debug)]
+pub struct Hit {
+    /// The surface hit.
+    pub surface: SurfaceHit,
+    /// The object hit.
+    pub object: u32,
+    /// Its material.
+    pub material: u32,
+}
+
+/// A scene ready to trace: immutable, shared between render threads behind an `Arc`.
+#[derive(Debug)]
+pub struct Scene {
+    /// Short name.
+    pub name: String,
+    /// One-line description.
+    pub description: String,
+    /// Where it was loaded from.
+    pub source: SceneSource,
+    /// The camera.
+    pub camera: Camera,
+    /// Default image width.
+    pub width: u32,
+    /// Default image height.
+    pub height: u32,
+    /// The scene's default parameters.
+    pub params: Params,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Material names, parallel to `materials`.
+    pub material_names: Vec<String>,
+    /// Object names, parallel to `shapes`.
+    pub object_names: Vec<String>,
+    /// Object materials, parallel to `shapes`.
+    pub object_materials: Vec<u32>,
+    /// Object geometry.
+    pub shapes: Vec<Shape>,
+    /// Point lights.
+    pub lights: Vec<PointLight>,
+    /// Ambient radiance.
+    pub ambient: Color,
+    /// Background.
+    pub background: Background,
+    accel: Accel,
+}
+
+impl Scene {
+    /// Builds the BVH and freezes the scene.
+    pub fn new(desc: SceneDesc, source: SceneSource) -> Self {
+        let mut object_names = Vec::with_capacity(desc.objects.len());
+        let mut object_materials = Vec::with_capacity(desc.objects.len());
+        let mut shapes = Vec::with_capacity(desc.objects.len());
+        for o in desc.objects {
+            object_names.push(o.name);
+            object_materials.push(o.material);
+            shapes.push(o.shape);
+        }
+        let accel = Accel::build(&shapes);
+        let (material_names, materials) = desc.materials.into_iter().unzip();
+        Scene {
+            name: desc.name,
+            description: desc.description,
+            source,
+            camera: desc.camera,
+            width: desc.width,
+            height: desc.height,
+            params: desc.params,
+            materials,
+            material_names,
+            object_names,
+            object_materials,
+            shapes,
+            lights: desc.lights,
+            ambient: desc.ambient,
+            background: desc.background,
+            accel,
+        }
+    }
+
+    /// Loads a built-in scene by name (`default` or `builtin:default`), or a scene file by
+    /// path. A bare name that is both a built-in and an existing file means the file.
+    pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
+        if let Some(name) = name_or_path.strip_prefix("builtin:") {
+            return match builtin(name) {
+                Some(b) => b.load(),
+                None => Err(unknown_scene(name_or_path)),
+            };
+        }
+        let path = Path::new(name_or_path);
+        if path.is_file() {
+            return file::load_file(path);
+        }
+        match builtin(name_or_path) {
+            Some(b) => b.load(),
+            None => Err(unknown_scene(name_or_path)),
+        }
+    }
+
+    /// Loads a scene file.
+    pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
+        file::load_file(path)
+    }
+
+    /// Parses scene text; OBJ paths resolve against `base_dir`.
+    pub fn from_toml_str(
+        text: &str,
+        file_label: &str,
+        base_dir: &Path,
+    ) -> Result<Scene, SceneError> {
+        let desc = file::parse(text, file_label, &file::FsAssets(base_dir.to_path_buf()))?;
+        Ok(Scene::new(desc, SceneSource::Code))
+    }
+
+    /// The total number of triangles, spheres and quads in the BVH.
+    pub fn primitive_count(&self) -> usize {
+        self.accel.primitive_count()
+    }
+
+    /// The nearest hit along `ray` closer than `t_max`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let (prim, t) = self.accel.intersect(&self.shapes, ray, t_max)?;
+        Some(self.hit_record(prim, ray, t))
+    }
+
+    /// Whether anything lies on `ray` closer than `t_max`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.accel.occluded(&self.shapes, ray, t_max)
+    }
+
+    /// The nearest hit found by testing every primitive (no BVH): the reference for tests.
+    pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let (prim, t) = self.accel.intersect_brute_force(&self.shapes, ray, t_max)?;
+        Some(self.hit_record(prim, ray, t))
+    }
+
+    fn hit_record(&self, prim: PrimRef, ray: &Ray, t: f32) -> Hit {
+        let o = prim.object as usize;
+        Hit {
+            surface: self.shapes[o].surface_hit(prim.index, ray, t),
+            object: prim.object,
+            material: self.object_materials[o],
+        }
+    }
+}
+
+fn unknown_scene(name: &str) -> SceneError {
+    let names: Vec<_> = BUILTIN_SCENES.iter().map(|b| b.name).collect();
+    SceneError::new(
+        Location::file(name),
+        format!(
+            "no such scene file, and not a built-in scene (built-in: {})",
+            names.join(", ")
+        ),
+    )
+}

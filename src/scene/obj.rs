@@ -1,0 +1,309 @@
+//! Wavefront OBJ meshes, read with tobj, with errors that name the line.
+
+use super::{Location, SceneError};
+use crate::geometry::Mesh;
+use crate::material::{Material, Texture};
+use crate::math::{Color, Vec3};
+use glam::Vec2;
+use std::cell::RefCell;
+use std::io::{BufRead, Read};
+use std::path::Path;
+
+/// One object of an OBJ file: its triangles and, if the .mtl gave one, its material.
+#[derive(Clone, Debug)]
+pub struct ObjPart {
+    /// The object's name in the file.
+    pub name: String,
+    /// Its triangles.
+    pub mesh: Mesh,
+    /// Its material from the .mtl file, mapped to a raylab material, and the .mtl name.
+    pub material: Option<(String, Material)>,
+}
+
+/// Parses OBJ text. `read_mtl` fetches a material library named by `mtllib`;
+/// `file` names the OBJ in error messages.
+pub fn load_obj(
+    data: &[u8],
+    file: &str,
+    read_mtl: &dyn Fn(&str) -> Option<Vec<u8>>,
+) -> Result<Vec<ObjPart>, SceneError> {
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let mut reader = LineCounter {
+        data,
+        pos: 0,
+        newlines: 0,
+    };
+    let failed_mtl = RefCell::new(None::<String>);
+    let result = tobj::load_obj_buf(&mut reader, &options, |p: &Path| {
+        let name = p.to_string_lossy().into_owned();
+        match read_mtl(&name) {
+            Some(bytes) => tobj::load_mtl_buf(&mut &bytes[..]),
+            None => {
+                failed_mtl.borrow_mut().get_or_insert(name);
+                Err(tobj::LoadError::OpenFileFailed)
+            }
+        }
+    });
+    let (models, materials) = match result {
+        Ok(ok) => ok,
+        Err(e) => return Err(obj_error(data, file, e, reader.current_line())),
+    };
+    // A missing or broken .mtl is not fatal: the scene may give the material, and
+    // otherwise the default one is used; but a .mtl that exists and is broken is an error.
+    let materials = match (materials, failed_mtl.into_inner()) {
+        (Ok(m), _) => m,
+        (Err(_), Some(_missing)) => Vec::new(),
+        (Err(e), None) => {
+            return Err(SceneError::new(
+                Location::file(file),
+                format!("its material library is malformed ({e})"),
+            ));
+        }
+    };
+    let mut parts = Vec::new();
+    for model in models {
+        let m = model.mesh;
+        let positions = triples(&m.positions);
+        if m.indices.is_empty() {
+            continue;
+        }
+        let indices: Vec<[u32; 3]> = m
+            .indices
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect();
+        let normals = (!m.normals.is_empty()).then(|| triples(&m.normals));
+        let uvs = (!m.texcoords.is_empty()).then(|| {
+            m.texcoords
+                .chunks_exact(2)
+                .map(|c| Vec2::new(c[0], c[1]))
+                .collect::<Vec<_>>()
+        });
+        let mesh = Mesh::new(positions, indices, normals, uvs).map_err(|e| {
+            SceneError::new(
+                Location::file(file),
+                format!("object `{}`: {e}", model.name),
+            )
+        })?;
+        let material = m
+            .material_id
+            .and_then(|i| materials.get(i))
+            .map(|mtl| (mtl.name.clone(), map_material(mtl)));
+        parts.push(ObjPart {
+            name: model.name,
+            mesh,
+            material,
+        });
+    }
+    if parts.is_empty() {
+        return Err(SceneError::new(
+            Location::file(file),
+            "the OBJ file has no faces",
+        ));
+    }
+    Ok(parts)
+}
+
+fn triples(v: &[f32]) -> Vec<Vec3> {
+    v.chunks_exact(3)
+        .map(|c| Vec3::new(c[0], c[1], c[2]))
+        .collect()
+}
+
+/// Maps a .mtl material to raylab's: emissive if Ke is set, a mirror for the
+/// ray-traced reflection models (illum 3 and 5), otherwise diffuse with a Phong highlight.
+fn map_material(m: &tobj::Material) -> Material {
+    let rgb = |c: Option<[f32; 3]>, default: f32| {
+        let c = c.map_or(Color::splat(default), Color::from);
+        if c.is_finite() {
+            c.clamp(Color::ZERO, Color::ONE)
+        } else {
+            Color::splat(default)
+        }
+    };
+    let emissive = rgb(m.emissive, 0.0);
+    if emissive.max_element() > 0.0 {
+        return Material::Emissive { radiance: emissive };
+    }
+    match m.illumination_model {
+        Some(3) | Some(5) => Material::Mirror {
+            reflectance: rgb(m.specular, 0.9),
+        },
+        _ => Material::Diffuse {
+            albedo: Texture::Solid(rgb(m.diffuse, 0.7)),
+            specular: rgb(m.specular, 0.0),
+            exponent: m
+                .shininess
+                .filter(|s| s.is_finite() && *s > 0.0)
+                .unwrap_or(1.0),
+        },
+    }
+}
+
+/// Turns a tobj error into one that names the line. tobj reads one line at a time and
+/// stops at the first bad one, except for face indices out of range, which it finds only
+/// when an object ends: those are located by scanning the faces here.
+fn obj_error(data: &[u8], file: &str, e: tobj::LoadError, line: usize) -> SceneError {
+    use tobj::LoadError::*;
+    let text = String::from_utf8_lossy(data);
+    match e {
+        FaceVertexOutOfBounds | FaceTexCoordOutOfBounds | FaceNormalOutOfBounds => {
+            match find_bad_face_index(&text) {
+                Some((line, col, message)) => SceneError::new(
+                    Location {
+                        file: file.to_string(),
+                        line_col: Some((line, Some(col))),
+                    },
+                    message,
+                ),
+                None => SceneError::new(Location::file(file), e.to_string()),
+            }
+        }
+        _ => SceneError::new(Location::at_line(file, line), format!("{e} in OBJ")),
+    }
+}
+
+/// The first face index that refers to a vertex, texture coordinate or normal that does
+/// not exist: (line, column, message).
+fn find_bad_face_index(text: &str) -> Option<(usize, usize, String)> {
+    let count = |tag: &str| {
+        text.lines()
+            .filter(|l| l.split_whitespace().next() == Some(tag))
+            .count()
+    };
+    let totals = [count("v"), count("vt"), count("vn")];
+    let mut seen = [0usize; 3];
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => seen[0] += 1,
+            Some("vt") => seen[1] += 1,
+            Some("vn") => seen[2] += 1,
+            Some("f") => {
+                for word in words {
+                    for (k, idx) in word.split('/').enumerate().take(3) {
+                        if idx.is_empty() {
+                            continue;
+                        }
+                        let Ok(i) = idx.parse::<i64>() else { continue };
+                        // Positive indices count from the file's start, negative ones back
+                        // from the latest element.
+                        let ok = if i > 0 {
+                            i as usize <= totals[k]
+                        } else {
+                            i < 0 && i.unsigned_abs() as usize <= seen[k]
+                        };
+                        if !ok {
+                            let what = ["vertex", "texture coordinate", "normal"][k];
+                            let col = line.find(word).map_or(1, |c| c + 1);
+                            let have = if i > 0 { totals[k] } else { seen[k] };
+                            return Some((
+                                n + 1,
+                                col,
+                                format!("face refers to {what} {i}, but there are {have}"),
+                            ));
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// A reader over bytes that counts the newlines consumed, so that when tobj stops at a bad
+/// line, we know which one.
+struct LineCounter<'a> {
+    data: &'a [u8],
+    pos: usize,
+    newlines: usize,
+}
+
+impl LineCounter<'_> {
+    /// The 1-based number of the line read last.
+    fn current_line(&self) -> usize {
+        let ended_on_newline = self.pos > 0 && self.data[self.pos - 1] == b'\n';
+        self.newlines + usize::from(!ended_on_newline)
+    }
+}
+
+impl Read for LineCounter<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.fill_buf()?.read(buf)?;
+        self.consume(n);
+        Ok(n)
+    }
+}
+
+impl BufRead for LineCounter<'_> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        Ok(&self.data[self.pos..])
+    }
+
+    fn consume(&mut self, amt: usize) {
+        let end = (self.pos + amt).min(self.data.len());
+        self.newlines += self.data[self.pos..end]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        self.pos = end;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn no_mtl(_: &str) -> Option<Vec<u8>> {
+        None
+    }
+
+    #[test]
+    fn loads_a_quad_as_two_triangles() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+        let parts = load_obj(obj, "q.obj", &no_mtl).unwrap();
+        assert_eq!(parts.len(), 1);
+        assert_eq!(parts[0].mesh.triangle_count(), 2);
+        assert!(parts[0].material.is_none());
+    }
+
+    #[test]
+    fn parse_errors_name_the_line() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 1 x 0\nf 1 2 3\n";
+        let e = load_obj(obj, "bad.obj", &no_mtl).unwrap_err();
+        assert_eq!(e.location.to_string(), "bad.obj:3", "{e}");
+    }
+
+    #[test]
+    fn out_of_range_faces_name_line_and_column() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\nf 1 2 9\n";
+        let e = load_obj(obj, "bad.obj", &no_mtl).unwrap_err();
+        assert_eq!(e.location.to_string(), "bad.obj:5:7", "{e}");
+        assert!(e.message.contains("vertex 9"), "{e}");
+    }
+
+    #[test]
+    fn mtl_materials_are_mapped() {
+        let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl shiny\nf 1 2 3\n";
+        let mtl = |name: &str| {
+            (name == "m.mtl").then(|| b"newmtl shiny\nKs 0.8 0.7 0.6\nillum 3\n".to_vec())
+        };
+        let parts = load_obj(obj, "m.obj", &mtl).unwrap();
+        let (name, m) = parts[0].material.clone().unwrap();
+        assert_eq!(name, "shiny");
+        assert!(matches!(m, Material::Mirror { .. }));
+    }
+
+    #[test]
+    fn empty_obj_is_an_error() {
+        let e = load_obj(b"# nothing\n", "e.obj", &no_mtl).unwrap_err();
+        assert!(e.message.contains("no faces"), "{e}");
+    }
+}
