@@ -32,7 +32,6 @@ pub fn load_obj(
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let mut reader = LineCounter {
         data,

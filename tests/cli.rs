@@ -1,0 +1,260 @@
+//! The `raylab` binary, run as a user runs it.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn raylab(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs and expects exit code 2 with one error line containing `words`.
+fn fails(args: &[&str], cwd: &Path, words: &str) -> String {
+    let o = raylab(args, cwd);
+    let err = stderr(&o);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{args:?} should exit 2; stderr: {err}"
+    );
+    assert!(
+        err.contains(words),
+        "{args:?}: expected `{words}` in: {err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+#[test]
+fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = raylab(
+        &[
+            "render",
+            "-o",
+            "a.png",
+            "--size",
+            "64x36",
+            "--spp",
+            "2",
+            "--set",
+            "max_depth=3",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = stderr(&o);
+    assert_eq!(summary.lines().count(), 1, "one summary line: {summary}");
+    for word in [
+        "64x36",
+        "2 spp",
+        "rays/s",
+        "rays/pixel",
+        "pruned",
+        "wrote a.png",
+    ] {
+        assert!(summary.contains(word), "`{word}` missing from: {summary}");
+    }
+    let img = image::open(d.join("a.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (64, 36));
+
+    let sidecar: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("a.json")).unwrap()).unwrap();
+    assert_eq!(sidecar["scene"], "builtin:default");
+    assert_eq!(sidecar["raylab_version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(
+        (sidecar["width"].as_u64(), sidecar["height"].as_u64()),
+        (Some(64), Some(36))
+    );
+    assert_eq!(sidecar["params"]["spp"], 2);
+    assert_eq!(sidecar["params"]["max_depth"], 3);
+    assert_eq!(sidecar["params"]["seed"], 0);
+
+    // From another folder, the sidecar alone reproduces the image bit for bit.
+    let other = tempfile::tempdir().unwrap();
+    let json = d.join("a.json");
+    let o = raylab(
+        &[
+            "render",
+            "--params",
+            json.to_str().unwrap(),
+            "-o",
+            "again.png",
+            "-q",
+        ],
+        other.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(d.join("a.png")).unwrap(),
+        std::fs::read(other.path().join("again.png")).unwrap()
+    );
+}
+
+#[test]
+fn thread_count_does_not_change_a_single_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (threads, out) in [("1", "t1.png"), ("2", "t2.png")] {
+        let o = raylab(
+            &[
+                "render",
+                "bunny",
+                "-o",
+                out,
+                "--size",
+                "80x60",
+                "--spp",
+                "4",
+                "--threads",
+                threads,
+                "-q",
+            ],
+            d,
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(
+        std::fs::read(d.join("t1.png")).unwrap(),
+        std::fs::read(d.join("t2.png")).unwrap()
+    );
+}
+
+#[test]
+fn a_scene_file_renders_and_exr_holds_linear_radiance() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("flat.toml"),
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n[background]\ncolor = [2.5, 0.5, 0.25]\n",
+    )
+    .unwrap();
+    let o = raylab(
+        &[
+            "render",
+            "flat.toml",
+            "-o",
+            "flat.exr",
+            "--size",
+            "8x4",
+            "--spp",
+            "1",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(d.join("flat.exr")).unwrap().to_rgb32f();
+    assert_eq!(
+        img.get_pixel(3, 2).0,
+        [2.5, 0.5, 0.25],
+        "EXR keeps radiance above 1, unclamped"
+    );
+    let sidecar = std::fs::read_to_string(d.join("flat.json")).unwrap();
+    assert!(sidecar.contains("flat.toml"), "{sidecar}");
+}
+
+#[test]
+fn bad_input_exits_2_with_one_clear_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fails(
+        &["render", "-o", "x.png", "--set", "max_dpeth=3"],
+        d,
+        "unknown parameter `max_dpeth`",
+    );
+    fails(
+        &["render", "-o", "x.png", "--set", "min_weight=2"],
+        d,
+        "min_weight",
+    );
+    fails(&["render", "-o", "x.png", "--set", "spp"], d, "NAME=VALUE");
+    fails(&["render", "-o", "x.png", "--spp", "0"], d, "spp");
+    fails(
+        &["render", "-o", "x.png", "--size", "0x10"],
+        d,
+        "out of range",
+    );
+    fails(&["render", "-o", "x.png", "--size", "big"], d, "WxH");
+    fails(&["render", "-o", "x.png", "--threads", "0"], d, "threads");
+    fails(&["render", "-o", "x.jpg"], d, ".png or .exr");
+    fails(&["render", "-o", "no/such/dir/x.png"], d, "does not exist");
+    fails(
+        &["render", "nowhere.toml", "-o", "x.png"],
+        d,
+        "nowhere.toml: no such scene file",
+    );
+    fails(
+        &["render", "--params", "missing.json", "-o", "x.png"],
+        d,
+        "missing.json",
+    );
+    std::fs::write(
+        d.join("bad.json"),
+        "{ \"scene\": \"default\",\n  \"widht\": 3 }",
+    )
+    .unwrap();
+    fails(
+        &["render", "--params", "bad.json", "-o", "x.png"],
+        d,
+        "bad.json:2:",
+    );
+    std::fs::write(
+        d.join("typo.toml"),
+        "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfvo = 40\n",
+    )
+    .unwrap();
+    fails(
+        &["render", "typo.toml", "-o", "x.png"],
+        d,
+        "typo.toml:4:1: unknown field `fvo`",
+    );
+    assert!(!d.join("x.png").exists(), "nothing is written on error");
+}
+
+#[test]
+fn scenes_lists_builtins_and_files_and_help_documents_everything() {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let o = raylab(&["scenes"], repo);
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.lines()
+            .any(|l| l.starts_with("default ") && l.contains("(built in)")),
+        "{out}"
+    );
+    assert!(out.lines().any(|l| l.starts_with("bunny ")), "{out}");
+    assert!(
+        out.lines().any(|l| l.starts_with("scenes/default.toml")),
+        "{out}"
+    );
+
+    for args in [
+        &["--help"][..],
+        &["render", "--help"],
+        &["scenes", "--help"],
+    ] {
+        let o = raylab(args, repo);
+        assert!(o.status.success(), "{args:?}");
+        assert!(!o.stdout.is_empty());
+    }
+    let help = String::from_utf8_lossy(&raylab(&["render", "--help"], repo).stdout).into_owned();
+    for flag in [
+        "--output",
+        "--spp",
+        "--size",
+        "--seed",
+        "--threads",
+        "--set",
+        "--params",
+    ] {
+        assert!(help.contains(flag), "{flag} missing from render --help");
+    }
+}

@@ -1,0 +1,286 @@
+//! Intersection: the BVH finds exactly what testing every primitive finds, and rays
+//! leaving a surface neither hit it again (acne) nor pass through nearby geometry (leaks).
+
+use raylab::camera::Camera;
+use raylab::geometry::{Mesh, Plane, Quad, Shape, Sphere};
+use raylab::light::Background;
+use raylab::material::{Material, Texture};
+use raylab::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
+use raylab::params::Params;
+use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+
+/// Deterministic uniform numbers for tests.
+struct Rng(SampleStream);
+
+impl Rng {
+    fn new(seed: u64) -> Self {
+        Rng(SampleStream::new(seed, 0, 0))
+    }
+    fn f(&mut self) -> f32 {
+        self.0.next_1d()
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.f()
+    }
+    fn vec(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
+    }
+    fn dir(&mut self) -> Vec3 {
+        loop {
+            let v = self.vec(-1.0, 1.0);
+            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+}
+
+fn scene_of(shapes: Vec<Shape>) -> Scene {
+    let objects = shapes
+        .into_iter()
+        .enumerate()
+        .map(|(i, shape)| Object {
+            name: format!("object {i}"),
+            shape,
+            material: 0,
+        })
+        .collect();
+    Scene::new(
+        SceneDesc {
+            name: "test".into(),
+            description: String::new(),
+            camera: Camera::looking_at(Vec3::Z, Vec3::ZERO, Vec3::Y, 45.0),
+            width: 16,
+            height: 16,
+            params: Params::default(),
+            materials: vec![(
+                "grey".into(),
+                Material::Diffuse {
+                    albedo: Texture::Solid(Color::splat(0.5)),
+                    specular: Color::ZERO,
+                    exponent: 1.0,
+                },
+            )],
+            objects,
+            lights: vec![],
+            ambient: Color::ZERO,
+            background: Background::Constant(Color::ONE),
+        },
+        SceneSource::Code,
+    )
+}
+
+/// A soup of random triangles in a box of side `size` around `center`.
+fn random_mesh(rng: &mut Rng, triangles: usize, center: Vec3, size: f32) -> Mesh {
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for t in 0..triangles {
+        let base = center + rng.vec(-size / 2.0, size / 2.0);
+        for _ in 0..3 {
+            positions.push(base + rng.vec(-size / 20.0, size / 20.0));
+        }
+        let i = 3 * t as u32;
+        indices.push([i, i + 1, i + 2]);
+    }
+    Mesh::new(positions, indices, None, None).unwrap()
+}
+
+#[test]
+fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
+    for seed in 0..4u64 {
+        let mut rng = Rng::new(seed);
+        let mut shapes = vec![
+            Shape::Mesh(random_mesh(&mut rng, 3000, Vec3::ZERO, 10.0)),
+            Shape::Mesh(random_mesh(&mut rng, 500, Vec3::new(3.0, 1.0, -2.0), 2.0)),
+            Shape::Plane(Plane::new(Vec3::new(0.0, -6.0, 0.0), Vec3::Y)),
+        ];
+        for _ in 0..20 {
+            shapes.push(Shape::Sphere(Sphere {
+                center: rng.vec(-5.0, 5.0),
+                radius: rng.range(0.05, 1.0),
+            }));
+            shapes.push(Shape::Quad(Quad::new(
+                rng.vec(-5.0, 5.0),
+                rng.vec(-1.0, 1.0),
+                rng.vec(-1.0, 1.0),
+            )));
+        }
+        let scene = scene_of(shapes);
+        let mut hits = 0;
+        for _ in 0..4000 {
+            // Rays from outside and from inside the cloud, in every direction.
+            let origin = if rng.f() < 0.5 {
+                rng.vec(-6.0, 6.0)
+            } else {
+                rng.dir() * 15.0
+            };
+            let ray = Ray::new(origin, rng.dir(), 0.0);
+            let t_max = if rng.f() < 0.2 {
+                rng.range(0.5, 10.0)
+            } else {
+                f32::INFINITY
+            };
+            let bvh = scene.intersect(&ray, t_max);
+            let brute = scene.intersect_brute_force(&ray, t_max);
+            match (bvh, brute) {
+                (None, None) => {}
+                (Some(a), Some(b)) => {
+                    hits += 1;
+                    assert_eq!(
+                        a.surface.t, b.surface.t,
+                        "seed {seed}: different nearest distance"
+                    );
+                }
+                (a, b) => panic!(
+                    "seed {seed}: bvh {:?} vs brute force {:?}",
+                    a.map(|h| h.object),
+                    b.map(|h| h.object)
+                ),
+            }
+            assert_eq!(
+                scene.occluded(&ray, t_max),
+                brute.is_some(),
+                "seed {seed}: occlusion disagrees"
+            );
+        }
+        assert!(hits > 1000, "too few hits ({hits}) to mean anything");
+    }
+}
+
+/// Shoots rays at `scene` from around it; for each hit on a surface, leaves the surface on
+/// both sides in random directions and checks what the new ray hits.
+fn check_no_self_hits(
+    scene: &Scene,
+    rng: &mut Rng,
+    extent: f32,
+    center: Vec3,
+    convex_object: Option<u32>,
+) {
+    let mut tested = 0;
+    for _ in 0..40_000 {
+        if tested >= 3000 {
+            break;
+        }
+        let origin = center + rng.dir() * extent * 3.0;
+        let target = center + rng.vec(-extent, extent);
+        let ray = Ray::new(origin, target - origin, 0.0);
+        let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+            continue;
+        };
+        let p = hit.surface.p;
+        let n = hit.surface.n_geom;
+        for side in [1.0f32, -1.0] {
+            let n_side = n * side;
+            let mut dir = rng.dir();
+            if dir.dot(n_side) < 0.0 {
+                dir = -dir;
+            }
+            // Include grazing directions.
+            if rng.f() < 0.3 {
+                dir = (dir - n_side * dir.dot(n_side) * 0.999).normalize();
+            }
+            let leave = Ray::new(offset_ray_origin(p, n_side), dir, 0.0);
+            if let Some(again) = scene.intersect(&leave, f32::INFINITY)
+                && again.object == hit.object
+            {
+                let outside_of_convex = convex_object == Some(hit.object) && side > 0.0;
+                assert!(
+                    !outside_of_convex && again.surface.t > 1e-4 * extent,
+                    "self-intersection at {p:?} (side {side}): t = {}",
+                    again.surface.t
+                );
+            }
+            tested += 1;
+        }
+    }
+    assert!(tested >= 3000, "only {tested} rays tested");
+}
+
+#[test]
+fn rays_leaving_a_surface_do_not_hit_it_again_at_any_scale() {
+    let mut rng = Rng::new(7);
+    for (scale, offset) in [
+        (0.01f32, 0.0f32),
+        (1.0, 0.0),
+        (1.0, 1000.0),
+        (100.0, -5000.0),
+        (1000.0, 20000.0),
+    ] {
+        let c = Vec3::new(offset, 0.5 * offset, -offset);
+        let sphere = scene_of(vec![Shape::Sphere(Sphere {
+            center: c,
+            radius: scale,
+        })]);
+        check_no_self_hits(&sphere, &mut rng, scale, c, Some(0));
+        let quad = scene_of(vec![Shape::Quad(Quad::new(
+            c - Vec3::new(scale, 0.0, scale),
+            Vec3::new(2.0 * scale, 0.3 * scale, 0.0),
+            Vec3::new(0.0, 0.2 * scale, 2.0 * scale),
+        ))]);
+        check_no_self_hits(&quad, &mut rng, scale, c, None);
+        let plane = scene_of(vec![Shape::Plane(Plane::new(c, Vec3::new(0.1, 1.0, 0.2)))]);
+        check_no_self_hits(&plane, &mut rng, scale, c, None);
+        let mesh = scene_of(vec![Shape::Mesh(random_mesh(
+            &mut rng,
+            200,
+            c,
+            2.0 * scale,
+        ))]);
+        check_no_self_hits(&mesh, &mut rng, scale, c, None);
+    }
+}
+
+#[test]
+fn rays_do_not_leak_through_thin_or_touching_geometry() {
+    // A slab one thousandth of a unit thick: a ray entering the top face must meet the
+    // bottom face, never slip past it.
+    let thickness = 1e-3;
+    let top = Quad::new(
+        Vec3::new(-1.0, thickness, -1.0),
+        Vec3::new(0.0, 0.0, 2.0),
+        Vec3::new(2.0, 0.0, 0.0),
+    );
+    let bottom = Quad::new(
+        Vec3::new(-1.0, 0.0, -1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, 2.0),
+    );
+    let slab = scene_of(vec![Shape::Quad(top), Shape::Quad(bottom)]);
+    let mut rng = Rng::new(3);
+    for _ in 0..2000 {
+        let target = Vec3::new(rng.range(-0.9, 0.9), thickness, rng.range(-0.9, 0.9));
+        let origin = target + Vec3::new(rng.range(-1.0, 1.0), 1.0, rng.range(-1.0, 1.0));
+        let hit = slab
+            .intersect(&Ray::new(origin, target - origin, 0.0), f32::INFINITY)
+            .unwrap();
+        assert_eq!(hit.object, 0);
+        let down = Vec3::new(rng.range(-0.5, 0.5), -1.0, rng.range(-0.5, 0.5)).normalize();
+        let inside = Ray::new(offset_ray_origin(hit.surface.p, -Vec3::Y), down, 0.0);
+        let next = slab
+            .intersect(&inside, f32::INFINITY)
+            .expect("leaked through the slab");
+        assert_eq!(
+            next.object, 1,
+            "the ray inside the slab must meet its bottom face"
+        );
+    }
+    // A sphere resting on a plane: from floor points right beside the contact point, a ray
+    // towards the sphere's centre is blocked by the sphere.
+    let touching = scene_of(vec![
+        Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+        Shape::Sphere(Sphere {
+            center: Vec3::new(0.0, 1.0, 0.0),
+            radius: 1.0,
+        }),
+    ]);
+    for i in 1..200 {
+        let r = i as f32 * 1e-3;
+        let p = Vec3::new(r, 0.0, 0.0);
+        let to_center = Vec3::new(0.0, 1.0, 0.0) - p;
+        let ray = Ray::new(offset_ray_origin(p, Vec3::Y), to_center, 0.0);
+        let hit = touching
+            .intersect(&ray, f32::INFINITY)
+            .expect("escaped between sphere and floor");
+        assert_eq!(hit.object, 1);
+    }
+}

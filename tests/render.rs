@@ -1,0 +1,252 @@
+//! Rendering: determinism, and images checked against closed forms.
+
+use raylab::camera::Camera;
+use raylab::geometry::{Plane, Shape};
+use raylab::light::{Background, PointLight};
+use raylab::material::{Material, Texture};
+use raylab::math::{Color, Vec3};
+use raylab::params::Params;
+use raylab::render::{Film, render, render_pass};
+use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use std::f32::consts::PI;
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn bits(film: &Film) -> Vec<[u32; 3]> {
+    film.pixels()
+        .map(|c| c.to_array().map(f32::to_bits))
+        .collect()
+}
+
+#[test]
+fn same_image_for_any_thread_count() {
+    let scene = Scene::load("bunny").unwrap();
+    let params = Params {
+        spp: 3,
+        ..scene.params.clone()
+    };
+    let one = in_pool(1, || render(&scene, &params, 97, 61, &()).unwrap().0);
+    let two = in_pool(2, || render(&scene, &params, 97, 61, &()).unwrap().0);
+    let five = in_pool(5, || render(&scene, &params, 97, 61, &()).unwrap().0);
+    assert_eq!(bits(&one), bits(&two));
+    assert_eq!(bits(&one), bits(&five));
+}
+
+#[test]
+fn same_image_for_any_split_into_passes() {
+    let scene = Scene::load("default").unwrap();
+    let params = Params {
+        spp: 8,
+        ..scene.params.clone()
+    };
+    let (whole, stats_whole) = render(&scene, &params, 80, 45, &()).unwrap();
+    let mut film = Film::new(80, 45);
+    let mut stats = raylab::tracer::Stats::default();
+    for _ in 0..8 {
+        stats += render_pass(&scene, &params, &mut film, 1, &()).unwrap();
+    }
+    assert_eq!(film.spp(), 8);
+    assert_eq!(bits(&whole), bits(&film));
+    assert_eq!(stats_whole, stats);
+    // 3 + 5 as well.
+    let mut split = Film::new(80, 45);
+    render_pass(&scene, &params, &mut split, 3, &()).unwrap();
+    render_pass(&scene, &params, &mut split, 5, &()).unwrap();
+    assert_eq!(bits(&whole), bits(&split));
+    // And a different seed gives a different image.
+    let other = render(&scene, &Params { seed: 1, ..params }, 80, 45, &())
+        .unwrap()
+        .0;
+    assert_ne!(bits(&whole), bits(&other));
+}
+
+fn grey(albedo: f32) -> Material {
+    Material::Diffuse {
+        albedo: Texture::Solid(Color::splat(albedo)),
+        specular: Color::ZERO,
+        exponent: 1.0,
+    }
+}
+
+/// A camera at height `height` looking straight down at the plane y = 0.
+fn top_down(
+    material: Material,
+    lights: Vec<PointLight>,
+    height: f32,
+    fov: f32,
+    background: Color,
+) -> Scene {
+    Scene::new(
+        SceneDesc {
+            name: "closed form".into(),
+            description: String::new(),
+            camera: Camera::looking_at(Vec3::new(0.0, height, 0.0), Vec3::ZERO, Vec3::Z, fov),
+            width: 24,
+            height: 24,
+            params: Params::default(),
+            materials: vec![("m".into(), material)],
+            objects: vec![Object {
+                name: "floor".into(),
+                shape: Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+                material: 0,
+            }],
+            lights,
+            ambient: Color::ZERO,
+            background: Background::Constant(background),
+        },
+        SceneSource::Code,
+    )
+}
+
+#[test]
+fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
+    // L(r) = (a/π) I cos θ / d² = (a/π) I h / (h² + r²)^{3/2} for a light at height h.
+    let (albedo, intensity, h) = (0.6f32, 5.0f32, 1.0f32);
+    let scene = top_down(
+        grey(albedo),
+        vec![PointLight {
+            position: Vec3::new(0.0, h, 0.0),
+            intensity: Color::splat(intensity),
+        }],
+        2.0,
+        60.0,
+        Color::ZERO,
+    );
+    let spp = 64;
+    let params = Params {
+        spp,
+        ..Params::default()
+    };
+    let (n, side) = (24u32, 2.0 * 2.0 * (30f32).to_radians().tan());
+    let (film, _) = render(&scene, &params, n, n, &()).unwrap();
+    let radiance = |x: f32, z: f32| albedo / PI * intensity * h / (h * h + x * x + z * z).powf(1.5);
+    for py in 0..n {
+        for px in 0..n {
+            // The pixel's footprint on the floor: its mean and spread from a 16×16 grid.
+            let (mut mean, mut sq) = (0.0f64, 0.0f64);
+            for j in 0..16 {
+                for i in 0..16 {
+                    let u = (px as f32 + (i as f32 + 0.5) / 16.0) / n as f32;
+                    let v = (py as f32 + (j as f32 + 0.5) / 16.0) / n as f32;
+                    // Image right is world -x (looking down with +z up), image down is -z.
+                    let l = radiance(-(u - 0.5) * side, -(v - 0.5) * side) as f64;
+                    mean += l / 256.0;
+                    sq += l * l / 256.0;
+                }
+            }
+            let sigma = (sq - mean * mean).max(0.0).sqrt();
+            // Four standard errors of a 64-sample mean, plus the grid's own error.
+            let tolerance = 4.0 * sigma / (spp as f64).sqrt() + 1e-4 * mean;
+            let got = film.pixel(px, py).x as f64;
+            assert!(
+                (got - mean).abs() <= tolerance,
+                "pixel ({px}, {py}): {got} vs {mean} ± {tolerance}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_mirror_reflects_its_reflectance_times_the_background() {
+    let k = 0.7f32;
+    let sky = Color::new(0.2, 0.5, 1.0);
+    let mirror = Material::Mirror {
+        reflectance: Color::splat(k),
+    };
+    let scene = top_down(mirror, vec![], 2.0, 40.0, sky);
+    let params = Params {
+        spp: 1,
+        ..Params::default()
+    };
+    let (film, stats) = render(&scene, &params, 8, 8, &()).unwrap();
+    for c in film.pixels() {
+        assert!((c - k * sky).abs().max_element() < 1e-6, "{c:?}");
+    }
+    assert_eq!(stats.reflection_rays, 64);
+
+    // Pruned by depth: no reflected ray at max_depth 0, and the mirror is black.
+    let (film, stats) = render(
+        &scene,
+        &Params {
+            max_depth: 0,
+            ..params.clone()
+        },
+        8,
+        8,
+        &(),
+    )
+    .unwrap();
+    assert!(film.pixels().all(|c| c == Color::ZERO));
+    assert_eq!(
+        (
+            stats.reflection_rays,
+            stats.pruned_by_depth,
+            stats.pruned_by_weight
+        ),
+        (0, 64, 0)
+    );
+
+    // Pruned by weight: a branch of weight 0.7 is cut at min_weight 0.8.
+    let (film, stats) = render(
+        &scene,
+        &Params {
+            min_weight: 0.8,
+            ..params
+        },
+        8,
+        8,
+        &(),
+    )
+    .unwrap();
+    assert!(film.pixels().all(|c| c == Color::ZERO));
+    assert_eq!(
+        (
+            stats.reflection_rays,
+            stats.pruned_by_depth,
+            stats.pruned_by_weight
+        ),
+        (0, 0, 64)
+    );
+}
+
+#[test]
+fn facing_mirrors_prune_at_the_depth_limit_with_geometric_weights() {
+    // Two parallel mirrors: a ray bounces between them until a pruning rule stops it. With
+    // reflectance k, the path weight after n bounces is k^n, so weight pruning at ε stops
+    // at n = ceil(log ε / log k) bounces and depth pruning at max_depth.
+    let k = 0.5f32;
+    let text = format!(
+        "[camera]\nposition = [0, 0.5, 0]\nlook_at = [0, 0.5, -1]\nfov = 10\n\
+         [background]\ncolor = [1, 1, 1]\n\
+         [material.m]\ntype = \"mirror\"\nreflectance = [{k}, {k}, {k}]\n\
+         [[plane]]\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\nmaterial = \"m\"\n\
+         [[plane]]\npoint = [0, 0, 1]\nnormal = [0, 0, -1]\nmaterial = \"m\"\n"
+    );
+    let scene = Scene::from_toml_str(&text, "mirrors.toml", std::path::Path::new(".")).unwrap();
+    let one_pixel = |max_depth, min_weight| {
+        let params = Params {
+            spp: 1,
+            max_depth,
+            min_weight,
+            ..Params::default()
+        };
+        render(&scene, &params, 1, 1, &()).unwrap().1
+    };
+    let s = one_pixel(5, 0.0);
+    assert_eq!(
+        (s.reflection_rays, s.pruned_by_depth, s.pruned_by_weight),
+        (5, 1, 0)
+    );
+    // 0.5^3 = 0.125 ≥ 0.1 is traced; 0.5^4 = 0.0625 < 0.1 is cut.
+    let s = one_pixel(20, 0.1);
+    assert_eq!(
+        (s.reflection_rays, s.pruned_by_depth, s.pruned_by_weight),
+        (3, 0, 1)
+    );
+}

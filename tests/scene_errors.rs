@@ -1,0 +1,210 @@
+//! Every kind of bad scene input gives one line naming the file and line:column.
+
+use raylab::scene::Scene;
+use std::path::Path;
+
+const CAMERA: &str = "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n";
+
+/// Parses `text` as `t.toml` (OBJ paths relative to `dir`) and returns the error line.
+fn error_in(text: &str, dir: &Path) -> String {
+    match Scene::from_toml_str(text, "t.toml", dir) {
+        Ok(_) => panic!("expected an error for:\n{text}"),
+        Err(e) => {
+            let s = e.to_string();
+            assert!(!s.contains('\n'), "error is not one line: {s}");
+            s
+        }
+    }
+}
+
+fn err(text: &str) -> String {
+    error_in(text, Path::new("."))
+}
+
+fn assert_at(e: &str, location: &str, words: &str) {
+    assert!(
+        e.starts_with(&format!("{location}: ")),
+        "expected location {location}, got: {e}"
+    );
+    assert!(e.contains(words), "expected `{words}` in: {e}");
+}
+
+#[test]
+fn syntax_error() {
+    let e = err(&format!(
+        "{CAMERA}[[sphere]]\ncenter = [0, 0, 0\nradius = 1\n"
+    ));
+    // Arrays may span lines: the parser notices at the next line.
+    assert_at(&e, "t.toml:6:1", "missing comma");
+}
+
+#[test]
+fn unknown_key() {
+    let e = err(&format!(
+        "{CAMERA}[[sphere]]\ncenter = [0, 0, 0]\nradus = 1\n"
+    ));
+    assert_at(&e, "t.toml:6:1", "unknown field `radus`");
+}
+
+#[test]
+fn wrong_type() {
+    let e = err(&format!(
+        "{CAMERA}[[sphere]]\ncenter = [0, 0, 0]\nradius = \"big\"\n"
+    ));
+    assert_at(&e, "t.toml:6:10", "invalid type");
+}
+
+#[test]
+fn non_finite_number() {
+    let e = err(&format!(
+        "{CAMERA}[[sphere]]\ncenter = [0, nan, 0]\nradius = 1\n"
+    ));
+    assert_at(&e, "t.toml:5:10", "non-finite");
+    let e = err(&format!(
+        "{CAMERA}[[point_light]]\nposition = [0, 5, 0]\nintensity = inf\n"
+    ));
+    assert_at(&e, "t.toml:6:13", "not a finite number");
+}
+
+#[test]
+fn negative_radius() {
+    let e = err(&format!(
+        "{CAMERA}[[sphere]]\ncenter = [0, 0, 0]\nradius = -1\n"
+    ));
+    assert_at(&e, "t.toml:6:10", "greater than 0");
+}
+
+#[test]
+fn zero_image_size() {
+    let e = err(&format!("[image]\nwidth = 0\nheight = 10\n{CAMERA}"));
+    assert_at(&e, "t.toml:2:9", "between 1 and");
+}
+
+#[test]
+fn spp_zero_and_unknown_parameter() {
+    let e = err(&format!("[params]\nspp = 0\n{CAMERA}"));
+    assert_at(&e, "t.toml:2:7", "spp");
+    let e = err(&format!("[params]\nmax_dpeth = 3\n{CAMERA}"));
+    assert_at(&e, "t.toml:2:1", "unknown parameter `max_dpeth`");
+}
+
+#[test]
+fn unknown_material() {
+    let e = err(&format!(
+        "{CAMERA}[material.red]\ntype = \"diffuse\"\ncolor = [1, 0, 0]\n[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"blue\"\n"
+    ));
+    assert_at(&e, "t.toml:10:12", "unknown material `blue` (defined: red)");
+}
+
+#[test]
+fn bad_material_fields() {
+    let e = err(&format!(
+        "{CAMERA}[material.m]\ntype = \"mirror\"\ncolor = [1, 0, 0]\n"
+    ));
+    assert!(e.starts_with("t.toml:"), "{e}");
+    assert!(e.contains("unknown field `color`"), "{e}");
+    let e = err(&format!("{CAMERA}[material.m]\ntype = \"velvet\"\n"));
+    assert!(e.contains("unknown variant `velvet`"), "{e}");
+    let e = err(&format!(
+        "{CAMERA}[material.m]\ntype = \"diffuse\"\ncolor = [1.5, 0, 0]\n"
+    ));
+    assert!(e.contains("between 0 and 1"), "{e}");
+}
+
+#[test]
+fn missing_camera_and_degenerate_camera() {
+    let e = err("[[sphere]]\ncenter = [0, 0, 0]\nradius = 1\n");
+    assert!(e.contains("missing field `camera`"), "{e}");
+    let e = err("[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 5]\n");
+    assert!(e.contains("must differ"), "{e}");
+    let e = err("[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\nfov = 200\n");
+    assert_at(&e, "t.toml:4:7", "below 180");
+}
+
+#[test]
+fn bad_background_and_quad() {
+    let e = err(&format!(
+        "{CAMERA}[background]\ncolor = [1, 1, 1]\nzenith = [0, 0, 1]\n"
+    ));
+    assert!(e.contains("either `color`"), "{e}");
+    let e = err(&format!(
+        "{CAMERA}[[quad]]\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\nedge_v = [2, 0, 0]\n"
+    ));
+    assert!(e.starts_with("t.toml:4:") && e.contains("parallel"), "{e}");
+}
+
+#[test]
+fn missing_obj() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = error_in(
+        &format!("{CAMERA}[[mesh]]\nfile = \"nope.obj\"\n"),
+        dir.path(),
+    );
+    assert_at(&e, "t.toml:5:8", "cannot read OBJ file");
+    assert!(e.contains("nope.obj"), "{e}");
+}
+
+#[test]
+fn malformed_obj_names_the_obj_line() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("bad.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
+    )
+    .unwrap();
+    let e = error_in(
+        &format!("{CAMERA}[[mesh]]\nfile = \"bad.obj\"\n"),
+        dir.path(),
+    );
+    assert!(e.contains("bad.obj:4: "), "{e}");
+    std::fs::write(
+        dir.path().join("oob.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+    )
+    .unwrap();
+    let e = error_in(
+        &format!("{CAMERA}[[mesh]]\nfile = \"oob.obj\"\n"),
+        dir.path(),
+    );
+    assert!(
+        e.contains("oob.obj:4:7: face refers to vertex 4, but there are 3"),
+        "{e}"
+    );
+    std::fs::write(
+        dir.path().join("nan.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let e = error_in(
+        &format!("{CAMERA}[[mesh]]\nfile = \"nan.obj\"\n"),
+        dir.path(),
+    );
+    assert!(e.contains("nan.obj") && e.contains("non-finite"), "{e}");
+}
+
+#[test]
+fn scene_files_that_do_not_exist_or_are_not_scenes() {
+    let e = Scene::load("no/such/scene.toml").unwrap_err().to_string();
+    assert!(e.starts_with("no/such/scene.toml: "), "{e}");
+    let e = Scene::load("builtin:nope").unwrap_err().to_string();
+    assert!(e.contains("built-in: default"), "{e}");
+}
+
+#[test]
+fn a_good_scene_with_a_mesh_and_its_mtl_loads() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tri.mtl"), "newmtl glow\nKe 1 1 1\n").unwrap();
+    std::fs::write(
+        dir.path().join("tri.obj"),
+        "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl glow\nf 1 2 3\n",
+    )
+    .unwrap();
+    let scene = Scene::from_toml_str(
+        &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\n"),
+        "t.toml",
+        dir.path(),
+    )
+    .unwrap();
+    assert_eq!(scene.material_names, vec!["tri.obj:glow".to_string()]);
+    assert_eq!(scene.materials[0].kind(), "emissive");
+}
