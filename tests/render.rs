@@ -160,59 +160,35 @@ fn a_mirror_reflects_its_reflectance_times_the_background() {
         reflectance: Color::splat(k),
     };
     let scene = top_down(mirror, vec![], 2.0, 40.0, sky);
-    let params = Params {
-        spp: 1,
-        ..Params::default()
+    let run = |max_depth, min_weight| {
+        let params = Params {
+            spp: 1,
+            max_depth,
+            min_weight,
+            ..Params::default()
+        };
+        let (film, s) = render(&scene, &params, 8, 8, &()).unwrap();
+        let pixels: Vec<Color> = film.pixels().collect();
+        (
+            pixels,
+            (s.reflection_rays, s.pruned_by_depth, s.pruned_by_weight),
+        )
     };
-    let (film, stats) = render(&scene, &params, 8, 8, &()).unwrap();
-    for c in film.pixels() {
+    let (pixels, counts) = run(8, 0.0);
+    for c in pixels {
         assert!((c - k * sky).abs().max_element() < 1e-6, "{c:?}");
     }
-    assert_eq!(stats.reflection_rays, 64);
+    assert_eq!(counts, (64, 0, 0));
 
     // Pruned by depth: no reflected ray at max_depth 0, and the mirror is black.
-    let (film, stats) = render(
-        &scene,
-        &Params {
-            max_depth: 0,
-            ..params.clone()
-        },
-        8,
-        8,
-        &(),
-    )
-    .unwrap();
-    assert!(film.pixels().all(|c| c == Color::ZERO));
-    assert_eq!(
-        (
-            stats.reflection_rays,
-            stats.pruned_by_depth,
-            stats.pruned_by_weight
-        ),
-        (0, 64, 0)
-    );
+    let (pixels, counts) = run(0, 0.0);
+    assert!(pixels.iter().all(|&c| c == Color::ZERO));
+    assert_eq!(counts, (0, 64, 0));
 
     // Pruned by weight: a branch of weight 0.7 is cut at min_weight 0.8.
-    let (film, stats) = render(
-        &scene,
-        &Params {
-            min_weight: 0.8,
-            ..params
-        },
-        8,
-        8,
-        &(),
-    )
-    .unwrap();
-    assert!(film.pixels().all(|c| c == Color::ZERO));
-    assert_eq!(
-        (
-            stats.reflection_rays,
-            stats.pruned_by_depth,
-            stats.pruned_by_weight
-        ),
-        (0, 0, 64)
-    );
+    let (pixels, counts) = run(8, 0.8);
+    assert!(pixels.iter().all(|&c| c == Color::ZERO));
+    assert_eq!(counts, (0, 0, 64));
 }
 
 #[test]
