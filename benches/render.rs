@@ -1,1 +1,137 @@
-fn main() {}
+//! Rays per second on the default scene and on a million-triangle mesh, and BVH build time.
+//!
+//! `cargo bench` (criterion). Throughput is in rays (elements/s = rays/s): every ray the
+//! pass traces, of every kind, counted once up front (the count is deterministic).
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use raylab::camera::Camera;
+use raylab::geometry::{Mesh, Plane, Shape};
+use raylab::light::{Background, PointLight};
+use raylab::material::{Material, Texture};
+use raylab::math::{Color, Vec3};
+use raylab::params::Params;
+use raylab::render::render;
+use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use std::f32::consts::PI;
+use std::hint::black_box;
+
+const WIDTH: u32 = 480;
+const HEIGHT: u32 = 270;
+
+/// A bumpy sphere of `2 * rings * segments` triangles: (1000, 500) gives a million.
+fn bumpy_sphere(segments: u32, rings: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for j in 0..=rings {
+        let theta = PI * j as f32 / rings as f32;
+        for i in 0..segments {
+            let phi = 2.0 * PI * i as f32 / segments as f32;
+            let r = 1.0
+                + 0.06 * (7.0 * phi).sin() * (9.0 * theta).sin()
+                + 0.02 * (40.0 * phi).sin() * (35.0 * theta).cos();
+            positions.push(
+                r * Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                ) + Vec3::Y,
+            );
+        }
+    }
+    let mut indices = Vec::new();
+    for j in 0..rings {
+        for i in 0..segments {
+            let a = j * segments + i;
+            let b = j * segments + (i + 1) % segments;
+            let (c, d) = (a + segments, b + segments);
+            indices.push([a, c, b]);
+            indices.push([b, c, d]);
+        }
+    }
+    Mesh::new(positions, indices, None, None).expect("valid mesh")
+}
+
+fn mesh_scene(mesh: Mesh) -> SceneDesc {
+    let diffuse = |c: Color| Material::Diffuse {
+        albedo: Texture::Solid(c),
+        specular: Color::splat(0.2),
+        exponent: 40.0,
+    };
+    SceneDesc {
+        name: "million".into(),
+        description: "a million-triangle bumpy sphere".into(),
+        camera: Camera::looking_at(
+            Vec3::new(0.0, 1.6, 4.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::Y,
+            40.0,
+        ),
+        width: WIDTH,
+        height: HEIGHT,
+        params: Params::default(),
+        materials: vec![
+            ("floor".into(), diffuse(Color::splat(0.7))),
+            ("blob".into(), diffuse(Color::new(0.7, 0.4, 0.2))),
+        ],
+        objects: vec![
+            Object {
+                name: "floor".into(),
+                shape: Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+                material: 0,
+            },
+            Object {
+                name: "blob".into(),
+                shape: Shape::Mesh(mesh),
+                material: 1,
+            },
+        ],
+        lights: vec![PointLight {
+            position: Vec3::new(-3.0, 6.0, 4.0),
+            intensity: Color::splat(150.0),
+        }],
+        ambient: Color::splat(0.05),
+        background: Background::Constant(Color::new(0.6, 0.7, 0.9)),
+    }
+}
+
+fn rays_per_second(c: &mut Criterion, name: &str, scene: &Scene) {
+    let params = Params {
+        spp: 1,
+        ..scene.params.clone()
+    };
+    let rays = render(scene, &params, WIDTH, HEIGHT, &())
+        .expect("no cancel")
+        .1
+        .total_rays();
+    let mut group = c.benchmark_group(name);
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(rays));
+    group.bench_function(format!("1spp_{WIDTH}x{HEIGHT}"), |b| {
+        b.iter(|| black_box(render(scene, &params, WIDTH, HEIGHT, &()).expect("no cancel")))
+    });
+    group.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    let default = Scene::load("default").expect("built-in scene");
+    rays_per_second(c, "default_scene", &default);
+
+    let mesh = bumpy_sphere(1000, 500);
+    assert!(mesh.triangle_count() >= 1_000_000);
+    let desc = mesh_scene(mesh);
+    let mut group = c.benchmark_group("million_triangles");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(1_000_000));
+    group.bench_function("bvh_build", |b| {
+        b.iter_batched(
+            || desc.clone(),
+            |d| black_box(Scene::new(d, SceneSource::Code)),
+            criterion::BatchSize::LargeInput,
+        )
+    });
+    group.finish();
+    let scene = Scene::new(desc, SceneSource::Code);
+    rays_per_second(c, "million_triangles", &scene);
+}
+
+criterion_group!(render_benches, benches);
+criterion_main!(render_benches);
