@@ -226,3 +226,33 @@ fn facing_mirrors_prune_at_the_depth_limit_with_geometric_weights() {
         (3, 0, 1)
     );
 }
+
+#[test]
+fn non_finite_samples_are_dropped_and_counted_never_written() {
+    // An object emitting infinite radiance (only possible from code; files refuse it).
+    let glow = Material::Emissive {
+        radiance: Color::new(f32::INFINITY, 1.0, f32::NAN),
+    };
+    let scene = top_down(glow, vec![], 2.0, 40.0, Color::ONE);
+    let (film, stats) = render(
+        &scene,
+        &Params {
+            spp: 2,
+            ..Params::default()
+        },
+        4,
+        4,
+        &(),
+    )
+    .unwrap();
+    assert_eq!(
+        stats.non_finite, 32,
+        "every sample hits the floor and is dropped"
+    );
+    assert!(film.pixels().all(|c| c.is_finite()));
+    let png = film.to_srgb8(0.0);
+    assert!(
+        png.pixels().all(|p| p.0 == [0, 0, 0]),
+        "a pixel with no valid sample shows black"
+    );
+}
