@@ -90,6 +90,7 @@ fn mesh_scene(mesh: Mesh) -> SceneDesc {
         }],
         ambient: Color::splat(0.05),
         background: Background::Constant(Color::new(0.6, 0.7, 0.9)),
+        medium_ior: 1.0,
     }
 }
 

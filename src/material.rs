@@ -1,6 +1,8 @@
 //! Materials: a closed set, each with the lecture's shading model.
 
 use crate::math::Color;
+use crate::optics::FresnelMode;
+use crate::params::Params;
 use glam::Vec2;
 
 /// A colour that may vary over a surface.
@@ -60,6 +62,34 @@ pub enum Material {
         /// Emitted radiance.
         radiance: Color,
     },
+    /// A clear or coloured dielectric (glass, water, an air bubble): every hit splits into
+    /// a reflected ray of weight R and a refracted ray of weight 1 − R, R from the
+    /// Fresnel mode. Light travelling inside is attenuated by Beer–Lambert, exp(−σ d).
+    Dielectric(Dielectric),
+    /// The lecture's glazed surface: a clear coat over a base colour. The coat reflects R
+    /// (Fresnel or constant); the transmitted ray is not traced: the base's diffuse shading
+    /// takes the remaining 1 − R.
+    Glazed {
+        /// The coat's interface.
+        coat: Dielectric,
+        /// Diffuse colour of the base (black for the black glazed sphere).
+        base: Texture,
+    },
+}
+
+/// The optical properties of a dielectric interface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dielectric {
+    /// Index of refraction of the material.
+    pub ior: f32,
+    /// True keeps `ior` when the `ior` parameter is set (for air bubbles and the like).
+    pub ior_fixed: bool,
+    /// How the reflectance is computed.
+    pub fresnel: FresnelMode,
+    /// The reflectance k in [`FresnelMode::Constant`].
+    pub constant_reflectance: f32,
+    /// Absorption coefficient σ per unit length, per channel (0: clear).
+    pub absorption: Color,
 }
 
 impl Material {
@@ -69,6 +99,40 @@ impl Material {
             Material::Diffuse { .. } => "diffuse",
             Material::Mirror { .. } => "mirror",
             Material::Emissive { .. } => "emissive",
+            Material::Dielectric(_) => "dielectric",
+            Material::Glazed { .. } => "glazed",
+        }
+    }
+
+    /// This material with the parameters' overrides applied: `ior` (unless the material
+    /// fixes its own), `fresnel` and `constant_reflectance`.
+    pub fn with_params(&self, params: &Params) -> Material {
+        let apply = |d: &Dielectric| Dielectric {
+            ior: match params.ior {
+                Some(ior) if !d.ior_fixed => ior,
+                _ => d.ior,
+            },
+            fresnel: params.fresnel.unwrap_or(d.fresnel),
+            constant_reflectance: params
+                .constant_reflectance
+                .unwrap_or(d.constant_reflectance),
+            ..d.clone()
+        };
+        match self {
+            Material::Dielectric(d) => Material::Dielectric(apply(d)),
+            Material::Glazed { coat, base } => Material::Glazed {
+                coat: apply(coat),
+                base: base.clone(),
+            },
+            other => other.clone(),
+        }
+    }
+
+    /// The dielectric interface of this material, if it has one.
+    pub fn dielectric(&self) -> Option<&Dielectric> {
+        match self {
+            Material::Dielectric(d) | Material::Glazed { coat: d, .. } => Some(d),
+            _ => None,
         }
     }
 }

@@ -1,4 +1,8 @@
-//! The lecture's formulas of ideal specular reflection.
+//! The lecture's formulas: ideal reflection, Snell's law, total internal reflection, the
+//! exact Fresnel equations and Schlick's approximation.
+//!
+//! Angles are measured from the normal; `n1` is the index of refraction on the side the
+//! light arrives from, `n2` the other side's.
 
 use crate::math::Vec3;
 
@@ -9,17 +13,319 @@ pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
     d - 2.0 * d.dot(n) * n
 }
 
+/// cos θt from Snell's law n1 sin θi = n2 sin θt, or `None` under total internal
+/// reflection (sin θt > 1, possible only when n1 > n2).
+#[inline]
+pub fn cos_transmitted(cos_i: f32, n1: f32, n2: f32) -> Option<f32> {
+    let eta = n1 / n2;
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    (sin2_t <= 1.0).then(|| (1.0 - sin2_t).sqrt())
+}
+
+/// Refraction of the unit direction `d` through a surface with unit normal `n` (either
+/// side) from index `n1` into `n2`: t = η d + (η cos θi − cos θt) n', with η = n1/n2 and n'
+/// the normal facing against `d`. `None` under total internal reflection.
+#[inline]
+pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
+    let n = if d.dot(n) > 0.0 { -n } else { n };
+    let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+    let cos_t = cos_transmitted(cos_i, n1, n2)?;
+    let eta = n1 / n2;
+    Some((eta * d + (eta * cos_i - cos_t) * n).normalize())
+}
+
+/// The exact Fresnel equations for a dielectric interface, as in the lecture:
+///
+/// F_s = (n1 cos θi − n2 cos θt) / (n1 cos θi + n2 cos θt),
+/// F_p = (n2 cos θi − n1 cos θt) / (n2 cos θi + n1 cos θt),
+/// R = (F_s² + F_p²) / 2 for unpolarized light.
+///
+/// Returns (F_s, F_p, R): the amplitude ratios of the two polarizations (signed; F_p
+/// passes through 0 at Brewster's angle) and the reflectance. Under total internal
+/// reflection all light is reflected: F_s = F_p = 1 (in magnitude) and R = 1.
+pub fn fresnel_exact(cos_i: f32, n1: f32, n2: f32) -> (f32, f32, f32) {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let Some(cos_t) = cos_transmitted(cos_i, n1, n2) else {
+        return (1.0, 1.0, 1.0);
+    };
+    let f_s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let f_p = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
+    // At exactly grazing incidence both are -1: all light is reflected.
+    let (f_s, f_p) = if f_s.is_finite() && f_p.is_finite() {
+        (f_s, f_p)
+    } else {
+        (-1.0, -1.0)
+    };
+    (f_s, f_p, 0.5 * (f_s * f_s + f_p * f_p))
+}
+
+/// Reflectance at normal incidence, R0 = ((n1 − n2) / (n1 + n2))².
+#[inline]
+pub fn r0(n1: f32, n2: f32) -> f32 {
+    let r = (n1 - n2) / (n1 + n2);
+    r * r
+}
+
+/// Schlick's approximation R = R0 + (1 − R0)(1 − cos θ)^5, with θ the angle on the less
+/// dense side: θi going into the denser medium, θt coming out of it. So it reaches 1 at the
+/// critical angle, and is 1 beyond it (total internal reflection).
+pub fn schlick(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let cos = if n1 <= n2 {
+        cos_i
+    } else {
+        match cos_transmitted(cos_i, n1, n2) {
+            Some(cos_t) => cos_t,
+            None => return 1.0,
+        }
+    };
+    let r0 = r0(n1, n2);
+    r0 + (1.0 - r0) * (1.0 - cos).powi(5)
+}
+
+/// Schlick's formula with θi on whichever side the light arrives, as some textbooks write
+/// it. A teaching option: coming out of the denser medium it stays near R0 up to the
+/// critical angle, then jumps to 1.
+pub fn schlick_naive(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    if cos_transmitted(cos_i, n1, n2).is_none() {
+        return 1.0;
+    }
+    let r0 = r0(n1, n2);
+    r0 + (1.0 - r0) * (1.0 - cos_i).powi(5)
+}
+
+/// Brewster's angle θB = atan(n2 / n1), in radians: p-polarized light is not reflected.
+pub fn brewster_angle(n1: f32, n2: f32) -> f32 {
+    (n2 / n1).atan()
+}
+
+/// The critical angle θc = asin(n2 / n1), in radians, beyond which light going from n1
+/// into a less dense n2 is totally reflected; `None` when n1 ≤ n2.
+pub fn critical_angle(n1: f32, n2: f32) -> Option<f32> {
+    (n1 > n2).then(|| (n2 / n1).asin())
+}
+
+/// How the reflectance of a dielectric or glazed surface is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FresnelMode {
+    /// The exact Fresnel equations.
+    Exact,
+    /// Schlick's approximation, cosine on the less dense side.
+    Schlick,
+    /// Schlick's approximation with the incident cosine always (teaching option).
+    SchlickNaive,
+    /// A constant reflectance k at every angle (1 under total internal reflection).
+    Constant,
+}
+
+impl FresnelMode {
+    /// Every mode, in menu order.
+    pub const ALL: [FresnelMode; 4] = [
+        FresnelMode::Exact,
+        FresnelMode::Schlick,
+        FresnelMode::SchlickNaive,
+        FresnelMode::Constant,
+    ];
+
+    /// The name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            FresnelMode::Exact => "exact",
+            FresnelMode::Schlick => "schlick",
+            FresnelMode::SchlickNaive => "schlick_naive",
+            FresnelMode::Constant => "constant",
+        }
+    }
+
+    /// The reflectance at incidence cosine `cos_i` from `n1` into `n2`; `k` is the
+    /// constant mode's reflectance.
+    #[inline]
+    pub fn reflectance(self, cos_i: f32, n1: f32, n2: f32, k: f32) -> f32 {
+        match self {
+            FresnelMode::Exact => fresnel_exact(cos_i, n1, n2).2,
+            FresnelMode::Schlick => schlick(cos_i, n1, n2),
+            FresnelMode::SchlickNaive => schlick_naive(cos_i, n1, n2),
+            FresnelMode::Constant => {
+                if cos_transmitted(cos_i.clamp(0.0, 1.0), n1, n2).is_some() {
+                    k
+                } else {
+                    1.0
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f32::consts::FRAC_PI_2;
+
+    fn deg(a: f32) -> f32 {
+        a.to_radians()
+    }
 
     #[test]
     fn reflection_keeps_the_tangent_and_flips_the_normal_part() {
         let d = Vec3::new(1.0, -1.0, 0.0).normalize();
         let r = reflect(d, Vec3::Y);
         assert!((r - Vec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-6);
-        // Angle of incidence equals angle of reflection, whichever side n faces.
         assert!((reflect(d, -Vec3::Y) - r).length() < 1e-6);
-        assert!((r.length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn normal_incidence_reflectance_is_r0() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.0, 2.42)] {
+            let expected = ((n2 - n1) / (n2 + n1) as f32).powi(2);
+            assert!((fresnel_exact(1.0, n1, n2).2 - expected).abs() < 1e-7);
+            assert!((schlick(1.0, n1, n2) - expected).abs() < 1e-7);
+        }
+        assert!(
+            (fresnel_exact(1.0, 1.0, 1.5).2 - 0.04).abs() < 1e-7,
+            "4% for air to glass"
+        );
+    }
+
+    #[test]
+    fn f_p_vanishes_at_brewsters_angle() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 2.42)] {
+            let (f_s, f_p, _) = fresnel_exact(brewster_angle(n1, n2).cos(), n1, n2);
+            assert!(f_p.abs() < 1e-6, "F_p = {f_p} at Brewster for {n1} -> {n2}");
+            assert!(f_s.abs() > 0.1);
+        }
+    }
+
+    #[test]
+    fn grazing_and_beyond_critical_reflect_everything() {
+        assert!((fresnel_exact(0.0, 1.0, 1.5).2 - 1.0).abs() < 1e-6);
+        assert!(fresnel_exact(deg(89.99).cos(), 1.0, 1.5).2 > 0.99);
+        let rising = (0..=90).map(|a| fresnel_exact(deg(a as f32).cos(), 1.0, 1.5).2);
+        let r: Vec<f32> = rising.collect();
+        assert!(
+            r.windows(2).skip(57).all(|w| w[1] > w[0]),
+            "R rises from Brewster to grazing"
+        );
+        let crit = critical_angle(1.5, 1.0).unwrap();
+        assert!((crit.to_degrees() - 41.8103).abs() < 1e-3);
+        for a in [crit + 1e-3, deg(50.0), deg(80.0), FRAC_PI_2] {
+            for mode in FresnelMode::ALL {
+                assert_eq!(
+                    mode.reflectance(a.cos(), 1.5, 1.0, 0.1),
+                    1.0,
+                    "{mode:?} at {a}"
+                );
+            }
+        }
+        // Just inside the critical angle the exact R is already close to 1, Schlick is
+        // near 1, and naive Schlick is still near R0: its jump.
+        let just_below = (crit - 1e-4).cos();
+        assert!(fresnel_exact(just_below, 1.5, 1.0).2 > 0.9);
+        assert!(schlick(just_below, 1.5, 1.0) > 0.9);
+        assert!(schlick_naive(just_below, 1.5, 1.0) < 0.1);
+        assert_eq!(critical_angle(1.0, 1.5), None);
+    }
+
+    #[test]
+    fn reciprocity_same_reflectance_from_both_sides() {
+        for a in 0..90 {
+            let cos_i = deg(a as f32).cos();
+            let cos_t = cos_transmitted(cos_i, 1.0, 1.5).unwrap();
+            let outside = fresnel_exact(cos_i, 1.0, 1.5).2;
+            let inside = fresnel_exact(cos_t, 1.5, 1.0).2;
+            // Near grazing, cos θt inside sits close to the critical angle, where f32
+            // loses digits: hence 1e-4.
+            assert!(
+                (outside - inside).abs() < 1e-4,
+                "at {a}°: {outside} vs {inside}"
+            );
+            assert!((schlick(cos_i, 1.0, 1.5) - schlick(cos_t, 1.5, 1.0)).abs() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn refract_obeys_snells_law() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.33, 1.0), (1.0, 2.42)] {
+            for a in 0..90 {
+                let theta_i = deg(a as f32);
+                let d = Vec3::new(theta_i.sin(), -theta_i.cos(), 0.0);
+                match refract(d, Vec3::Y, n1, n2) {
+                    Some(t) => {
+                        assert!((t.length() - 1.0).abs() < 1e-5);
+                        assert!(t.y < 0.0, "continues through the surface");
+                        let sin_t = t.x;
+                        assert!(
+                            (n1 * theta_i.sin() - n2 * sin_t).abs() < 1e-5,
+                            "{n1}->{n2} at {a}°"
+                        );
+                        // Also with the normal on the other side.
+                        assert!((refract(d, -Vec3::Y, n1, n2).unwrap() - t).length() < 1e-6);
+                    }
+                    None => assert!(n1 * theta_i.sin() > n2, "TIR only past the critical angle"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn reflected_plus_transmitted_is_one() {
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0)] {
+            for a in 0..=90 {
+                let cos_i = deg(a as f32).cos();
+                let (f_s, f_p, r) = fresnel_exact(cos_i, n1, n2);
+                let Some(cos_t) = cos_transmitted(cos_i, n1, n2) else {
+                    assert_eq!(r, 1.0);
+                    continue;
+                };
+                // Transmittance from the transmitted amplitudes: T = (n2 cos θt)/(n1 cos θi) t².
+                if cos_i > 1e-3 {
+                    let t_s = 2.0 * n1 * cos_i / (n1 * cos_i + n2 * cos_t);
+                    let t_p = 2.0 * n1 * cos_i / (n2 * cos_i + n1 * cos_t);
+                    let factor = n2 * cos_t / (n1 * cos_i);
+                    let t = 0.5 * factor * (t_s * t_s + t_p * t_p);
+                    assert!(
+                        (r + t - 1.0).abs() < 1e-5,
+                        "{n1}->{n2} at {a}°: R + T = {}",
+                        r + t
+                    );
+                    assert!((f_s * f_s + factor * t_s * t_s - 1.0).abs() < 1e-5);
+                    assert!((f_p * f_p + factor * t_p * t_p - 1.0).abs() < 1e-5);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn schlick_is_close_to_exact_for_air_to_glass() {
+        // |Schlick − exact| for n = 1.5 stays under 0.02 up to 79.4°, peaks at 0.0357 near
+        // 85° (computed in f64), and returns to 0 at grazing.
+        let mut worst: f32 = 0.0;
+        for hundredth in 0..=9000 {
+            let a = hundredth as f32 / 100.0;
+            let cos_i = deg(a).cos();
+            let err = (schlick(cos_i, 1.0, 1.5) - fresnel_exact(cos_i, 1.0, 1.5).2).abs();
+            if a <= 79.0 {
+                assert!(err < 0.02, "at {a}°: error {err}");
+            }
+            worst = worst.max(err);
+        }
+        assert!(worst < 0.036 && worst > 0.035, "largest error {worst}");
+        // Out of the glass, Schlick with cos θt is the same curve, reaching 1 at the
+        // critical angle.
+        for hundredth in 0..4181 {
+            let cos_i = deg(hundredth as f32 / 100.0).cos();
+            let err = (schlick(cos_i, 1.5, 1.0) - fresnel_exact(cos_i, 1.5, 1.0).2).abs();
+            assert!(
+                err < 0.036,
+                "inside out at {}°: {err}",
+                hundredth as f32 / 100.0
+            );
+        }
+    }
+
+    #[test]
+    fn brewster_is_atan_of_the_ratio() {
+        assert!((brewster_angle(1.0, 1.5).to_degrees() - 56.3099).abs() < 1e-3);
     }
 }

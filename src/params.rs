@@ -1,7 +1,19 @@
 //! The one parameter model: every knob of the renderer, under the names the CLI's
 //! `--set name=value`, scene files' `[params]` and snapshot sidecars all use.
 
+use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
+
+/// How the ray tree branches at a dielectric.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TreeMode {
+    /// Trace both children, weighted R and 1 − R: the lecture's ray tree.
+    Split,
+    /// Follow one child, reflected with probability R, else refracted: one path per
+    /// sample, as distribution and path tracers do. Same mean, more noise, fewer rays.
+    Stochastic,
+}
 
 /// Every parameter that shapes the image (and the display exposure).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -11,6 +23,17 @@ pub struct Params {
     pub spp: u32,
     /// Seed of every random number: the same seed gives the same image, bit for bit.
     pub seed: u64,
+    /// Index of refraction of every dielectric and glazed material (except those with
+    /// `ior_fixed`); `None` keeps each material's own. 1.0 to 3.0.
+    pub ior: Option<f32>,
+    /// Reflectance model of every dielectric and glazed material; `None` keeps each
+    /// material's own.
+    pub fresnel: Option<FresnelMode>,
+    /// The constant reflectance k of the `constant` Fresnel mode; `None` keeps each
+    /// material's own.
+    pub constant_reflectance: Option<f32>,
+    /// Split (the full ray tree) or stochastic (one branch per hit).
+    pub tree: TreeMode,
     /// Pruning by depth: the deepest ray-tree level traced (camera rays are level 0).
     pub max_depth: u32,
     /// Pruning by attenuation: a branch whose path weight (the product of the
@@ -25,6 +48,10 @@ impl Default for Params {
         Params {
             spp: 16,
             seed: 0,
+            ior: None,
+            fresnel: None,
+            constant_reflectance: None,
+            tree: TreeMode::Split,
             max_depth: 8,
             min_weight: 0.001,
             exposure: 0.0,
@@ -71,11 +98,16 @@ impl Params {
     }
 
     /// Sets parameter `name` from the text `value`, as typed after `--set name=`.
-    /// Numbers, `true`/`false` and bare words (for choices) are accepted.
+    /// Numbers, `true`/`false` and bare words (for choices) are accepted; `scene` (or
+    /// `null`) returns an override such as `ior` to the scene's own values.
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), ParamError> {
         let value = value.trim();
-        let json = serde_json::from_str(value)
-            .unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+        let json = if value == "scene" {
+            serde_json::Value::Null
+        } else {
+            serde_json::from_str(value)
+                .unwrap_or_else(|_| serde_json::Value::String(value.to_string()))
+        };
         self.set_value(name, json)
     }
 
@@ -130,6 +162,20 @@ impl Params {
             (1..=MAX_SPP).contains(&self.spp),
             "spp",
             format!("must be between 1 and {MAX_SPP}, got {}", self.spp),
+        )?;
+        check(
+            self.ior.is_none_or(|ior| (1.0..=3.0).contains(&ior)),
+            "ior",
+            format!("must be between 1 and 3, got {:?}", self.ior),
+        )?;
+        check(
+            self.constant_reflectance
+                .is_none_or(|k| (0.0..=1.0).contains(&k)),
+            "constant_reflectance",
+            format!(
+                "must be between 0 and 1, got {:?}",
+                self.constant_reflectance
+            ),
         )?;
         check(
             self.max_depth <= MAX_DEPTH,
@@ -189,7 +235,17 @@ mod tests {
     #[test]
     fn names_cover_every_field() {
         let names = Params::names();
-        for n in ["spp", "seed", "max_depth", "min_weight", "exposure"] {
+        for n in [
+            "spp",
+            "seed",
+            "ior",
+            "fresnel",
+            "constant_reflectance",
+            "tree",
+            "max_depth",
+            "min_weight",
+            "exposure",
+        ] {
             assert!(names.iter().any(|m| m == n), "{n} missing");
         }
     }

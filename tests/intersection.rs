@@ -65,6 +65,7 @@ fn scene_of(shapes: Vec<Shape>) -> Scene {
             lights: vec![],
             ambient: Color::ZERO,
             background: Background::Constant(Color::ONE),
+            medium_ior: 1.0,
         },
         SceneSource::Code,
     )

@@ -99,6 +99,7 @@ fn top_down(
             lights,
             ambient: Color::ZERO,
             background: Background::Constant(background),
+            medium_ior: 1.0,
         },
         SceneSource::Code,
     )

@@ -127,6 +127,35 @@ impl Mesh {
         Mesh::new(positions, self.indices.clone(), normals, self.uvs.clone())
     }
 
+    /// The closed box between the corners `min` and `max`, 12 triangles wound so that
+    /// their normals point out (flat shaded).
+    pub fn cuboid(min: Vec3, max: Vec3) -> Result<Self, MeshError> {
+        // Corner i has x from bit 0, y from bit 1, z from bit 2 (0: min, 1: max).
+        let positions = (0..8)
+            .map(|i| {
+                Vec3::select(
+                    glam::BVec3A::new(i & 1 != 0, i & 2 != 0, i & 4 != 0),
+                    max,
+                    min,
+                )
+            })
+            .collect();
+        // Each face counter-clockwise seen from outside.
+        let faces = [
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ];
+        let indices = faces
+            .iter()
+            .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
+            .collect();
+        Mesh::new(positions, indices, None, None)
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len()
@@ -280,6 +309,21 @@ mod tests {
             .unwrap_err(),
             MeshError::NonFinite(2)
         );
+    }
+
+    #[test]
+    fn cuboid_normals_point_out() {
+        let m = Mesh::cuboid(Vec3::splat(-1.0), Vec3::new(1.0, 2.0, 3.0)).unwrap();
+        assert_eq!(m.triangle_count(), 12);
+        let center = Vec3::new(0.0, 0.5, 1.0);
+        for i in 0..12 {
+            let [v0, e1, e2] = m.edges[i];
+            let centroid = v0 + (e1 + e2) / 3.0;
+            assert!(
+                e1.cross(e2).dot(centroid - center) > 0.0,
+                "triangle {i} faces in"
+            );
+        }
     }
 
     #[test]

@@ -6,10 +6,11 @@
 use super::obj::load_obj;
 use super::{Location, Object, Scene, SceneDesc, SceneError, SceneSource};
 use crate::camera::Camera;
-use crate::geometry::{Plane, Quad, Shape, Sphere};
+use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
 use crate::light::{Background, PointLight};
-use crate::material::{Material, Texture};
+use crate::material::{Dielectric, Material, Texture};
 use crate::math::{Color, Vec3};
+use crate::optics::FresnelMode;
 use crate::params::{ParamError, Params};
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
@@ -118,6 +119,42 @@ impl TryFrom<f64> for NonNegative {
     }
 }
 
+/// An index of refraction, 1 to 3.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct Ior(f32);
+
+impl TryFrom<f64> for Ior {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let Num(f) = Num::try_from(v)?;
+        if (1.0..=3.0).contains(&f) {
+            Ok(Ior(f))
+        } else {
+            Err(format!(
+                "an index of refraction must be between 1 and 3, got {v}"
+            ))
+        }
+    }
+}
+
+/// A fraction, 0 to 1.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct Unit(f32);
+
+impl TryFrom<f64> for Unit {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let Num(f) = Num::try_from(v)?;
+        if (0.0..=1.0).contains(&f) {
+            Ok(Unit(f))
+        } else {
+            Err(format!("must be between 0 and 1, got {v}"))
+        }
+    }
+}
+
 /// A vector of three finite numbers.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(try_from = "[f64; 3]")]
@@ -215,6 +252,7 @@ struct SceneFile {
     #[serde(default)]
     description: String,
     ambient: Option<Rgb>,
+    medium_ior: Option<Ior>,
     image: Option<ImageDef>,
     #[serde(default)]
     params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
@@ -228,6 +266,8 @@ struct SceneFile {
     plane: Vec<PlaneDef>,
     #[serde(default)]
     quad: Vec<Spanned<QuadDef>>,
+    #[serde(default)]
+    r#box: Vec<Spanned<BoxDef>>,
     #[serde(default)]
     mesh: Vec<MeshDef>,
     #[serde(default)]
@@ -274,6 +314,23 @@ enum MaterialDef {
         color: Rgb,
         strength: Option<NonNegative>,
     },
+    Dielectric {
+        ior: Ior,
+        #[serde(default)]
+        ior_fixed: bool,
+        fresnel: Option<FresnelMode>,
+        constant_reflectance: Option<Unit>,
+        absorption: Option<Rgb>,
+    },
+    Glazed {
+        color: Reflectance,
+        checker: Option<CheckerDef>,
+        ior: Option<Ior>,
+        #[serde(default)]
+        ior_fixed: bool,
+        fresnel: Option<FresnelMode>,
+        constant_reflectance: Option<Unit>,
+    },
 }
 
 #[derive(Deserialize)]
@@ -308,6 +365,16 @@ struct QuadDef {
     corner: V3,
     edge_u: V3,
     edge_v: V3,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoxDef {
+    name: Option<String>,
+    min: V3,
+    max: V3,
+    rotate: Option<V3>,
     material: Option<Spanned<String>>,
 }
 
@@ -405,6 +472,30 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
             material,
         });
     }
+    for (n, b) in f.r#box.into_iter().enumerate() {
+        let span = b.span();
+        let b = b.into_inner();
+        let (lo, hi) = (b.min.0, b.max.0);
+        if !lo.cmplt(hi).all() {
+            return Err(SceneError::new(
+                at(span),
+                "box `min` must be below `max` on every axis",
+            ));
+        }
+        let center = 0.5 * (lo + hi);
+        let rotate = glam::Affine3A::from_translation(center.into())
+            * glam::Affine3A::from_quat(rotation(b.rotate))
+            * glam::Affine3A::from_translation((-center).into());
+        let mesh = Mesh::cuboid(lo, hi)
+            .and_then(|m| m.transformed(&rotate, false))
+            .map_err(|e| SceneError::new(at(span), e.to_string()))?;
+        let material = resolve(&b.material, &mut materials)?;
+        objects.push(Object {
+            name: name_or(b.name, "box", n),
+            shape: Shape::Mesh(mesh),
+            material,
+        });
+    }
     for (n, m) in f.mesh.into_iter().enumerate() {
         let rel = m.file.get_ref().as_str();
         let bytes = assets.read(rel).map_err(|e| {
@@ -419,10 +510,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         let parts = load_obj(&bytes, &obj_label, &read_mtl)?;
         let transform = glam::Affine3A::from_scale_rotation_translation(
             glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
-            m.rotate.map_or(glam::Quat::IDENTITY, |r| {
-                let r = r.0 * (std::f32::consts::PI / 180.0);
-                glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x)
-            }),
+            rotation(m.rotate),
             m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
         );
         let base = name_or(m.name, "mesh", n);
@@ -538,6 +626,15 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
             .collect(),
         ambient: f.ambient.map_or(Color::ZERO, |a| a.0),
         background,
+        medium_ior: f.medium_ior.map_or(1.0, |m| m.0),
+    })
+}
+
+/// The rotation of `rotate = [x, y, z]` degrees: about x, then y, then z.
+fn rotation(rotate: Option<V3>) -> glam::Quat {
+    rotate.map_or(glam::Quat::IDENTITY, |r| {
+        let r = r.0 * (std::f32::consts::PI / 180.0);
+        glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x)
     })
 }
 
@@ -588,14 +685,7 @@ fn material(def: MaterialDef) -> Material {
             specular,
             exponent,
         } => Material::Diffuse {
-            albedo: match checker {
-                None => Texture::Solid(color.0),
-                Some(c) => Texture::Checker {
-                    even: color.0,
-                    odd: c.color.0,
-                    scale: c.scale.0,
-                },
-            },
+            albedo: texture(color, checker),
             specular: specular.map_or(Color::ZERO, |s| s.0),
             exponent: exponent.map_or(20.0, |e| e.0),
         },
@@ -604,6 +694,50 @@ fn material(def: MaterialDef) -> Material {
         },
         MaterialDef::Emissive { color, strength } => Material::Emissive {
             radiance: color.0 * strength.map_or(1.0, |s| s.0),
+        },
+        MaterialDef::Dielectric {
+            ior,
+            ior_fixed,
+            fresnel,
+            constant_reflectance,
+            absorption,
+        } => Material::Dielectric(Dielectric {
+            ior: ior.0,
+            ior_fixed,
+            fresnel: fresnel.unwrap_or(FresnelMode::Exact),
+            constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
+            absorption: absorption.map_or(Color::ZERO, |a| a.0),
+        }),
+        MaterialDef::Glazed {
+            color,
+            checker,
+            ior,
+            ior_fixed,
+            fresnel,
+            constant_reflectance,
+        } => Material::Glazed {
+            coat: Dielectric {
+                ior: ior.map_or(1.5, |i| i.0),
+                ior_fixed,
+                fresnel: fresnel.unwrap_or(FresnelMode::Exact),
+                constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
+                absorption: Color::ZERO,
+            },
+            base: texture(color, checker),
+        },
+    }
+}
+
+/// The default constant reflectance k: glass's reflectance at normal incidence.
+const DEFAULT_K: f32 = 0.04;
+
+fn texture(color: Reflectance, checker: Option<CheckerDef>) -> Texture {
+    match checker {
+        None => Texture::Solid(color.0),
+        Some(c) => Texture::Checker {
+            even: color.0,
+            odd: c.color.0,
+            scale: c.scale.0,
         },
     }
 }

@@ -78,6 +78,8 @@ pub struct SceneDesc {
     pub ambient: Color,
     /// What rays that leave the scene see.
     pub background: Background,
+    /// Index of refraction of the medium around everything (air 1.0, water 1.33).
+    pub medium_ior: f32,
 }
 
 /// A ray's nearest hit in a scene.
@@ -124,6 +126,8 @@ pub struct Scene {
     pub ambient: Color,
     /// Background.
     pub background: Background,
+    /// Index of refraction of the surrounding medium.
+    pub medium_ior: f32,
     accel: Accel,
 }
 
@@ -156,6 +160,7 @@ impl Scene {
             lights: desc.lights,
             ambient: desc.ambient,
             background: desc.background,
+            medium_ior: desc.medium_ior,
             accel,
         }
     }
