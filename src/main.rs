@@ -29,6 +29,41 @@ enum Command {
     Render(RenderArgs),
     /// List the built-in scenes and the scene files in ./scenes.
     Scenes,
+    /// Print the Fresnel reflectance against the angle of incidence as CSV: exact (F_s,
+    /// F_p, R) and Schlick's approximations. theta_t is empty under total internal
+    /// reflection.
+    Fresnel(FresnelArgs),
+}
+
+#[derive(clap::Args)]
+struct FresnelArgs {
+    /// Index of refraction on the side the light comes from.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_ior)]
+    n1: f32,
+    /// Index of refraction on the other side.
+    #[arg(long, default_value_t = 1.5, value_parser = parse_ior)]
+    n2: f32,
+    /// Angle step in degrees; rows run from 0 to 90 inclusive.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_step)]
+    step: f64,
+}
+
+fn parse_ior(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(n) if n.is_finite() && (1.0..=3.0).contains(&n) => Ok(n),
+        Ok(n) => Err(format!(
+            "{n} is out of range (an index of refraction from 1 to 3)"
+        )),
+        Err(_) => Err(format!("`{s}` is not a number")),
+    }
+}
+
+fn parse_step(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(d) if (0.01..=90.0).contains(&d) => Ok(d),
+        Ok(d) => Err(format!("{d} is out of range (0.01 to 90 degrees)")),
+        Err(_) => Err(format!("`{s}` is not a number")),
+    }
 }
 
 #[derive(clap::Args)]
@@ -86,6 +121,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Scenes) => scenes_command(),
+        Some(Command::Fresnel(args)) => fresnel_command(&args),
         None => Cli::command().print_help().map_err(Into::into),
     };
     match result {
@@ -180,7 +216,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         let pixels = (width as u64 * height as u64) as f64;
         let rays = stats.total_rays();
         eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); pruned {} by depth, {} by weight; {} non-finite samples dropped; wrote {} and {}",
+            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight; {} non-finite samples dropped; wrote {} and {}",
             scene.name,
             width,
             height,
@@ -190,6 +226,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
             rays as f64 / 1e6,
             rays as f64 / seconds.max(1e-9) / 1e6,
             rays as f64 / pixels,
+            stats.tir_events,
             stats.pruned_by_depth,
             stats.pruned_by_weight,
             stats.non_finite,
@@ -219,6 +256,38 @@ fn check_output(path: &Path) -> Result<()> {
             dir.display()
         );
     }
+    Ok(())
+}
+
+fn fresnel_command(args: &FresnelArgs) -> Result<()> {
+    use raylab::optics::{cos_transmitted, fresnel_exact, schlick, schlick_naive};
+    use std::io::Write;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(
+        out,
+        "theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive"
+    )?;
+    // Whole steps from 0, then 90 itself if the step does not land on it.
+    let steps = (90.0 / args.step + 1e-9).floor() as usize;
+    let mut angles: Vec<f64> = (0..=steps).map(|i| i as f64 * args.step).collect();
+    if angles.last().is_some_and(|&a| (a - 90.0).abs() > 1e-9) {
+        angles.push(90.0);
+    }
+    for theta in angles {
+        let cos_i = (theta.to_radians().cos() as f32).max(0.0);
+        let (n1, n2) = (args.n1, args.n2);
+        let theta_t = cos_transmitted(cos_i, n1, n2)
+            .map(|c| format!("{:.4}", (c as f64).acos().to_degrees()))
+            .unwrap_or_default();
+        let (f_s, f_p, r) = fresnel_exact(cos_i, n1, n2);
+        writeln!(
+            out,
+            "{theta},{theta_t},{f_s:.6},{f_p:.6},{r:.6},{:.6},{:.6}",
+            schlick(cos_i, n1, n2),
+            schlick_naive(cos_i, n1, n2)
+        )?;
+    }
+    out.flush()?;
     Ok(())
 }
 

@@ -177,8 +177,8 @@ mod tests {
 
     #[test]
     fn normal_incidence_reflectance_is_r0() {
-        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.0, 2.42)] {
-            let expected = ((n2 - n1) / (n2 + n1) as f32).powi(2);
+        for (n1, n2) in [(1.0f32, 1.5f32), (1.5, 1.0), (1.0, 1.33), (1.0, 2.42)] {
+            let expected = ((n2 - n1) / (n2 + n1)).powi(2);
             assert!((fresnel_exact(1.0, n1, n2).2 - expected).abs() < 1e-7);
             assert!((schlick(1.0, n1, n2) - expected).abs() < 1e-7);
         }

@@ -258,3 +258,54 @@ fn scenes_lists_builtins_and_files_and_help_documents_everything() {
         assert!(help.contains(flag), "{flag} missing from render --help");
     }
 }
+
+fn fresnel_rows(args: &[&str]) -> Vec<Vec<String>> {
+    let o = raylab(args, Path::new("."));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive")
+    );
+    lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+#[test]
+fn fresnel_prints_the_curves_as_csv() {
+    let rows = fresnel_rows(&["fresnel", "--n1", "1.0", "--n2", "1.5"]);
+    assert_eq!(
+        rows.len(),
+        91,
+        "0 to 90 degrees inclusive in 1-degree steps"
+    );
+    let num = |r: &Vec<String>, k: usize| r[k].parse::<f64>().unwrap();
+    assert_eq!(num(&rows[0], 0), 0.0);
+    assert!((num(&rows[0], 4) - 0.04).abs() < 1e-6, "R0 = 4%");
+    assert!((num(&rows[90], 4) - 1.0).abs() < 1e-6, "R = 1 at grazing");
+    // F_p changes sign at Brewster's angle, 56.31 degrees.
+    assert!(num(&rows[56], 3) > 0.0 && num(&rows[57], 3) < 0.0);
+    // Snell: sin θt = sin θi / 1.5.
+    let theta_t = num(&rows[30], 1).to_radians();
+    assert!((theta_t.sin() - 0.5 / 1.5).abs() < 1e-4);
+
+    // Inside out: theta_t is empty and R = 1 beyond the critical angle, 41.81 degrees.
+    let rows = fresnel_rows(&["fresnel", "--n1", "1.5", "--n2", "1.0", "--step", "0.5"]);
+    assert_eq!(rows.len(), 181);
+    let at = |deg: f64| rows.iter().find(|r| num(r, 0) == deg).unwrap();
+    assert!(!at(41.5)[1].is_empty());
+    assert!(at(42.0)[1].is_empty());
+    assert_eq!(num(at(42.0), 4), 1.0);
+    assert_eq!(num(at(42.0), 5), 1.0);
+    // Naive Schlick is still near R0 just below the critical angle.
+    assert!(num(at(41.5), 6) < 0.1 && num(at(41.5), 4) > 0.3);
+
+    // A step that does not divide 90 still ends at 90.
+    let rows = fresnel_rows(&["fresnel", "--step", "7"]);
+    assert_eq!(rows.last().map(|r| r[0].as_str()), Some("90"));
+
+    fails(&["fresnel", "--n2", "9"], Path::new("."), "out of range");
+    fails(&["fresnel", "--step", "0"], Path::new("."), "out of range");
+}

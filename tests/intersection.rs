@@ -148,6 +148,51 @@ fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
     }
 }
 
+#[test]
+fn axis_aligned_rays_with_signed_zeros_hit() {
+    // -Vec3::Z is (-0.0, -0.0, -1.0): a direction obvhs 0.4 mishandles unless canonicalized.
+    let one_sphere = scene_of(vec![Shape::Sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, -2.0),
+        radius: 0.5,
+    })]);
+    let mut rng = Rng::new(11);
+    let two_prims = scene_of(vec![
+        Shape::Sphere(Sphere {
+            center: Vec3::new(0.0, 0.0, -2.0),
+            radius: 0.5,
+        }),
+        Shape::Mesh(random_mesh(&mut rng, 50, Vec3::new(0.0, 3.0, 0.0), 1.0)),
+    ]);
+    for s in [&one_sphere, &two_prims] {
+        for dir in [
+            -Vec3::Z,
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(-0.0, 0.0, -1.0),
+            Vec3::new(0.0, -0.0, -1.0),
+        ] {
+            for x in [-0.45f32, 0.0, 0.3] {
+                let ray = Ray::new(Vec3::new(x, 0.0, 0.0), dir, 0.0);
+                let hit = s.intersect(&ray, f32::INFINITY).map(|h| h.surface.t);
+                assert_eq!(
+                    hit,
+                    s.intersect_brute_force(&ray, f32::INFINITY)
+                        .map(|h| h.surface.t),
+                    "{dir:?} at x {x}"
+                );
+                assert!(hit.is_some());
+                assert!(s.occluded(&ray, f32::INFINITY));
+            }
+        }
+        // And reflected from a mirror straight back: reflect() yields signed zeros too.
+        let back = Ray::new(
+            Vec3::new(0.1, 0.0, -4.0),
+            raylab::optics::reflect(-Vec3::Z, Vec3::Z),
+            0.0,
+        );
+        assert!(s.intersect(&back, f32::INFINITY).is_some());
+    }
+}
+
 /// Shoots rays at `scene` from around it; for each hit on a surface, leaves the surface on
 /// both sides in random directions and checks what the new ray hits.
 fn check_no_self_hits(

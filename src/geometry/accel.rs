@@ -8,6 +8,16 @@ use crate::math::Ray;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
 use std::time::Duration;
 
+/// The direction with every −0.0 turned into +0.0 (x + 0.0 does that in IEEE arithmetic).
+///
+/// obvhs 0.4 picks a node's traversal octant from `dir < 0` but inverts the direction with
+/// `signum`, which disagree on −0.0: a ray along −z built as `-Vec3::Z` then misses
+/// everything.
+#[inline]
+fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
+    dir + crate::math::Vec3::ZERO
+}
+
 /// One primitive: primitive `index` (a triangle, or 0) of scene object `object`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PrimRef {
@@ -83,7 +93,7 @@ impl Accel {
             }
         }
         if let Some(bvh) = &self.bvh {
-            let obv_ray = obvhs::ray::Ray::new(ray.origin, ray.dir, 0.0, t_best);
+            let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_best);
             let mut hit = obvhs::ray::RayHit::none();
             let found = bvh.ray_traverse(obv_ray, &mut hit, |r, id| {
                 let p = self.prims[id];
@@ -111,7 +121,7 @@ impl Accel {
         }
         match &self.bvh {
             Some(bvh) => {
-                let obv_ray = obvhs::ray::Ray::new(ray.origin, ray.dir, 0.0, t_max);
+                let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
                 !bvh.ray_traverse_miss(obv_ray, |r, id| {
                     let p = self.prims[id];
                     shapes[p.object as usize]

@@ -20,16 +20,38 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/default.toml"),
     },
     BuiltinScene {
+        name: "glazed",
+        text: include_str!("../../scenes/glazed.toml"),
+    },
+    BuiltinScene {
+        name: "glass",
+        text: include_str!("../../scenes/glass.toml"),
+    },
+    BuiltinScene {
+        name: "tir",
+        text: include_str!("../../scenes/tir.toml"),
+    },
+    BuiltinScene {
+        name: "ray-tree",
+        text: include_str!("../../scenes/ray-tree.toml"),
+    },
+    BuiltinScene {
         name: "bunny",
         text: include_str!("../../scenes/bunny.toml"),
     },
 ];
 
 /// Files the built-in scenes refer to, by their path relative to `scenes/`.
-static ASSETS: &[(&str, &[u8])] = &[(
-    "models/bunny.obj",
-    include_bytes!("../../scenes/models/bunny.obj"),
-)];
+static ASSETS: &[(&str, &[u8])] = &[
+    (
+        "models/bunny.obj",
+        include_bytes!("../../scenes/models/bunny.obj"),
+    ),
+    (
+        "models/prism.obj",
+        include_bytes!("../../scenes/models/prism.obj"),
+    ),
+];
 
 /// The built-in scene called `name`.
 pub fn builtin(name: &str) -> Option<&'static BuiltinScene> {
