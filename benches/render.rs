@@ -6,7 +6,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Shape};
-use raylab::light::{Background, PointLight};
+use raylab::light::{Background, Light};
 use raylab::material::{Material, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
@@ -84,10 +84,7 @@ fn mesh_scene(mesh: Mesh) -> SceneDesc {
                 material: 1,
             },
         ],
-        lights: vec![PointLight {
-            position: Vec3::new(-3.0, 6.0, 4.0),
-            intensity: Color::splat(150.0),
-        }],
+        lights: vec![Light::point(Vec3::new(-3.0, 6.0, 4.0), Color::splat(150.0))],
         ambient: Color::splat(0.05),
         background: Background::Constant(Color::new(0.6, 0.7, 0.9)),
         medium_ior: 1.0,

@@ -1,6 +1,7 @@
 //! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
 
 use crate::math::{Ray, Vec3, sampling::concentric_disk};
+use crate::params::Params;
 use glam::Vec2;
 
 /// Where the camera is and what it sees.
@@ -14,14 +15,17 @@ pub struct Camera {
     pub up: Vec3,
     /// Vertical field of view, degrees.
     pub fov_deg: f32,
+}
+
+/// The lens and shutter settings of one render (from [`Params`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exposure {
     /// Lens radius; 0 is a pinhole (everything sharp).
     pub aperture: f32,
     /// Distance from the lens to the plane in focus, along the view direction.
     pub focus_distance: f32,
-    /// The shutter opens at this time...
-    pub shutter_open: f32,
-    /// ...and closes at this one; equal times freeze motion.
-    pub shutter_close: f32,
+    /// The shutter opens at this time and closes at the second; equal times freeze motion.
+    pub shutter: (f32, f32),
 }
 
 /// The camera's frame, computed once per render.
@@ -40,22 +44,47 @@ pub struct CameraFrame {
 }
 
 impl Camera {
-    /// A pinhole camera at `position` looking at `look_at`, focused there.
+    /// A camera at `position` looking at `look_at`.
     pub fn looking_at(position: Vec3, look_at: Vec3, up: Vec3, fov_deg: f32) -> Self {
         Camera {
             position,
             look_at,
             up,
             fov_deg,
-            aperture: 0.0,
-            focus_distance: (look_at - position).length(),
-            shutter_open: 0.0,
-            shutter_close: 0.0,
         }
     }
 
+    /// The distance from the eye to the `look_at` point: the default focus distance.
+    pub fn look_distance(&self) -> f32 {
+        (self.look_at - self.position).length()
+    }
+
+    /// The lens and shutter of `params`: aperture, focus distance (default: the `look_at`
+    /// distance) and shutter interval.
+    pub fn exposure(&self, params: &Params) -> Exposure {
+        Exposure {
+            aperture: params.aperture,
+            focus_distance: params
+                .focus_distance
+                .unwrap_or_else(|| self.look_distance()),
+            shutter: (params.shutter_open, params.shutter_open + params.shutter),
+        }
+    }
+
+    /// A pinhole's frame for an image of the given aspect ratio (width / height).
+    pub fn pinhole(&self, aspect: f32) -> CameraFrame {
+        self.frame(
+            aspect,
+            Exposure {
+                aperture: 0.0,
+                focus_distance: self.look_distance(),
+                shutter: (0.0, 0.0),
+            },
+        )
+    }
+
     /// The frame for an image of the given aspect ratio (width / height).
-    pub fn frame(&self, aspect: f32) -> CameraFrame {
+    pub fn frame(&self, aspect: f32, exposure: Exposure) -> CameraFrame {
         let forward = (self.look_at - self.position).normalize();
         let right = forward.cross(self.up).normalize();
         let up = right.cross(forward);
@@ -67,9 +96,9 @@ impl Camera {
             up: up * half_h,
             lens_u: right,
             lens_v: up,
-            aperture: self.aperture,
-            focus_distance: self.focus_distance,
-            shutter: (self.shutter_open, self.shutter_close),
+            aperture: exposure.aperture,
+            focus_distance: exposure.focus_distance,
+            shutter: exposure.shutter,
         }
     }
 }
@@ -129,7 +158,7 @@ mod tests {
 
     #[test]
     fn centre_ray_looks_at_the_target_and_corners_span_the_fov() {
-        let f = cam().frame(2.0);
+        let f = cam().pinhole(2.0);
         let r = f.ray(Vec2::splat(0.5), Vec2::ZERO, 0.0);
         assert!((r.dir - -Vec3::Z).length() < 1e-6);
         let top = f.ray(Vec2::new(0.5, 0.0), Vec2::ZERO, 0.0);
@@ -143,7 +172,7 @@ mod tests {
 
     #[test]
     fn project_inverts_ray() {
-        let f = cam().frame(1.5);
+        let f = cam().pinhole(1.5);
         let film = Vec2::new(0.3, 0.8);
         let p = f.ray(film, Vec2::ZERO, 0.0).at(7.0);
         assert!((f.project(p).unwrap() - film).length() < 1e-5);
@@ -151,16 +180,17 @@ mod tests {
 
     #[test]
     fn thin_lens_rays_meet_on_the_focus_plane() {
-        let mut c = cam();
-        c.aperture = 0.5;
-        c.focus_distance = 3.0;
-        let f = c.frame(1.0);
+        let c = cam();
+        let f = c.frame(
+            1.0,
+            Exposure {
+                aperture: 0.5,
+                focus_distance: 3.0,
+                shutter: (0.0, 0.0),
+            },
+        );
         let film = Vec2::new(0.7, 0.2);
-        let pin = {
-            let mut p = c.clone();
-            p.aperture = 0.0;
-            p.frame(1.0).ray(film, Vec2::ZERO, 0.0)
-        };
+        let pin = c.pinhole(1.0).ray(film, Vec2::ZERO, 0.0);
         // The pinhole ray reaches the focus plane (depth 3 along -z) at t = 3 / cos.
         let target = pin.at(3.0 / pin.dir.dot(-Vec3::Z));
         for lens in [

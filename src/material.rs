@@ -57,6 +57,15 @@ pub enum Material {
         /// Reflectance, 0..1 per channel.
         reflectance: Color,
     },
+    /// A glossy metal: the mirror direction jittered over the Phong lobe cos^n α around it
+    /// (the lecture's glossy reflection), times the reflectance. Higher n is sharper; the
+    /// lobe is importance-sampled, so each jittered ray carries the reflectance exactly.
+    Glossy {
+        /// Reflectance, 0..1 per channel.
+        reflectance: Color,
+        /// Phong exponent n.
+        exponent: f32,
+    },
     /// A surface that emits light (and reflects none).
     Emissive {
         /// Emitted radiance.
@@ -98,6 +107,7 @@ impl Material {
         match self {
             Material::Diffuse { .. } => "diffuse",
             Material::Mirror { .. } => "mirror",
+            Material::Glossy { .. } => "glossy",
             Material::Emissive { .. } => "emissive",
             Material::Dielectric(_) => "dielectric",
             Material::Glazed { .. } => "glazed",
@@ -105,7 +115,7 @@ impl Material {
     }
 
     /// This material with the parameters' overrides applied: `ior` (unless the material
-    /// fixes its own), `fresnel` and `constant_reflectance`.
+    /// fixes its own), `fresnel`, `constant_reflectance` and `phong_exponent`.
     pub fn with_params(&self, params: &Params) -> Material {
         let apply = |d: &Dielectric| Dielectric {
             ior: match params.ior {
@@ -123,6 +133,13 @@ impl Material {
             Material::Glazed { coat, base } => Material::Glazed {
                 coat: apply(coat),
                 base: base.clone(),
+            },
+            Material::Glossy {
+                reflectance,
+                exponent,
+            } => Material::Glossy {
+                reflectance: *reflectance,
+                exponent: params.phong_exponent.unwrap_or(*exponent),
             },
             other => other.clone(),
         }

@@ -1,6 +1,7 @@
 //! The one parameter model: every knob of the renderer, under the names the CLI's
 //! `--set name=value`, scene files' `[params]` and snapshot sidecars all use.
 
+pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
 
@@ -21,6 +22,9 @@ pub enum TreeMode {
 pub struct Params {
     /// Target samples per pixel.
     pub spp: u32,
+    /// How the samples of a pixel are spread over the image, the lens, the shutter, the
+    /// lights and glossy lobes.
+    pub pattern: Pattern,
     /// Seed of every random number: the same seed gives the same image, bit for bit.
     pub seed: u64,
     /// Index of refraction of every dielectric and glazed material (except those with
@@ -39,6 +43,21 @@ pub struct Params {
     /// Pruning by attenuation: a branch whose path weight (the product of the
     /// reflectances above it, largest channel) falls below this is not traced.
     pub min_weight: f32,
+    /// Scale of every area light (1: as in the scene; 0: a point light, hard shadows).
+    /// Each light keeps its power: a larger light is dimmer per unit area.
+    pub light_size: f32,
+    /// Phong exponent of every glossy material: higher is sharper; `None` keeps each
+    /// material's own.
+    pub phong_exponent: Option<f32>,
+    /// Lens radius of the thin-lens camera, in scene units; 0 is a pinhole.
+    pub aperture: f32,
+    /// Distance from the lens to the plane in focus; `None` focuses on the camera's
+    /// `look_at` point.
+    pub focus_distance: Option<f32>,
+    /// When the shutter opens, in frame time (objects move over the frame, time 0 to 1).
+    pub shutter_open: f32,
+    /// How long the shutter stays open, in frame time; 0 freezes motion.
+    pub shutter: f32,
     /// Display exposure in stops: pixel values are scaled by 2^exposure before display.
     pub exposure: f32,
 }
@@ -47,6 +66,7 @@ impl Default for Params {
     fn default() -> Self {
         Params {
             spp: 16,
+            pattern: Pattern::Sobol,
             seed: 0,
             ior: None,
             fresnel: None,
@@ -54,6 +74,12 @@ impl Default for Params {
             tree: TreeMode::Split,
             max_depth: 8,
             min_weight: 0.001,
+            light_size: 1.0,
+            phong_exponent: None,
+            aperture: 0.0,
+            focus_distance: None,
+            shutter_open: 0.0,
+            shutter: 0.0,
             exposure: 0.0,
         }
     }
@@ -87,6 +113,10 @@ pub enum ParamError {
 pub const MAX_SPP: u32 = 1 << 20;
 /// The deepest ray tree accepted.
 pub const MAX_DEPTH: u32 = 64;
+/// The largest light size accepted.
+pub const MAX_LIGHT_SIZE: f32 = 10.0;
+/// The largest Phong exponent accepted.
+pub const MAX_PHONG_EXPONENT: f32 = 100_000.0;
 
 impl Params {
     /// The names of all parameters, in declaration order.
@@ -188,6 +218,53 @@ impl Params {
             format!("must be between 0 and 1, got {}", self.min_weight),
         )?;
         check(
+            (0.0..=MAX_LIGHT_SIZE).contains(&self.light_size),
+            "light_size",
+            format!(
+                "must be between 0 and {MAX_LIGHT_SIZE}, got {}",
+                self.light_size
+            ),
+        )?;
+        check(
+            self.phong_exponent
+                .is_none_or(|n| (1.0..=MAX_PHONG_EXPONENT).contains(&n)),
+            "phong_exponent",
+            format!(
+                "must be between 1 and {MAX_PHONG_EXPONENT}, got {:?}",
+                self.phong_exponent
+            ),
+        )?;
+        check(
+            (0.0..=100.0).contains(&self.aperture),
+            "aperture",
+            format!(
+                "must be between 0 and 100 scene units, got {}",
+                self.aperture
+            ),
+        )?;
+        check(
+            self.focus_distance.is_none_or(|d| d > 0.0 && d.is_finite()),
+            "focus_distance",
+            format!("must be greater than 0, got {:?}", self.focus_distance),
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.shutter_open),
+            "shutter_open",
+            format!(
+                "must be between 0 and 1 (frame time), got {}",
+                self.shutter_open
+            ),
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.shutter) && self.shutter_open + self.shutter <= 1.0 + 1e-6,
+            "shutter",
+            format!(
+                "must be between 0 and 1 − shutter_open = {} (frame time), got {}",
+                1.0 - self.shutter_open,
+                self.shutter
+            ),
+        )?;
+        check(
             self.exposure.is_finite() && self.exposure.abs() <= 20.0,
             "exposure",
             format!("must be between -20 and 20 stops, got {}", self.exposure),
@@ -237,6 +314,13 @@ mod tests {
         let names = Params::names();
         for n in [
             "spp",
+            "pattern",
+            "light_size",
+            "phong_exponent",
+            "aperture",
+            "focus_distance",
+            "shutter_open",
+            "shutter",
             "seed",
             "ior",
             "fresnel",

@@ -7,7 +7,9 @@
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
 use crate::camera::CameraFrame;
+use crate::light::Light;
 use crate::material::{Dielectric, Material, Texture};
+use crate::math::sampling::{phong_lobe, to_world};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::{reflect, refract};
 use crate::params::{Params, TreeMode};
@@ -122,6 +124,8 @@ pub struct Tracer<'a> {
     params: &'a Params,
     // The scene's materials with the parameters' overrides (ior, fresnel) applied.
     materials: Vec<Material>,
+    // The scene's lights at the parameters' light size.
+    lights: Vec<Light>,
     frame: CameraFrame,
     width: u32,
     height: u32,
@@ -138,7 +142,14 @@ impl<'a> Tracer<'a> {
                 .iter()
                 .map(|m| m.with_params(params))
                 .collect(),
-            frame: scene.camera.frame(width as f32 / height as f32),
+            lights: scene
+                .lights
+                .iter()
+                .map(|l| l.scaled(params.light_size))
+                .collect(),
+            frame: scene
+                .camera
+                .frame(width as f32 / height as f32, scene.camera.exposure(params)),
             width,
             height,
         }
@@ -147,7 +158,9 @@ impl<'a> Tracer<'a> {
     /// Radiance of sample number `sample` of pixel (x, y). Its random numbers depend only
     /// on (seed, pixel, sample), so the result does too.
     pub fn sample(&self, x: u32, y: u32, sample: u32, stats: &mut Stats) -> Color {
-        let mut rng = SampleStream::new(self.params.seed, y * self.width + x, sample);
+        let p = self.params;
+        let mut rng =
+            SampleStream::with_pattern(p.pattern, p.spp, p.seed, y * self.width + x, sample);
         // Dimensions in a fixed order: image position, lens, time, then the tree's own.
         let jitter = rng.next_2d();
         let lens = rng.next_2d();
@@ -186,7 +199,20 @@ impl<'a> Tracer<'a> {
             .innermost()
             .and_then(|m| self.materials[m as usize].dielectric())
             .map_or(Color::ZERO, |d| d.absorption);
-        let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
+        let hit = self.scene.intersect(ray, f32::INFINITY);
+        // Area lights are seen where nothing is in front of them.
+        let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
+        let mut emitted = None;
+        for light in &self.lights {
+            if let Some((t, radiance)) = light.hit(ray, nearest) {
+                nearest = t;
+                emitted = Some(radiance);
+            }
+        }
+        if let Some(radiance) = emitted {
+            return transmittance(sigma, nearest) * radiance;
+        }
+        let Some(hit) = hit else {
             return transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
         };
         // Beer–Lambert along the segment just travelled.
@@ -242,7 +268,7 @@ impl<'a> Tracer<'a> {
                 specular,
                 exponent,
             } => self.diffuse(
-                ray, hit, n_geom, n_shade, albedo, *specular, *exponent, stats,
+                ray, hit, n_geom, n_shade, albedo, *specular, *exponent, rng, stats,
             ),
             Material::Mirror { reflectance } => {
                 match self.branch(depth, weight * reflectance.max_element(), stats) {
@@ -253,6 +279,28 @@ impl<'a> Tracer<'a> {
                     None => Color::ZERO,
                 }
             }
+            Material::Glossy {
+                reflectance,
+                exponent,
+            } => {
+                // Jitter the mirror direction over the Phong lobe around it. Sampling the
+                // normalized lobe exactly, each jittered ray carries the reflectance.
+                let u = rng.next_2d();
+                let Some(w) = self.branch(depth, weight * reflectance.max_element(), stats) else {
+                    return Color::ZERO;
+                };
+                let mut child = reflected();
+                let mut dir = to_world(phong_lobe(u, *exponent), child.dir);
+                // Lobe directions below the surface are folded back above it (mirrored in
+                // the tangent plane): no energy lost, no black speckles at grazing angles.
+                let below = dir.dot(n_geom);
+                if below <= 0.0 {
+                    dir = (dir - 2.0 * below * n_geom).normalize();
+                }
+                child.dir = dir;
+                stats.reflection_rays += 1;
+                *reflectance * self.trace(&child, depth + 1, w, media, rng, stats)
+            }
             Material::Glazed { coat, base } => {
                 // The coat is seen from the medium the ray travels in; nothing enters it.
                 let (n1, n2) = (self.ior_of(media), coat.ior);
@@ -261,7 +309,17 @@ impl<'a> Tracer<'a> {
                     .fresnel
                     .reflectance(cos_i, n1, n2, coat.constant_reflectance);
                 let mut l = (1.0 - r)
-                    * self.diffuse(ray, hit, n_geom, n_shade, base, Color::ZERO, 1.0, stats);
+                    * self.diffuse(
+                        ray,
+                        hit,
+                        n_geom,
+                        n_shade,
+                        base,
+                        Color::ZERO,
+                        1.0,
+                        rng,
+                        stats,
+                    );
                 if r > 0.0
                     && let Some(w) = self.branch(depth, weight * r, stats)
                 {
@@ -386,8 +444,9 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    /// Diffuse shading: ambient plus the point lights, one shadow ray each:
-    /// L = a·L_ambient + Σ f(l, v) I cos θ / r², f the Lambert plus normalized Phong BRDF.
+    /// Diffuse shading: ambient plus every light, one shadow ray to one sampled point of
+    /// each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ, with f the Lambert plus
+    /// normalized Phong BRDF.
     #[allow(clippy::too_many_arguments)]
     fn diffuse(
         &self,
@@ -398,6 +457,7 @@ impl<'a> Tracer<'a> {
         albedo: &Texture,
         specular: Color,
         exponent: f32,
+        rng: &mut SampleStream,
         stats: &mut Stats,
     ) -> Color {
         let albedo = albedo.eval(hit.surface.uv);
@@ -405,32 +465,31 @@ impl<'a> Tracer<'a> {
         let origin = offset_ray_origin(p, n_geom);
         let view = -ray.dir;
         let mut sum = self.scene.ambient * albedo;
-        for light in &self.scene.lights {
-            let to_light = light.position - p;
-            let dist2 = to_light.length_squared();
-            let l = to_light / dist2.sqrt();
-            let cos = n.dot(l);
-            if cos <= 0.0 || n_geom.dot(l) <= 0.0 {
+        for light in &self.lights {
+            let u = rng.next_2d();
+            let Some(ls) = light.sample(p, u) else {
+                continue;
+            };
+            let cos = n.dot(ls.dir);
+            if cos <= 0.0 || n_geom.dot(ls.dir) <= 0.0 {
                 continue;
             }
             stats.shadow_rays += 1;
             let shadow = Ray {
                 origin,
-                dir: l,
+                dir: ls.dir,
                 time: ray.time,
             };
-            if self
-                .scene
-                .occluded(&shadow, (light.position - origin).length())
-            {
+            // Stop just short of the light's surface (it is not in the BVH anyway).
+            if self.scene.occluded(&shadow, ls.dist * (1.0 - 1e-4)) {
                 continue;
             }
             let mut f = albedo / PI;
             if specular != Color::ZERO {
-                let cos_alpha = reflect(-l, n).dot(view).max(0.0);
+                let cos_alpha = reflect(-ls.dir, n).dot(view).max(0.0);
                 f += specular * (exponent + 2.0) / (2.0 * PI) * cos_alpha.powf(exponent);
             }
-            sum += f * light.intensity * (cos / dist2);
+            sum += f * ls.value * cos;
         }
         sum
     }

@@ -63,7 +63,7 @@ fn scene(
 }
 
 fn sphere(center: Vec3, radius: f32) -> Shape {
-    Shape::Sphere(Sphere { center, radius })
+    Shape::Sphere(Sphere::new(center, radius))
 }
 
 fn mean(film: &Film) -> f64 {

@@ -96,10 +96,10 @@ fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
             Shape::Plane(Plane::new(Vec3::new(0.0, -6.0, 0.0), Vec3::Y)),
         ];
         for _ in 0..20 {
-            shapes.push(Shape::Sphere(Sphere {
-                center: rng.vec(-5.0, 5.0),
-                radius: rng.range(0.05, 1.0),
-            }));
+            shapes.push(Shape::Sphere(Sphere::new(
+                rng.vec(-5.0, 5.0),
+                rng.range(0.05, 1.0),
+            )));
             shapes.push(Shape::Quad(Quad::new(
                 rng.vec(-5.0, 5.0),
                 rng.vec(-1.0, 1.0),
@@ -151,16 +151,13 @@ fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
 #[test]
 fn axis_aligned_rays_with_signed_zeros_hit() {
     // -Vec3::Z is (-0.0, -0.0, -1.0): a direction obvhs 0.4 mishandles unless canonicalized.
-    let one_sphere = scene_of(vec![Shape::Sphere(Sphere {
-        center: Vec3::new(0.0, 0.0, -2.0),
-        radius: 0.5,
-    })]);
+    let one_sphere = scene_of(vec![Shape::Sphere(Sphere::new(
+        Vec3::new(0.0, 0.0, -2.0),
+        0.5,
+    ))]);
     let mut rng = Rng::new(11);
     let two_prims = scene_of(vec![
-        Shape::Sphere(Sphere {
-            center: Vec3::new(0.0, 0.0, -2.0),
-            radius: 0.5,
-        }),
+        Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, -2.0), 0.5)),
         Shape::Mesh(random_mesh(&mut rng, 50, Vec3::new(0.0, 3.0, 0.0), 1.0)),
     ]);
     for s in [&one_sphere, &two_prims] {
@@ -253,10 +250,7 @@ fn rays_leaving_a_surface_do_not_hit_it_again_at_any_scale() {
         (1000.0, 20000.0),
     ] {
         let c = Vec3::new(offset, 0.5 * offset, -offset);
-        let sphere = scene_of(vec![Shape::Sphere(Sphere {
-            center: c,
-            radius: scale,
-        })]);
+        let sphere = scene_of(vec![Shape::Sphere(Sphere::new(c, scale))]);
         check_no_self_hits(&sphere, &mut rng, scale, c, Some(0));
         let quad = scene_of(vec![Shape::Quad(Quad::new(
             c - Vec3::new(scale, 0.0, scale),
@@ -314,10 +308,7 @@ fn rays_do_not_leak_through_thin_or_touching_geometry() {
     // towards the sphere's centre is blocked by the sphere.
     let touching = scene_of(vec![
         Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
-        Shape::Sphere(Sphere {
-            center: Vec3::new(0.0, 1.0, 0.0),
-            radius: 1.0,
-        }),
+        Shape::Sphere(Sphere::new(Vec3::new(0.0, 1.0, 0.0), 1.0)),
     ]);
     for i in 1..200 {
         let r = i as f32 * 1e-3;

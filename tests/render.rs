@@ -2,7 +2,7 @@
 
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Shape};
-use raylab::light::{Background, PointLight};
+use raylab::light::{Background, Light};
 use raylab::material::{Material, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
@@ -77,7 +77,7 @@ fn grey(albedo: f32) -> Material {
 /// A camera at height `height` looking straight down at the plane y = 0.
 fn top_down(
     material: Material,
-    lights: Vec<PointLight>,
+    lights: Vec<Light>,
     height: f32,
     fov: f32,
     background: Color,
@@ -111,10 +111,10 @@ fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
     let (albedo, intensity, h) = (0.6f32, 5.0f32, 1.0f32);
     let scene = top_down(
         grey(albedo),
-        vec![PointLight {
-            position: Vec3::new(0.0, h, 0.0),
-            intensity: Color::splat(intensity),
-        }],
+        vec![Light::point(
+            Vec3::new(0.0, h, 0.0),
+            Color::splat(intensity),
+        )],
         2.0,
         60.0,
         Color::ZERO,

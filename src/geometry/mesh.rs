@@ -5,9 +5,12 @@ use crate::math::{Ray, Vec3};
 use glam::Vec2;
 use obvhs::aabb::Aabb;
 
-/// An indexed triangle mesh with optional per-vertex normals and texture coordinates.
+/// An indexed triangle mesh with optional per-vertex normals and texture coordinates,
+/// possibly moving: at frame time t it is displaced by `velocity * t`.
 #[derive(Clone, Debug)]
 pub struct Mesh {
+    /// Displacement over the frame (time 0 to 1).
+    pub velocity: Vec3,
     positions: Vec<Vec3>,
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
@@ -103,6 +106,7 @@ impl Mesh {
             })
             .collect();
         Ok(Mesh {
+            velocity: Vec3::ZERO,
             positions,
             normals,
             uvs,
@@ -176,16 +180,27 @@ impl Mesh {
         self.normals.is_some()
     }
 
-    /// Bounds of triangle `i`.
+    /// Bounds of triangle `i` over the whole frame.
     pub fn triangle_bounds(&self, i: usize) -> Aabb {
         let [v0, e1, e2] = self.edges[i];
-        Aabb::from_points(&[v0, v0 + e1, v0 + e2])
+        let v = self.velocity;
+        Aabb::from_points(&[v0, v0 + e1, v0 + e2, v0 + v, v0 + e1 + v, v0 + e2 + v])
+    }
+
+    /// `ray` in the mesh's own frame at the ray's time (the mesh only translates).
+    #[inline]
+    fn local(&self, ray: &Ray) -> Ray {
+        Ray {
+            origin: ray.origin - self.velocity * ray.time,
+            ..*ray
+        }
     }
 
     /// Möller–Trumbore: distance and barycentrics (u, v) of triangle `i`, if hit in (0, t_max).
     /// Both sides of the triangle are hit.
     #[inline]
     pub fn intersect_t(&self, i: usize, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+        let ray = &self.local(ray);
         let [v0, e1, e2] = self.edges[i];
         let pvec = ray.dir.cross(e2);
         let det = e1.dot(pvec);
@@ -213,10 +228,10 @@ impl Mesh {
         // Barycentrics of the point at t, by projecting onto the triangle's edges.
         let (u, v) = match self.intersect_t(i, ray, f32::INFINITY) {
             Some((_, b)) => (b.x, b.y),
-            None => barycentrics(ray.at(t) - v0, e1, e2),
+            None => barycentrics(self.local(ray).at(t) - v0, e1, e2),
         };
         let w = 1.0 - u - v;
-        let p = v0 + u * e1 + v * e2;
+        let p = v0 + u * e1 + v * e2 + self.velocity * ray.time;
         let mut n_geom = e1.cross(e2).normalize_or_zero();
         let [a, b, c] = self.indices[i].map(|k| k as usize);
         let n_shade = match &self.normals {

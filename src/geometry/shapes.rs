@@ -6,19 +6,38 @@ use glam::Vec2;
 use obvhs::aabb::Aabb;
 use std::f32::consts::PI;
 
-/// A sphere.
+/// A sphere, possibly moving: its centre is `center + velocity * t` at frame time t.
 #[derive(Clone, Debug)]
 pub struct Sphere {
-    /// Centre.
+    /// Centre at time 0.
     pub center: Vec3,
     /// Radius, > 0.
     pub radius: f32,
+    /// Displacement over the frame (time 0 to 1).
+    pub velocity: Vec3,
 }
 
 impl Sphere {
-    /// Bounds of the sphere.
+    /// A sphere that does not move.
+    pub fn new(center: Vec3, radius: f32) -> Self {
+        Sphere {
+            center,
+            radius,
+            velocity: Vec3::ZERO,
+        }
+    }
+
+    /// The centre at frame time `t`.
+    #[inline]
+    pub fn center_at(&self, t: f32) -> Vec3 {
+        self.center + self.velocity * t
+    }
+
+    /// Bounds of the sphere over the whole frame.
     pub fn bounds(&self) -> Aabb {
-        Aabb::new(self.center - self.radius, self.center + self.radius)
+        let start = Aabb::new(self.center - self.radius, self.center + self.radius);
+        let end = Aabb::new(start.min + self.velocity, start.max + self.velocity);
+        start.union(&end)
     }
 
     /// Nearest root of |o + t d - c|² = r² in (0, t_max).
@@ -28,7 +47,7 @@ impl Sphere {
     /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
     #[inline]
     pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
-        let f = ray.origin - self.center;
+        let f = ray.origin - self.center_at(ray.time);
         let b = -f.dot(ray.dir);
         let l = f + b * ray.dir;
         let r2 = self.radius * self.radius;
@@ -56,8 +75,9 @@ impl Sphere {
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
     pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
-        let n = (ray.at(t) - self.center).normalize();
-        let p = self.center + self.radius * n;
+        let center = self.center_at(ray.time);
+        let n = (ray.at(t) - center).normalize();
+        let p = center + self.radius * n;
         // Longitude around +y and colatitude from +y, each in [0, 1].
         let uv = Vec2::new(
             0.5 + n.z.atan2(n.x) / (2.0 * PI),
@@ -207,10 +227,7 @@ mod tests {
 
     #[test]
     fn sphere_hit_distances() {
-        let s = Sphere {
-            center: Vec3::new(0.0, 0.0, -5.0),
-            radius: 1.0,
-        };
+        let s = Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0);
         let ray = Ray::new(Vec3::ZERO, -Vec3::Z, 0.0);
         assert!((s.intersect_t(&ray, f32::INFINITY).unwrap() - 4.0).abs() < 1e-6);
         // From inside: the far side.
@@ -237,14 +254,30 @@ mod tests {
     #[test]
     fn tiny_far_sphere_is_hit_exactly() {
         // The naive quadratic loses this to cancellation.
-        let s = Sphere {
-            center: Vec3::new(0.0, 0.0, -10000.0),
-            radius: 0.01,
-        };
+        let s = Sphere::new(Vec3::new(0.0, 0.0, -10000.0), 0.01);
         let ray = Ray::new(Vec3::new(0.005, 0.0, 0.0), -Vec3::Z, 0.0);
         let t = s.intersect_t(&ray, f32::INFINITY).unwrap();
         let expected = 10000.0 - (0.01f32 * 0.01 - 0.005 * 0.005).sqrt();
         assert!((t - expected).abs() < 2e-3, "t = {t}, expected {expected}");
+    }
+
+    #[test]
+    fn a_moving_sphere_is_where_its_time_says() {
+        let s = Sphere {
+            velocity: Vec3::new(2.0, 0.0, 0.0),
+            ..Sphere::new(Vec3::new(0.0, 0.0, -5.0), 0.5)
+        };
+        let at = |x: f32, time: f32| {
+            s.intersect_t(
+                &Ray::new(Vec3::new(x, 0.0, 0.0), -Vec3::Z, time),
+                f32::INFINITY,
+            )
+        };
+        assert!(at(0.0, 0.0).is_some() && at(2.0, 0.0).is_none());
+        assert!(at(0.0, 1.0).is_none() && at(2.0, 1.0).is_some());
+        assert!(at(1.0, 0.5).is_some());
+        let b = s.bounds();
+        assert!(b.min.x <= -0.5 && b.max.x >= 2.5);
     }
 
     #[test]

@@ -1,5 +1,49 @@
-//! Counter-based random numbers: a sample's numbers depend only on
-//! (seed, pixel, sample index, dimension), never on which thread or pass drew them.
+//! Counter-based sample streams: a sample's numbers depend only on (seed, pixel, sample
+//! index, dimension) and the pattern, never on which thread or pass drew them.
+//!
+//! Each draw is one "dimension" (a 1D number or a 2D pair): the image position, the lens
+//! point, the time, a point on a light, a glossy direction, a branch choice. Every
+//! dimension of a pixel gets its own permutation or scramble, so dimensions are
+//! decorrelated: the lens point of a sample says nothing about its image position.
+
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+
+/// How the samples of a pixel are spread over each dimension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Pattern {
+    /// The centres of a grid of ⌈√n⌉ × ⌈n/⌈√n⌉⌉ cells (n = samples per pixel): the
+    /// lecture's baseline, which aliases.
+    Regular,
+    /// Independent uniform random numbers.
+    Random,
+    /// One uniform random point in each cell of the same grid (stratified sampling).
+    Jittered,
+    /// Owen-scrambled Sobol points (sobol_burley): stratified at every prefix, so each
+    /// progressive pass adds to a well-spread set. Past 65,536 samples, random.
+    Sobol,
+}
+
+impl Pattern {
+    /// Every pattern, in menu order.
+    pub const ALL: [Pattern; 4] = [
+        Pattern::Regular,
+        Pattern::Random,
+        Pattern::Jittered,
+        Pattern::Sobol,
+    ];
+
+    /// The name used in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Pattern::Regular => "regular",
+            Pattern::Random => "random",
+            Pattern::Jittered => "jittered",
+            Pattern::Sobol => "sobol",
+        }
+    }
+}
 
 /// The SplitMix64 finalizer: a bijective 64-bit mixer with full avalanche.
 #[inline]
@@ -15,36 +59,167 @@ pub fn to_unit_f32(bits: u64) -> f32 {
     (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
 }
 
-/// The random numbers of one camera sample: dimension after dimension, in the order the
-/// tracer asks for them. Two streams with the same (seed, pixel, sample) give the same
-/// numbers.
+/// Element `i` of a pseudo-random permutation of 0..len chosen by `seed`, for any `len`
+/// (Kensler, "Correlated Multi-Jittered Sampling", 2013).
+pub fn permute(mut i: u32, len: u32, seed: u32) -> u32 {
+    let p = seed;
+    let mut w = len.wrapping_sub(1);
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    loop {
+        i ^= p;
+        i = i.wrapping_mul(0xe170_893d);
+        i ^= p >> 16;
+        i ^= (i & w) >> 4;
+        i ^= p >> 8;
+        i = i.wrapping_mul(0x0929_eb3f);
+        i ^= p >> 23;
+        i ^= (i & w) >> 1;
+        i = i.wrapping_mul(1 | p >> 27);
+        i = i.wrapping_mul(0x6935_fa69);
+        i ^= (i & w) >> 11;
+        i = i.wrapping_mul(0x74dc_b303);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0x9e50_1cc3);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0xc860_a3df);
+        i &= w;
+        i ^= i >> 5;
+        if i < len {
+            break;
+        }
+    }
+    (i.wrapping_add(p)) % len
+}
+
+/// The grid the regular and jittered patterns use for `n` samples: ⌈√n⌉ columns and
+/// enough rows for n cells.
+pub fn grid(n: u32) -> (u32, u32) {
+    let nx = (n.max(1) as f64).sqrt().ceil() as u32;
+    (nx, n.max(1).div_ceil(nx))
+}
+
+/// The random numbers of one camera sample, dimension after dimension, in the order the
+/// tracer asks for them.
 #[derive(Clone, Debug)]
 pub struct SampleStream {
-    key: u64,
+    pattern: Pattern,
+    // Samples per pixel the pattern is laid out for (regular, jittered).
+    count: u32,
+    sample: u32,
+    // Mixes seed and pixel: every dimension's permutation and scramble derive from it.
+    pixel_key: u64,
+    // Mixes seed, pixel and sample: the random numbers derive from it.
+    sample_key: u64,
     dim: u32,
 }
 
 const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
+const SOBOL_MAX: u32 = 1 << 16;
 
 impl SampleStream {
-    /// The stream of sample `sample` of pixel `pixel` (row-major index) under `seed`.
+    /// The stream of sample `sample` of pixel `pixel` (row-major index) under `seed`,
+    /// with independent uniform random numbers.
     pub fn new(seed: u64, pixel: u32, sample: u32) -> Self {
-        let key = mix64(mix64(seed.wrapping_add(GOLDEN)) ^ ((pixel as u64) << 32 | sample as u64));
-        SampleStream { key, dim: 0 }
+        Self::with_pattern(Pattern::Random, 1, seed, pixel, sample)
+    }
+
+    /// The stream of sample `sample` of `spp` samples of pixel `pixel` under `seed`, laid
+    /// out by `pattern`.
+    pub fn with_pattern(pattern: Pattern, spp: u32, seed: u64, pixel: u32, sample: u32) -> Self {
+        let pixel_key =
+            mix64(mix64(seed.wrapping_add(GOLDEN)) ^ (pixel as u64).wrapping_mul(GOLDEN));
+        SampleStream {
+            pattern,
+            count: spp.max(1),
+            sample,
+            pixel_key,
+            sample_key: mix64(pixel_key ^ (sample as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03)),
+            dim: 0,
+        }
+    }
+
+    /// 64 random bits for draw `k` of this dimension, unique to the sample.
+    #[inline]
+    fn random_bits(&self, k: u64) -> u64 {
+        mix64(
+            self.sample_key
+                ^ ((self.dim as u64) << 2 | k)
+                    .wrapping_add(1)
+                    .wrapping_mul(GOLDEN),
+        )
+    }
+
+    /// A key for this dimension of this pixel, shared by all its samples.
+    #[inline]
+    fn dimension_key(&self) -> u64 {
+        mix64(self.pixel_key ^ (self.dim as u64 + 1).wrapping_mul(0x9e6c_63d0_676a_9a99))
     }
 
     /// The next dimension, uniform in [0, 1).
-    #[inline]
     pub fn next_1d(&mut self) -> f32 {
-        let bits = mix64(self.key ^ (self.dim as u64 + 1).wrapping_mul(GOLDEN));
+        let u = match self.pattern {
+            Pattern::Random => to_unit_f32(self.random_bits(0)),
+            Pattern::Sobol if self.sample < SOBOL_MAX => {
+                sobol_burley::sample(self.sample, 0, self.dimension_key() as u32)
+            }
+            Pattern::Sobol => to_unit_f32(self.random_bits(0)),
+            Pattern::Regular | Pattern::Jittered => {
+                let n = self.count;
+                let stratum = permute(self.sample % n, n, self.dimension_key() as u32);
+                let offset = if self.pattern == Pattern::Regular {
+                    0.5
+                } else {
+                    to_unit_f32(self.random_bits(0))
+                };
+                ((stratum as f32 + offset) / n as f32).min(ONE_MINUS_EPSILON)
+            }
+        };
         self.dim += 1;
-        to_unit_f32(bits)
+        u
     }
 
-    /// The next two dimensions, each uniform in [0, 1).
-    #[inline]
-    pub fn next_2d(&mut self) -> glam::Vec2 {
-        glam::Vec2::new(self.next_1d(), self.next_1d())
+    /// The next two dimensions, jointly stratified by the pattern, each in [0, 1).
+    pub fn next_2d(&mut self) -> Vec2 {
+        let v = match self.pattern {
+            Pattern::Random => Vec2::new(
+                to_unit_f32(self.random_bits(0)),
+                to_unit_f32(self.random_bits(1)),
+            ),
+            Pattern::Sobol if self.sample < SOBOL_MAX => {
+                // Sobol dimensions 0 and 1 (a (0,2)-sequence), scrambled per dimension pair.
+                let seed = self.dimension_key() as u32;
+                Vec2::new(
+                    sobol_burley::sample(self.sample, 0, seed),
+                    sobol_burley::sample(self.sample, 1, seed),
+                )
+            }
+            Pattern::Sobol => Vec2::new(
+                to_unit_f32(self.random_bits(0)),
+                to_unit_f32(self.random_bits(1)),
+            ),
+            Pattern::Regular | Pattern::Jittered => {
+                let (nx, ny) = grid(self.count);
+                let cells = nx * ny;
+                let cell = permute(self.sample % cells, cells, self.dimension_key() as u32);
+                let offset = if self.pattern == Pattern::Regular {
+                    Vec2::splat(0.5)
+                } else {
+                    Vec2::new(
+                        to_unit_f32(self.random_bits(0)),
+                        to_unit_f32(self.random_bits(1)),
+                    )
+                };
+                let p = (Vec2::new((cell % nx) as f32, (cell / nx) as f32) + offset)
+                    / Vec2::new(nx as f32, ny as f32);
+                p.min(Vec2::splat(ONE_MINUS_EPSILON))
+            }
+        };
+        self.dim += 1;
+        v
     }
 
     /// How many dimensions have been drawn so far.
@@ -53,20 +228,27 @@ impl SampleStream {
     }
 }
 
+/// The largest f32 below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn streams_are_reproducible_and_distinct() {
-        let draw = |seed, pixel, sample| {
-            let mut s = SampleStream::new(seed, pixel, sample);
-            [s.next_1d(), s.next_1d(), s.next_1d()]
-        };
-        assert_eq!(draw(7, 10, 3), draw(7, 10, 3));
-        assert_ne!(draw(7, 10, 3), draw(8, 10, 3));
-        assert_ne!(draw(7, 10, 3), draw(7, 11, 3));
-        assert_ne!(draw(7, 10, 3), draw(7, 10, 4));
+        for pattern in Pattern::ALL {
+            let draw = |seed, pixel, sample| {
+                let mut s = SampleStream::with_pattern(pattern, 16, seed, pixel, sample);
+                [s.next_2d().x, s.next_2d().y, s.next_1d()]
+            };
+            assert_eq!(draw(7, 10, 3), draw(7, 10, 3));
+            if pattern != Pattern::Regular {
+                assert_ne!(draw(7, 10, 3), draw(8, 10, 3), "{pattern:?}");
+                assert_ne!(draw(7, 10, 3), draw(7, 11, 3), "{pattern:?}");
+            }
+            assert_ne!(draw(7, 10, 3), draw(7, 10, 4), "{pattern:?}");
+        }
     }
 
     #[test]
@@ -80,5 +262,85 @@ mod tests {
             sum += u as f64;
         }
         assert!((sum / n as f64 - 0.5).abs() < 5.0 * 0.0011);
+    }
+
+    #[test]
+    fn permute_is_a_permutation_for_any_length() {
+        for len in [1u32, 2, 3, 7, 16, 100, 1000] {
+            for seed in [0u32, 1, 0xdead_beef] {
+                let mut seen = vec![false; len as usize];
+                for i in 0..len {
+                    let p = permute(i, len, seed) as usize;
+                    assert!(!seen[p], "len {len}: {p} twice");
+                    seen[p] = true;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn jittered_and_regular_fill_every_stratum_once() {
+        for pattern in [Pattern::Regular, Pattern::Jittered] {
+            for spp in [1u32, 4, 9, 16] {
+                let (nx, ny) = grid(spp);
+                // For every 2D dimension: one sample in each cell.
+                for dim in 0..3 {
+                    let mut hits = vec![0; (nx * ny) as usize];
+                    for s in 0..spp {
+                        let mut st = SampleStream::with_pattern(pattern, spp, 5, 42, s);
+                        for _ in 0..dim {
+                            st.next_2d();
+                        }
+                        let p = st.next_2d();
+                        let cell = (p.x * nx as f32) as u32 + nx * (p.y * ny as f32) as u32;
+                        hits[cell as usize] += 1;
+                    }
+                    assert!(
+                        hits.iter().all(|&h| h == 1),
+                        "{pattern:?} spp {spp} dim {dim}: {hits:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sobol_prefixes_are_stratified() {
+        // Each power-of-two prefix puts one point in each of its elementary intervals.
+        for n in [4u32, 16, 64] {
+            let side = (n as f32).sqrt() as u32;
+            let mut hits = vec![0; n as usize];
+            for s in 0..n {
+                let p = SampleStream::with_pattern(Pattern::Sobol, 1 << 10, 3, 9, s).next_2d();
+                hits[((p.x * side as f32) as u32 + side * (p.y * side as f32) as u32) as usize] +=
+                    1;
+            }
+            assert!(hits.iter().all(|&h| h == 1), "n {n}: {hits:?}");
+        }
+    }
+
+    #[test]
+    fn dimensions_are_decorrelated() {
+        // The image position and the lens position of the same samples are uncorrelated.
+        for pattern in Pattern::ALL {
+            let n = 4096;
+            let (mut sxy, mut sx, mut sy) = (0.0f64, 0.0f64, 0.0f64);
+            for pixel in 0..64u32 {
+                for s in 0..64u32 {
+                    let mut st = SampleStream::with_pattern(pattern, 64, 1, pixel, s);
+                    let a = st.next_2d().x as f64;
+                    let b = st.next_2d().x as f64;
+                    sxy += a * b;
+                    sx += a;
+                    sy += b;
+                }
+            }
+            let cov = sxy / n as f64 - (sx / n as f64) * (sy / n as f64);
+            // Independent U(0,1): covariance 0 with standard deviation 1/(12 sqrt n).
+            assert!(
+                cov.abs() < 4.0 / (12.0 * (n as f64).sqrt()),
+                "{pattern:?}: covariance {cov}"
+            );
+        }
     }
 }

@@ -7,7 +7,7 @@ use super::obj::load_obj;
 use super::{Location, Object, Scene, SceneDesc, SceneError, SceneSource};
 use crate::camera::Camera;
 use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
-use crate::light::{Background, PointLight};
+use crate::light::{Background, Light, LightShape};
 use crate::material::{Dielectric, Material, Texture};
 use crate::math::{Color, Vec3};
 use crate::optics::FresnelMode;
@@ -133,6 +133,26 @@ impl TryFrom<f64> for Ior {
         } else {
             Err(format!(
                 "an index of refraction must be between 1 and 3, got {v}"
+            ))
+        }
+    }
+}
+
+/// A Phong exponent, 1 to 100,000.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+struct Exponent(f32);
+
+impl TryFrom<f64> for Exponent {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let Num(f) = Num::try_from(v)?;
+        let max = crate::params::MAX_PHONG_EXPONENT;
+        if (1.0..=max).contains(&f) {
+            Ok(Exponent(f))
+        } else {
+            Err(format!(
+                "a Phong exponent must be between 1 and {max}, got {v}"
             ))
         }
     }
@@ -272,6 +292,12 @@ struct SceneFile {
     mesh: Vec<MeshDef>,
     #[serde(default)]
     point_light: Vec<PointLightDef>,
+    #[serde(default)]
+    rect_light: Vec<Spanned<RectLightDef>>,
+    #[serde(default)]
+    disk_light: Vec<DiskLightDef>,
+    #[serde(default)]
+    sphere_light: Vec<SphereLightDef>,
 }
 
 #[derive(Deserialize)]
@@ -310,6 +336,10 @@ enum MaterialDef {
     Mirror {
         reflectance: Reflectance,
     },
+    Glossy {
+        reflectance: Reflectance,
+        exponent: Exponent,
+    },
     Emissive {
         color: Rgb,
         strength: Option<NonNegative>,
@@ -346,6 +376,7 @@ struct SphereDef {
     name: Option<String>,
     center: V3,
     radius: Positive,
+    velocity: Option<V3>,
     material: Option<Spanned<String>>,
 }
 
@@ -375,6 +406,7 @@ struct BoxDef {
     min: V3,
     max: V3,
     rotate: Option<V3>,
+    velocity: Option<V3>,
     material: Option<Spanned<String>>,
 }
 
@@ -387,6 +419,7 @@ struct MeshDef {
     scale: Option<Positive>,
     rotate: Option<V3>,
     translate: Option<V3>,
+    velocity: Option<V3>,
     #[serde(default = "yes")]
     smooth: bool,
 }
@@ -399,6 +432,35 @@ fn yes() -> bool {
 #[serde(deny_unknown_fields)]
 struct PointLightDef {
     position: V3,
+    color: Option<Rgb>,
+    intensity: NonNegative,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RectLightDef {
+    center: V3,
+    edge_u: V3,
+    edge_v: V3,
+    color: Option<Rgb>,
+    intensity: NonNegative,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DiskLightDef {
+    center: V3,
+    normal: Dir,
+    radius: Positive,
+    color: Option<Rgb>,
+    intensity: NonNegative,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SphereLightDef {
+    center: V3,
+    radius: Positive,
     color: Option<Rgb>,
     intensity: NonNegative,
 }
@@ -441,8 +503,8 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         objects.push(Object {
             name: name_or(s.name, "sphere", n),
             shape: Shape::Sphere(Sphere {
-                center: s.center.0,
-                radius: s.radius.0,
+                velocity: s.velocity.map_or(Vec3::ZERO, |v| v.0),
+                ..Sphere::new(s.center.0, s.radius.0)
             }),
             material,
         });
@@ -486,9 +548,10 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         let rotate = glam::Affine3A::from_translation(center.into())
             * glam::Affine3A::from_quat(rotation(b.rotate))
             * glam::Affine3A::from_translation((-center).into());
-        let mesh = Mesh::cuboid(lo, hi)
+        let mut mesh = Mesh::cuboid(lo, hi)
             .and_then(|m| m.transformed(&rotate, false))
             .map_err(|e| SceneError::new(at(span), e.to_string()))?;
+        mesh.velocity = b.velocity.map_or(Vec3::ZERO, |v| v.0);
         let material = resolve(&b.material, &mut materials)?;
         objects.push(Object {
             name: name_or(b.name, "box", n),
@@ -520,9 +583,10 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
                 (Some(_), _) | (None, None) => resolve(&m.material, &mut materials)?,
                 (None, Some((mtl_name, mat))) => materials.add(format!("{rel}:{mtl_name}"), mat),
             };
-            let mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
+            let mut mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
                 SceneError::new(at(m.file.span()), format!("after its transform: {e}"))
             })?;
+            mesh.velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
             objects.push(Object {
                 name: if single {
                     base.clone()
@@ -606,6 +670,49 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     }
     let camera = Camera::looking_at(c.position.0, c.look_at.0, up, fov);
 
+    let intensity = |color: Option<Rgb>, i: NonNegative| color.map_or(Color::ONE, |c| c.0) * i.0;
+    let light = |shape, intensity| Light {
+        shape,
+        intensity,
+        scale: 1.0,
+    };
+    let mut lights: Vec<Light> = f
+        .point_light
+        .into_iter()
+        .map(|l| Light::point(l.position.0, intensity(l.color, l.intensity)))
+        .collect();
+    for r in f.rect_light {
+        let span = r.span();
+        let r = r.into_inner();
+        if r.edge_u.0.cross(r.edge_v.0).length_squared() == 0.0 {
+            return Err(SceneError::new(
+                at(span),
+                "rect_light edges `edge_u` and `edge_v` must not be parallel or zero",
+            ));
+        }
+        let shape = LightShape::Rect {
+            center: r.center.0,
+            edge_u: r.edge_u.0,
+            edge_v: r.edge_v.0,
+        };
+        lights.push(light(shape, intensity(r.color, r.intensity)));
+    }
+    for d in f.disk_light {
+        let shape = LightShape::Disk {
+            center: d.center.0,
+            normal: d.normal.0,
+            radius: d.radius.0,
+        };
+        lights.push(light(shape, intensity(d.color, d.intensity)));
+    }
+    for s in f.sphere_light {
+        let shape = LightShape::Sphere {
+            center: s.center.0,
+            radius: s.radius.0,
+        };
+        lights.push(light(shape, intensity(s.color, s.intensity)));
+    }
+
     let (width, height) = f.image.map_or((640, 360), |i| (i.width.0, i.height.0));
     Ok(SceneDesc {
         name: String::new(),
@@ -616,14 +723,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         params,
         materials: materials.list,
         objects,
-        lights: f
-            .point_light
-            .into_iter()
-            .map(|l| PointLight {
-                position: l.position.0,
-                intensity: l.color.map_or(Color::ONE, |c| c.0) * l.intensity.0,
-            })
-            .collect(),
+        lights,
         ambient: f.ambient.map_or(Color::ZERO, |a| a.0),
         background,
         medium_ior: f.medium_ior.map_or(1.0, |m| m.0),
@@ -691,6 +791,13 @@ fn material(def: MaterialDef) -> Material {
         },
         MaterialDef::Mirror { reflectance } => Material::Mirror {
             reflectance: reflectance.0,
+        },
+        MaterialDef::Glossy {
+            reflectance,
+            exponent,
+        } => Material::Glossy {
+            reflectance: reflectance.0,
+            exponent: exponent.0,
         },
         MaterialDef::Emissive { color, strength } => Material::Emissive {
             radiance: color.0 * strength.map_or(1.0, |s| s.0),

@@ -12,7 +12,7 @@ pub use obj::{ObjPart, load_obj};
 
 use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
-use crate::light::{Background, PointLight};
+use crate::light::{Background, Light};
 use crate::material::Material;
 use crate::math::{Color, Ray};
 use crate::params::Params;
@@ -72,8 +72,8 @@ pub struct SceneDesc {
     pub materials: Vec<(String, Material)>,
     /// Objects.
     pub objects: Vec<Object>,
-    /// Point lights.
-    pub lights: Vec<PointLight>,
+    /// Lights.
+    pub lights: Vec<Light>,
     /// Ambient radiance: light arriving from every direction, unshadowed.
     pub ambient: Color,
     /// What rays that leave the scene see.
@@ -120,8 +120,8 @@ pub struct Scene {
     pub object_materials: Vec<u32>,
     /// Object geometry.
     pub shapes: Vec<Shape>,
-    /// Point lights.
-    pub lights: Vec<PointLight>,
+    /// Lights.
+    pub lights: Vec<Light>,
     /// Ambient radiance.
     pub ambient: Color,
     /// Background.
