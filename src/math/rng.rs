@@ -20,8 +20,8 @@ pub enum Pattern {
     Random,
     /// One uniform random point in each cell of the same grid (stratified sampling).
     Jittered,
-    /// Owen-scrambled Sobol points (sobol_burley): stratified at every prefix, so each
-    /// progressive pass adds to a well-spread set. Past 65,536 samples, random.
+    /// Owen-scrambled Sobol points: stratified at every power-of-two prefix, so each
+    /// progressive pass adds to a well-spread set.
     Sobol,
 }
 
@@ -57,6 +57,49 @@ pub fn mix64(mut z: u64) -> u64 {
 #[inline]
 pub fn to_unit_f32(bits: u64) -> f32 {
     (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+}
+
+/// The Laine–Karras permutation of the bits of `x` (least significant first): flipping
+/// each bit by a hash of the bits below it. Applied to bit-reversed numbers it is a nested
+/// uniform (Owen) scramble (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020,
+/// with Vegdahl's constants).
+#[inline]
+fn laine_karras(mut x: u32, seed: u32) -> u32 {
+    x = x.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x
+}
+
+/// Owen scrambling of the 32-bit fraction `x` (most significant bit first).
+#[inline]
+pub fn owen_scramble(x: u32, seed: u32) -> u32 {
+    laine_karras(x.reverse_bits(), seed).reverse_bits()
+}
+
+/// The first two dimensions of the Sobol sequence at `index`, as 32-bit fractions.
+///
+/// Dimension 0 is the van der Corput sequence: the bits of the index reversed. Dimension
+/// 1's generator matrix is Pascal's triangle mod 2: output bit r is the XOR of the index
+/// bits c with binom(c, r) odd, which by Lucas's theorem means r ⊆ c (as bit sets of the
+/// positions). That superset sum runs over the 5 bits of a position in 5 shift-xor steps.
+#[inline]
+pub fn sobol_2d(index: u32) -> (u32, u32) {
+    let mut y = index;
+    y ^= (y >> 1) & 0x5555_5555;
+    y ^= (y >> 2) & 0x3333_3333;
+    y ^= (y >> 4) & 0x0f0f_0f0f;
+    y ^= (y >> 8) & 0x00ff_00ff;
+    y ^= (y >> 16) & 0x0000_ffff;
+    (index.reverse_bits(), y.reverse_bits())
+}
+
+/// A 32-bit fraction to a float in [0, 1) (its top 24 bits, exact in f32).
+#[inline]
+fn fraction_to_f32(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
 /// Element `i` of a pseudo-random permutation of 0..len chosen by `seed`, for any `len`
@@ -118,7 +161,6 @@ pub struct SampleStream {
 }
 
 const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
-const SOBOL_MAX: u32 = 1 << 16;
 
 impl SampleStream {
     /// The stream of sample `sample` of pixel `pixel` (row-major index) under `seed`,
@@ -159,14 +201,26 @@ impl SampleStream {
         mix64(self.pixel_key ^ (self.dim as u64 + 1).wrapping_mul(0x9e6c_63d0_676a_9a99))
     }
 
+    /// This dimension's Owen-scrambled Sobol pair: the sample index shuffled by a nested
+    /// uniform scramble (which keeps every power-of-two prefix a (0,m,2)-net), then each
+    /// coordinate scrambled, all seeded per pixel and dimension ("padded" Sobol).
+    #[inline]
+    fn sobol_pair(&self) -> Vec2 {
+        let key = self.dimension_key();
+        let index = owen_scramble(self.sample, key as u32);
+        let (x, y) = sobol_2d(index);
+        let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
+        Vec2::new(
+            fraction_to_f32(owen_scramble(x, sx)),
+            fraction_to_f32(owen_scramble(y, sy)),
+        )
+    }
+
     /// The next dimension, uniform in [0, 1).
     pub fn next_1d(&mut self) -> f32 {
         let u = match self.pattern {
             Pattern::Random => to_unit_f32(self.random_bits(0)),
-            Pattern::Sobol if self.sample < SOBOL_MAX => {
-                sobol_burley::sample(self.sample, 0, self.dimension_key() as u32)
-            }
-            Pattern::Sobol => to_unit_f32(self.random_bits(0)),
+            Pattern::Sobol => self.sobol_pair().x,
             Pattern::Regular | Pattern::Jittered => {
                 let n = self.count;
                 let stratum = permute(self.sample % n, n, self.dimension_key() as u32);
@@ -189,18 +243,7 @@ impl SampleStream {
                 to_unit_f32(self.random_bits(0)),
                 to_unit_f32(self.random_bits(1)),
             ),
-            Pattern::Sobol if self.sample < SOBOL_MAX => {
-                // Sobol dimensions 0 and 1 (a (0,2)-sequence), scrambled per dimension pair.
-                let seed = self.dimension_key() as u32;
-                Vec2::new(
-                    sobol_burley::sample(self.sample, 0, seed),
-                    sobol_burley::sample(self.sample, 1, seed),
-                )
-            }
-            Pattern::Sobol => Vec2::new(
-                to_unit_f32(self.random_bits(0)),
-                to_unit_f32(self.random_bits(1)),
-            ),
+            Pattern::Sobol => self.sobol_pair(),
             Pattern::Regular | Pattern::Jittered => {
                 let (nx, ny) = grid(self.count);
                 let cells = nx * ny;
@@ -305,17 +348,42 @@ mod tests {
     }
 
     #[test]
+    fn sobol_2d_matches_the_sequence() {
+        // Dimension 1 of Sobol in index order: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
+        let expected = [0.0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875];
+        for (i, e) in expected.iter().enumerate() {
+            let (x, y) = sobol_2d(i as u32);
+            assert_eq!(y as f64 / 2f64.powi(32), *e, "index {i}");
+            assert_eq!(x, (i as u32).reverse_bits());
+        }
+    }
+
+    #[test]
     fn sobol_prefixes_are_stratified() {
-        // Each power-of-two prefix puts one point in each of its elementary intervals.
-        for n in [4u32, 16, 64] {
-            let side = (n as f32).sqrt() as u32;
-            let mut hits = vec![0; n as usize];
-            for s in 0..n {
-                let p = SampleStream::with_pattern(Pattern::Sobol, 1 << 10, 3, 9, s).next_2d();
-                hits[((p.x * side as f32) as u32 + side * (p.y * side as f32) as u32) as usize] +=
-                    1;
+        // Every power-of-two prefix of every dimension pair is a (0,m,2)-net: one point in
+        // each elementary interval of area 1/n, of every shape (n×1, n/2×2, ..., 1×n).
+        for (pixel, dims) in [(9u32, 0u32), (1234, 3)] {
+            let mut points = Vec::new();
+            for s in 0..256u32 {
+                let mut st = SampleStream::with_pattern(Pattern::Sobol, 1 << 10, 3, pixel, s);
+                for _ in 0..dims {
+                    st.next_2d();
+                }
+                points.push(st.next_2d());
             }
-            assert!(hits.iter().all(|&h| h == 1), "n {n}: {hits:?}");
+            for m in [2u32, 4, 6, 8] {
+                let n = 1u32 << m;
+                for k in 0..=m {
+                    let (cols, rows) = (1u32 << k, 1u32 << (m - k));
+                    let mut hits = vec![0; n as usize];
+                    for p in &points[..n as usize] {
+                        let cell = (p.x * cols as f32) as u32 + cols * (p.y * rows as f32) as u32;
+                        hits[cell as usize] += 1;
+                    }
+                    let ok = hits.iter().all(|&h| h == 1);
+                    assert!(ok, "pixel {pixel}, dim {dims}, n {n}, {cols}x{rows}");
+                }
+            }
         }
     }
 

@@ -36,6 +36,26 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/ray-tree.toml"),
     },
     BuiltinScene {
+        name: "antialiasing",
+        text: include_str!("../../scenes/antialiasing.toml"),
+    },
+    BuiltinScene {
+        name: "soft-shadows",
+        text: include_str!("../../scenes/soft-shadows.toml"),
+    },
+    BuiltinScene {
+        name: "glossy",
+        text: include_str!("../../scenes/glossy.toml"),
+    },
+    BuiltinScene {
+        name: "depth-of-field",
+        text: include_str!("../../scenes/depth-of-field.toml"),
+    },
+    BuiltinScene {
+        name: "motion-blur",
+        text: include_str!("../../scenes/motion-blur.toml"),
+    },
+    BuiltinScene {
         name: "bunny",
         text: include_str!("../../scenes/bunny.toml"),
     },
