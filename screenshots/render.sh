@@ -4,12 +4,22 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-render() { ./target/release/raylab render "$@" --spp 64; }
-render default -o screenshots/default.png
-render glazed -o screenshots/glazed.png
-render glass -o screenshots/glass.png
-render tir -o screenshots/tir.png
-render tir -o screenshots/tir-ior-1.35.png --set ior=1.35
-render ray-tree -o screenshots/ray-tree.png
-render ray-tree -o screenshots/ray-tree-depth-2.png --set max_depth=2
-render bunny -o screenshots/bunny.png
+render() { ./target/release/raylab render "$@"; }
+render default -o screenshots/default.png --spp 64
+# Dielectrics.
+render glazed -o screenshots/glazed.png --spp 64
+render glass -o screenshots/glass.png --spp 64
+render tir -o screenshots/tir.png --spp 64
+render tir -o screenshots/tir-ior-1.35.png --spp 64 --set ior=1.35
+render ray-tree -o screenshots/ray-tree.png --spp 64
+render ray-tree -o screenshots/ray-tree-depth-2.png --spp 64 --set max_depth=2
+# Distribution.
+render antialiasing -o screenshots/antialiasing-1spp.png --spp 1 --set pattern=regular
+render antialiasing -o screenshots/antialiasing-16spp.png --spp 16 --set pattern=sobol
+render soft-shadows -o screenshots/soft-shadows.png --spp 64
+render soft-shadows -o screenshots/soft-shadows-point.png --spp 64 --set light_size=0
+render glossy -o screenshots/glossy.png --spp 64
+render depth-of-field -o screenshots/depth-of-field.png --spp 64
+render motion-blur -o screenshots/motion-blur.png --spp 64
+# A real mesh.
+render bunny -o screenshots/bunny.png --spp 64

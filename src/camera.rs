@@ -71,6 +71,14 @@ impl Camera {
         }
     }
 
+    /// The f-number of a lens of radius `aperture` on a 35 mm camera (24 mm film height)
+    /// with this vertical field of view, taking one scene unit as a metre:
+    /// N = focal length / diameter, focal length = 12 mm / tan(fov/2). `None` for a pinhole.
+    pub fn f_number(&self, aperture: f32) -> Option<f32> {
+        let focal_mm = 12.0 / (self.fov_deg.to_radians() * 0.5).tan();
+        (aperture > 0.0).then(|| focal_mm / (2000.0 * aperture))
+    }
+
     /// A pinhole's frame for an image of the given aspect ratio (width / height).
     pub fn pinhole(&self, aspect: f32) -> CameraFrame {
         self.frame(
@@ -168,6 +176,16 @@ mod tests {
         assert!(right.dir.x > 0.0);
         let expected = (2.0 * (30f32).to_radians().tan()).atan().to_degrees();
         assert!((right.dir.angle_between(r.dir).to_degrees() - expected).abs() < 1e-3);
+    }
+
+    #[test]
+    fn f_number_of_a_normal_lens() {
+        // 2 atan(12/28) vertical is a 28 mm lens on 35 mm film; a 1.75 mm radius is f/8.
+        let fov = 2.0 * (12.0f32 / 28.0).atan().to_degrees();
+        let c = Camera::looking_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, fov);
+        let n = c.f_number(0.00175).unwrap();
+        assert!((n - 8.0).abs() < 1e-3, "{n}");
+        assert_eq!(c.f_number(0.0), None);
     }
 
     #[test]
