@@ -4,6 +4,7 @@
 use anyhow::{Context, Result, bail};
 use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
+use raylab::params::Params;
 use raylab::render::{PassObserver, Sidecar, render, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use std::io::IsTerminal;
@@ -33,6 +34,25 @@ enum Command {
     /// F_p, R) and Schlick's approximations. theta_t is empty under total internal
     /// reflection.
     Fresnel(FresnelArgs),
+    /// Measure the progressive engine: latency from a parameter change to the first frame
+    /// of the new generation, the time of a full-resolution 1-spp pass, and rays per second.
+    Bench(BenchArgs),
+}
+
+#[derive(clap::Args)]
+struct BenchArgs {
+    /// A scene file or built-in name.
+    #[arg(default_value = "default")]
+    scene: String,
+    /// Image size.
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "960x540")]
+    size: (u32, u32),
+    /// Parameter changes to time.
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    changes: u32,
+    /// Worker threads [default: all cores but one, as with the window].
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
 }
 
 #[derive(clap::Args)]
@@ -122,6 +142,7 @@ fn main() -> ExitCode {
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Scenes) => scenes_command(),
         Some(Command::Fresnel(args)) => fresnel_command(&args),
+        Some(Command::Bench(args)) => bench_command(&args),
         None => Cli::command().print_help().map_err(Into::into),
     };
     match result {
@@ -288,6 +309,96 @@ fn fresnel_command(args: &FresnelArgs) -> Result<()> {
         )?;
     }
     out.flush()?;
+    Ok(())
+}
+
+fn bench_command(args: &BenchArgs) -> Result<()> {
+    use raylab::render::{Engine, EngineConfig, Film, render_pass};
+    use std::sync::Arc;
+    use std::time::Duration;
+    let scene = Arc::new(Scene::load(&args.scene)?);
+    let (width, height) = args.size;
+    let config = match args.threads {
+        Some(t) => EngineConfig {
+            threads: t as usize,
+        },
+        None => EngineConfig::with_ui(),
+    };
+    let params = Params {
+        spp: 1 << 16,
+        ..scene.params.clone()
+    };
+    println!(
+        "raylab bench: {} at {width}x{height}, {} worker threads, {} cores",
+        scene.name,
+        config.threads,
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    );
+
+    // Latency: change a parameter at a random moment of a pass, time the first frame of the
+    // new generation (the coarse preview).
+    let mut engine = Engine::new(
+        Arc::clone(&scene),
+        params.clone(),
+        width,
+        height,
+        config,
+        || {},
+    )?;
+    let wait_for = |engine: &Engine, generation: u64| -> Result<()> {
+        loop {
+            let frame = engine.frames().recv_timeout(Duration::from_secs(60))?;
+            if frame.generation == generation {
+                return Ok(());
+            }
+        }
+    };
+    wait_for(&engine, 1)?;
+    let mut latencies = Vec::with_capacity(args.changes as usize);
+    let mut rng = raylab::math::SampleStream::new(7, 0, 0);
+    for i in 0..args.changes {
+        std::thread::sleep(Duration::from_secs_f32(0.05 * rng.next_1d()));
+        let start = Instant::now();
+        engine.set_params(Params {
+            ior: Some(1.2 + 0.5 * (i % 2) as f32),
+            ..params.clone()
+        });
+        wait_for(&engine, engine.generation())?;
+        latencies.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    engine.shutdown();
+    latencies.sort_by(f64::total_cmp);
+    let at = |q: f64| latencies[((latencies.len() - 1) as f64 * q).round() as usize];
+    println!(
+        "change -> first frame: median {:.2} ms, p95 {:.2} ms, max {:.2} ms ({} changes)",
+        at(0.5),
+        at(0.95),
+        at(1.0),
+        latencies.len()
+    );
+
+    // A full-resolution pass of one sample per pixel, on the same number of threads.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(config.threads)
+        .build()?;
+    let mut times = Vec::new();
+    let mut rays = 0;
+    for _ in 0..5 {
+        let mut film = Film::new(width, height);
+        let start = Instant::now();
+        let stats =
+            pool.install(|| render_pass(&scene, &scene.camera, &params, &mut film, 1, &()))?;
+        times.push(start.elapsed().as_secs_f64());
+        rays = stats.total_rays();
+    }
+    times.sort_by(f64::total_cmp);
+    let pass = times[times.len() / 2];
+    println!(
+        "1-spp pass: {:.1} ms (median of 5), {:.2} M rays, {:.2} M rays/s",
+        pass * 1e3,
+        rays as f64 / 1e6,
+        rays as f64 / pass / 1e6
+    );
     Ok(())
 }
 

@@ -176,6 +176,16 @@ impl Params {
         Ok(())
     }
 
+    /// Whether `other` renders the same image: every parameter equal but the display
+    /// exposure, which only changes how the image is shown.
+    pub fn same_image(&self, other: &Params) -> bool {
+        let display_only = |p: &Params| Params {
+            exposure: 0.0,
+            ..p.clone()
+        };
+        display_only(self) == display_only(other)
+    }
+
     /// Checks every range; the first violation is the error.
     pub fn validate(&self) -> Result<(), ParamError> {
         let check = |ok: bool, name: &str, message: String| {

@@ -6,7 +6,7 @@
 //! there too), so the factors of entering and leaving a medium cancel; leaving them out
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
-use crate::camera::CameraFrame;
+use crate::camera::{Camera, CameraFrame};
 use crate::light::Light;
 use crate::material::{Dielectric, Material, Texture};
 use crate::math::sampling::{phong_lobe, to_world};
@@ -132,8 +132,19 @@ pub struct Tracer<'a> {
 }
 
 impl<'a> Tracer<'a> {
-    /// A tracer for a `width` × `height` image.
+    /// A tracer for a `width` × `height` image through the scene's own camera.
     pub fn new(scene: &'a Scene, params: &'a Params, width: u32, height: u32) -> Self {
+        Self::with_camera(scene, &scene.camera, params, width, height)
+    }
+
+    /// A tracer for a `width` × `height` image through `camera`.
+    pub fn with_camera(
+        scene: &'a Scene,
+        camera: &Camera,
+        params: &'a Params,
+        width: u32,
+        height: u32,
+    ) -> Self {
         Tracer {
             scene,
             params,
@@ -147,9 +158,7 @@ impl<'a> Tracer<'a> {
                 .iter()
                 .map(|l| l.scaled(params.light_size))
                 .collect(),
-            frame: scene
-                .camera
-                .frame(width as f32 / height as f32, scene.camera.exposure(params)),
+            frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
             width,
             height,
         }

@@ -309,3 +309,26 @@ fn fresnel_prints_the_curves_as_csv() {
     fails(&["fresnel", "--n2", "9"], Path::new("."), "out of range");
     fails(&["fresnel", "--step", "0"], Path::new("."), "out of range");
 }
+
+#[test]
+fn bench_reports_latency_pass_time_and_rays_per_second() {
+    let o = raylab(
+        &[
+            "bench",
+            "--size",
+            "64x36",
+            "--changes",
+            "5",
+            "--threads",
+            "1",
+        ],
+        Path::new("."),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("change -> first frame: median"), "{out}");
+    assert!(
+        out.contains("p95") && out.contains("1-spp pass") && out.contains("M rays/s"),
+        "{out}"
+    );
+}

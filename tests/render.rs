@@ -49,15 +49,15 @@ fn same_image_for_any_split_into_passes() {
     let mut film = Film::new(80, 45);
     let mut stats = raylab::tracer::Stats::default();
     for _ in 0..8 {
-        stats += render_pass(&scene, &params, &mut film, 1, &()).unwrap();
+        stats += render_pass(&scene, &scene.camera, &params, &mut film, 1, &()).unwrap();
     }
     assert_eq!(film.spp(), 8);
     assert_eq!(bits(&whole), bits(&film));
     assert_eq!(stats_whole, stats);
     // 3 + 5 as well.
     let mut split = Film::new(80, 45);
-    render_pass(&scene, &params, &mut split, 3, &()).unwrap();
-    render_pass(&scene, &params, &mut split, 5, &()).unwrap();
+    render_pass(&scene, &scene.camera, &params, &mut split, 3, &()).unwrap();
+    render_pass(&scene, &scene.camera, &params, &mut split, 5, &()).unwrap();
     assert_eq!(bits(&whole), bits(&split));
     // And a different seed gives a different image.
     let other = render(&scene, &Params { seed: 1, ..params }, 80, 45, &())

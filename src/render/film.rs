@@ -3,7 +3,50 @@
 use crate::math::Color;
 use std::path::Path;
 
-/// Accumulated radiance: a sum and a sample count per pixel, row-major from the top left.
+/// What a pixel has accumulated: the sum and count of its samples, and the same for its
+/// odd-numbered samples alone (the two halves give the noise estimate).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Accum {
+    /// Sum of every sample, added in sample order.
+    pub sum: [f64; 3],
+    /// Sum of the odd-numbered samples.
+    pub odd_sum: [f64; 3],
+    /// Samples summed (non-finite ones are dropped).
+    pub count: u32,
+    /// Odd-numbered samples summed.
+    pub odd_count: u32,
+}
+
+impl Accum {
+    /// Adds sample number `index` with radiance `c`.
+    #[inline]
+    pub fn add(&mut self, index: u32, c: Color) {
+        let c = c.to_array().map(f64::from);
+        for (sum, v) in self.sum.iter_mut().zip(c) {
+            *sum += v;
+        }
+        self.count += 1;
+        if index % 2 == 1 {
+            for (sum, v) in self.odd_sum.iter_mut().zip(c) {
+                *sum += v;
+            }
+            self.odd_count += 1;
+        }
+    }
+
+    /// The mean radiance; black before any sample.
+    #[inline]
+    pub fn mean(&self) -> Color {
+        let n = self.count.max(1) as f64;
+        Color::new(
+            (self.sum[0] / n) as f32,
+            (self.sum[1] / n) as f32,
+            (self.sum[2] / n) as f32,
+        )
+    }
+}
+
+/// Accumulated radiance per pixel, row-major from the top left.
 ///
 /// Sums are f64, added in sample order, so a pixel's value does not depend on how its
 /// samples were split into passes.
@@ -11,8 +54,7 @@ use std::path::Path;
 pub struct Film {
     width: u32,
     height: u32,
-    pub(crate) sum: Vec<[f64; 3]>,
-    pub(crate) count: Vec<u32>,
+    pub(crate) pixels: Vec<Accum>,
     spp: u32,
 }
 
@@ -45,12 +87,10 @@ pub fn srgb_encode(linear: f32) -> f32 {
 impl Film {
     /// An empty film of `width` × `height` pixels.
     pub fn new(width: u32, height: u32) -> Self {
-        let n = width as usize * height as usize;
         Film {
             width,
             height,
-            sum: vec![[0.0; 3]; n],
-            count: vec![0; n],
+            pixels: vec![Accum::default(); width as usize * height as usize],
             spp: 0,
         }
     }
@@ -74,24 +114,54 @@ impl Film {
         self.spp = spp;
     }
 
-    /// Empties the film.
+    /// Empties the film, keeping its memory.
     pub fn clear(&mut self) {
-        self.sum.fill([0.0; 3]);
-        self.count.fill(0);
+        self.pixels.fill(Accum::default());
+        self.spp = 0;
+    }
+
+    /// Empties the film and gives it a new size.
+    pub fn resize(&mut self, width: u32, height: u32) {
+        self.width = width;
+        self.height = height;
+        self.pixels.clear();
+        self.pixels
+            .resize(width as usize * height as usize, Accum::default());
         self.spp = 0;
     }
 
     /// The mean radiance of pixel (x, y); black before any sample.
     pub fn pixel(&self, x: u32, y: u32) -> Color {
-        let i = (y * self.width + x) as usize;
-        let n = self.count[i].max(1) as f64;
-        let s = self.sum[i];
-        Color::new((s[0] / n) as f32, (s[1] / n) as f32, (s[2] / n) as f32)
+        self.pixels[(y * self.width + x) as usize].mean()
     }
 
     /// Mean radiance of every pixel, row-major.
     pub fn pixels(&self) -> impl Iterator<Item = Color> + '_ {
-        (0..self.height).flat_map(move |y| (0..self.width).map(move |x| self.pixel(x, y)))
+        self.pixels.iter().map(Accum::mean)
+    }
+
+    /// The estimated noise of the image, relative to its mean brightness: the standard
+    /// error of each pixel's mean, estimated from the difference of its even- and
+    /// odd-numbered samples' means (|A − B|/2 for halves of equal size), as an RMS over the
+    /// image divided by the mean luminance. `None` before two samples per pixel.
+    pub fn noise(&self) -> Option<f32> {
+        if self.spp < 2 {
+            return None;
+        }
+        let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        let (mut err2, mut total, mut n) = (0.0f64, 0.0f64, 0usize);
+        for p in &self.pixels {
+            let even_count = p.count - p.odd_count;
+            if p.odd_count == 0 || even_count == 0 {
+                continue;
+            }
+            let odd = luminance(p.odd_sum) / p.odd_count as f64;
+            let even = (luminance(p.sum) - luminance(p.odd_sum)) / even_count as f64;
+            err2 += (odd - even).powi(2) / 4.0;
+            total += luminance(p.sum) / p.count as f64;
+            n += 1;
+        }
+        (n > 0 && total > 0.0).then(|| ((err2 / n as f64).sqrt() / (total / n as f64)) as f32)
     }
 
     /// The image for display: radiance scaled by 2^exposure, clamped, sRGB encoded.
@@ -155,9 +225,24 @@ mod tests {
     #[test]
     fn exposure_scales_before_clamping() {
         let mut f = Film::new(1, 1);
-        f.sum[0] = [0.25, 0.5, 2.0];
-        f.count[0] = 1;
+        f.pixels[0].add(0, Color::new(0.25, 0.5, 2.0));
         let px = f.to_srgb8(1.0).get_pixel(0, 0).0;
         assert_eq!(px, [188, 255, 255]);
+    }
+
+    #[test]
+    fn noise_estimate_matches_the_standard_error() {
+        // Samples alternating a ± d: every half-mean differs by 2d, so the standard error
+        // estimate is d; relative to the mean a, d/a.
+        let mut f = Film::new(4, 4);
+        for p in &mut f.pixels {
+            for i in 0..8 {
+                p.add(i, Color::splat(if i % 2 == 0 { 1.1 } else { 0.9 }));
+            }
+        }
+        f.set_spp(8);
+        assert!((f.noise().unwrap() - 0.1).abs() < 1e-6);
+        f.set_spp(1);
+        assert_eq!(f.noise(), None);
     }
 }

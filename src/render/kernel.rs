@@ -2,6 +2,8 @@
 //! parallel. The CLI, the tests and the progressive engine all call [`render_pass`].
 
 use super::Film;
+use crate::camera::Camera;
+use crate::math::Color;
 use crate::params::Params;
 use crate::scene::Scene;
 use crate::tracer::{Stats, Tracer};
@@ -28,40 +30,38 @@ impl PassObserver for () {}
 #[error("the render pass was cancelled")]
 pub struct Cancelled;
 
-/// Adds `samples` samples to every pixel of `film`: sample numbers `film.spp()` to
-/// `film.spp() + samples - 1`. Each pixel's samples are added to its sum in sample order,
-/// so the film is bit-for-bit the same for any thread count and any split into passes.
+/// Adds `samples` samples to every pixel of `film`, seen through `camera`: sample numbers
+/// `film.spp()` to `film.spp() + samples - 1`. Each pixel's samples are added to its sum
+/// in sample order, so the film is bit-for-bit the same for any thread count and any split
+/// into passes. The observer is asked before every pixel whether to go on.
 pub fn render_pass(
     scene: &Scene,
+    camera: &Camera,
     params: &Params,
     film: &mut Film,
     samples: u32,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
-    let tracer = Tracer::new(scene, params, width, height);
+    let tracer = Tracer::with_camera(scene, camera, params, width, height);
     let first = film.spp();
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
-        .sum
+        .pixels
         .par_chunks_mut(band_len)
-        .zip(film.count.par_chunks_mut(band_len))
         .enumerate()
-        .map(|(band, (sums, counts))| {
-            if !observer.keep_going() {
-                return None;
-            }
+        .map(|(band, pixels)| {
             let mut stats = Stats::default();
             let y0 = band as u32 * BAND_ROWS;
-            for (i, (sum, count)) in sums.iter_mut().zip(counts.iter_mut()).enumerate() {
+            for (i, pixel) in pixels.iter_mut().enumerate() {
+                if !observer.keep_going() {
+                    return None;
+                }
                 let (x, y) = (i as u32 % width, y0 + i as u32 / width);
                 for s in first..first + samples {
                     let c = tracer.sample(x, y, s, &mut stats);
                     if c.is_finite() {
-                        for k in 0..3 {
-                            sum[k] += c[k] as f64;
-                        }
-                        *count += 1;
+                        pixel.add(s, c);
                     } else {
                         stats.non_finite += 1;
                     }
@@ -77,4 +77,51 @@ pub fn render_pass(
     }
     film.set_spp(first + samples);
     Ok(total)
+}
+
+/// A coarse preview: one sample (number 0) at the centre of every `block` × `block` block,
+/// filling the block. Row-major linear radiance, `width` × `height`. For the first
+/// feedback after a change: `block` 8 costs 1/64 of a 1-spp pass.
+pub fn render_preview(
+    scene: &Scene,
+    camera: &Camera,
+    params: &Params,
+    width: u32,
+    height: u32,
+    block: u32,
+    observer: &dyn PassObserver,
+) -> Result<(Vec<Color>, Stats), Cancelled> {
+    let tracer = Tracer::with_camera(scene, camera, params, width, height);
+    let block = block.max(1);
+    let band_len = (width * block) as usize;
+    let mut image = vec![Color::ZERO; width as usize * height as usize];
+    let results: Vec<Option<Stats>> = image
+        .par_chunks_mut(band_len)
+        .enumerate()
+        .map(|(band, rows)| {
+            let mut stats = Stats::default();
+            let y0 = band as u32 * block;
+            let rows_here = rows.len() as u32 / width;
+            let cy = (y0 + rows_here / 2).min(height - 1);
+            for bx in (0..width).step_by(block as usize) {
+                if !observer.keep_going() {
+                    return None;
+                }
+                let cx = (bx + block / 2).min(width - 1);
+                let c = tracer.sample(cx, cy, 0, &mut stats);
+                let c = if c.is_finite() { c } else { Color::ZERO };
+                for row in 0..rows_here {
+                    let start = (row * width + bx) as usize;
+                    let end = start + block.min(width - bx) as usize;
+                    rows[start..end].fill(c);
+                }
+            }
+            Some(stats)
+        })
+        .collect();
+    let mut total = Stats::default();
+    for r in results {
+        total += r.ok_or(Cancelled)?;
+    }
+    Ok((image, total))
 }

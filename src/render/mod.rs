@@ -1,18 +1,22 @@
-//! Rendering: the film, the render kernel, and snapshots with their sidecars.
+//! Rendering: the film, the render kernel, the progressive engine, and snapshots with
+//! their sidecars.
 
+mod engine;
 mod film;
 mod kernel;
 mod snapshot;
 
-pub use film::{Film, FilmError, srgb_encode};
-pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass};
+pub use engine::{Engine, EngineConfig, EngineError, Frame, MAX_PASS_SPP, PREVIEW_BLOCK, Progress};
+pub use film::{Accum, Film, FilmError, srgb_encode};
+pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
 pub use snapshot::{Sidecar, SidecarError, sidecar_path};
 
 use crate::params::Params;
 use crate::scene::Scene;
 use crate::tracer::Stats;
 
-/// Renders `params.spp` samples per pixel of a `width` × `height` image in one pass.
+/// Renders `params.spp` samples per pixel of a `width` × `height` image in one pass,
+/// through the scene's camera.
 pub fn render(
     scene: &Scene,
     params: &Params,
@@ -21,6 +25,13 @@ pub fn render(
     observer: &dyn PassObserver,
 ) -> Result<(Film, Stats), Cancelled> {
     let mut film = Film::new(width, height);
-    let stats = render_pass(scene, params, &mut film, params.spp, observer)?;
+    let stats = render_pass(
+        scene,
+        &scene.camera,
+        params,
+        &mut film,
+        params.spp,
+        observer,
+    )?;
     Ok((film, stats))
 }

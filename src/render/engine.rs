@@ -1,0 +1,579 @@
+//! The progressive engine: background workers that refine the image pass after pass, and
+//! drop their work the moment anything that shapes the image changes.
+//!
+//! A controller thread owns the state (scene, camera, parameters, size, film) and runs the
+//! one render kernel on a pool of worker threads. The caller talks to it over a command
+//! channel and receives whole frames over a bounded frame channel; nothing the caller does
+//! waits on rendering. Each change that affects the image starts a new *generation*: the
+//! caller bumps a shared counter before sending the command, the workers see it at their
+//! next pixel and stop, and every frame is tagged with the generation it belongs to, so
+//! no frame mixes samples of two.
+
+use super::{Film, PassObserver, render_pass, render_preview};
+use crate::camera::Camera;
+use crate::math::Color;
+use crate::params::Params;
+use crate::scene::Scene;
+use crate::tracer::Stats;
+use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, TryRecvError, TrySendError};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// Side of the blocks of the coarse preview that opens every generation.
+pub const PREVIEW_BLOCK: u32 = 8;
+/// The most samples per pixel one pass adds.
+pub const MAX_PASS_SPP: u32 = 16;
+/// Passes are kept about this long, so that frames keep coming.
+pub const PASS_BUDGET: Duration = Duration::from_millis(250);
+/// Frames the channel holds before the newest waits in the engine for room.
+const FRAME_CAPACITY: usize = 4;
+
+/// How many worker threads render.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EngineConfig {
+    /// Worker threads (at least 1).
+    pub threads: usize,
+}
+
+impl EngineConfig {
+    /// Every core: for headless rendering.
+    pub fn headless() -> Self {
+        EngineConfig { threads: cores() }
+    }
+
+    /// Every core but one, which the window keeps for itself (at least one worker).
+    pub fn with_ui() -> Self {
+        EngineConfig {
+            threads: cores().saturating_sub(1).max(1),
+        }
+    }
+}
+
+fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// How far the current generation has got.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Progress {
+    /// Samples per pixel in the film.
+    pub spp: u32,
+    /// Samples per pixel it stops at; `None` runs on without end.
+    pub target: Option<u32>,
+    /// Time since the generation started.
+    pub elapsed: Duration,
+    /// Rays traced per second by the full-resolution passes.
+    pub rays_per_second: f64,
+    /// Estimated time to reach the target.
+    pub eta: Option<Duration>,
+    /// Estimated noise relative to the image's brightness (see [`Film::noise`]).
+    pub noise: Option<f32>,
+    /// What the tracer did in this generation.
+    pub stats: Stats,
+    /// Whether refinement is paused.
+    pub paused: bool,
+}
+
+impl Progress {
+    /// Whether the target has been reached.
+    pub fn done(&self) -> bool {
+        self.target.is_some_and(|t| self.spp >= t)
+    }
+}
+
+/// One image of a generation: a coarse preview, or the film after a pass.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The generation it belongs to.
+    pub generation: u64,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Linear mean radiance, row-major from the top left. Every pixel changes from one
+    /// frame to the next (a pass adds samples to all of them), so frames are whole.
+    pub pixels: Arc<Vec<Color>>,
+    /// True for the coarse preview (one sample per block).
+    pub preview: bool,
+    /// Progress at this frame.
+    pub progress: Progress,
+}
+
+/// The engine cannot start.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot start the render threads: {0}")]
+pub struct EngineError(#[from] std::io::Error);
+
+enum Command {
+    Params(Params),
+    Scene(Arc<Scene>),
+    Camera(Camera),
+    Resize(u32, u32),
+    Unlimited(bool),
+    Pause(bool),
+    Shutdown,
+}
+
+/// The progressive renderer, driven from the caller's thread.
+pub struct Engine {
+    commands: Sender<(u64, Command)>,
+    frames: Receiver<Frame>,
+    requested: Arc<AtomicU64>,
+    params: Params,
+    controller: Option<JoinHandle<()>>,
+    id: u64,
+}
+
+/// Engines started so far, for thread names.
+static ENGINES: AtomicU64 = AtomicU64::new(0);
+
+impl Engine {
+    /// Starts rendering `scene` through its camera at `width` × `height` with `params`.
+    /// `wake` is called after every frame is sent (the window requests a repaint).
+    pub fn new(
+        scene: Arc<Scene>,
+        params: Params,
+        width: u32,
+        height: u32,
+        config: EngineConfig,
+        wake: impl Fn() + Send + Sync + 'static,
+    ) -> Result<Engine, EngineError> {
+        let id = ENGINES.fetch_add(1, Ordering::Relaxed);
+        let (commands, command_rx) = crossbeam_channel::unbounded();
+        let (frame_tx, frames) = crossbeam_channel::bounded(FRAME_CAPACITY);
+        let requested = Arc::new(AtomicU64::new(1));
+        let workers = Arc::new(Mutex::new(Vec::new()));
+        let pool = {
+            let workers = Arc::clone(&workers);
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(config.threads.max(1))
+                .spawn_handler(move |thread| {
+                    let handle = std::thread::Builder::new()
+                        .name(format!("rl{id}w{}", thread.index()))
+                        .spawn(|| thread.run())?;
+                    workers
+                        .lock()
+                        .map_err(|_| std::io::Error::other("worker list poisoned"))?
+                        .push(handle);
+                    Ok(())
+                })
+                .build()
+                .map_err(std::io::Error::other)?
+        };
+        let camera = scene.camera.clone();
+        let controller = Controller {
+            film: Film::new(width.max(1), height.max(1)),
+            scene,
+            camera,
+            params: params.clone(),
+            unlimited: false,
+            paused: false,
+            generation: 1,
+            needs_preview: true,
+            started: Instant::now(),
+            pass_time: Duration::ZERO,
+            passes: 0,
+            stats: Stats::default(),
+            requested: Arc::clone(&requested),
+            outbox: Outbox {
+                tx: frame_tx,
+                pending: None,
+            },
+            wake: Box::new(wake),
+        };
+        let controller = std::thread::Builder::new()
+            .name(format!("rl{id}c"))
+            .spawn(move || controller.run(command_rx, pool, workers))?;
+        Ok(Engine {
+            commands,
+            frames,
+            requested,
+            params,
+            controller: Some(controller),
+            id,
+        })
+    }
+
+    /// The frames, oldest first. Only the newest matters to a display; older ones may be
+    /// dropped by the engine when the caller falls behind.
+    pub fn frames(&self) -> &Receiver<Frame> {
+        &self.frames
+    }
+
+    /// The newest generation requested; frames of older ones are stale.
+    pub fn generation(&self) -> u64 {
+        self.requested.load(Ordering::SeqCst)
+    }
+
+    /// A prefix shared by the names of this engine's threads (`rl<id>`).
+    pub fn thread_prefix(&self) -> String {
+        format!("rl{}", self.id)
+    }
+
+    /// Sends a command that starts a new generation: bumping the counter first stops the
+    /// workers at their next pixel.
+    fn restart(&self, command: Command) {
+        let generation = self.requested.fetch_add(1, Ordering::SeqCst) + 1;
+        // If the engine is gone, there is nothing to restart.
+        let _ = self.commands.send((generation, command));
+    }
+
+    fn send(&self, command: Command) {
+        let _ = self.commands.send((self.generation(), command));
+    }
+
+    /// New parameters. A change of `exposure` alone does not restart: it is applied when
+    /// a frame is displayed.
+    pub fn set_params(&mut self, params: Params) {
+        if !params.same_image(&self.params) {
+            self.restart(Command::Params(params.clone()));
+        }
+        self.params = params;
+    }
+
+    /// The parameters last set.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// A new scene, seen through its own camera.
+    pub fn set_scene(&mut self, scene: Arc<Scene>) {
+        self.restart(Command::Scene(scene));
+    }
+
+    /// A new camera.
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.restart(Command::Camera(camera));
+    }
+
+    /// A new image size (each side at least 1).
+    pub fn resize(&mut self, width: u32, height: u32) {
+        self.restart(Command::Resize(width.max(1), height.max(1)));
+    }
+
+    /// Whether to run on past the target samples per pixel.
+    pub fn set_unlimited(&mut self, unlimited: bool) {
+        self.send(Command::Unlimited(unlimited));
+    }
+
+    /// Stops refining after the current pass.
+    pub fn pause(&self) {
+        self.send(Command::Pause(true));
+    }
+
+    /// Goes on refining.
+    pub fn resume(&self) {
+        self.send(Command::Pause(false));
+    }
+
+    /// Stops every thread and waits for them: within about one pixel's work of each worker.
+    pub fn shutdown(mut self) {
+        self.stop();
+    }
+
+    fn stop(&mut self) {
+        if let Some(controller) = self.controller.take() {
+            self.restart(Command::Shutdown);
+            let _ = controller.join();
+        }
+    }
+}
+
+impl Drop for Engine {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+/// The frame channel, and the newest frame that found it full.
+struct Outbox {
+    tx: Sender<Frame>,
+    pending: Option<Frame>,
+}
+
+impl Outbox {
+    /// Sends what waits; false if it still waits.
+    fn flush(&mut self) -> bool {
+        if let Some(frame) = self.pending.take() {
+            match self.tx.try_send(frame) {
+                Ok(()) => {}
+                Err(TrySendError::Full(frame)) => self.pending = Some(frame),
+                Err(TrySendError::Disconnected(_)) => {}
+            }
+        }
+        self.pending.is_none()
+    }
+
+    /// Sends `frame`, or keeps it (replacing an older one) until there is room.
+    fn send(&mut self, frame: Frame) {
+        if self.flush() {
+            if let Err(TrySendError::Full(frame)) = self.tx.try_send(frame) {
+                self.pending = Some(frame);
+            }
+        } else {
+            self.pending = Some(frame);
+        }
+    }
+}
+
+/// Stops a pass as soon as a newer generation is requested.
+struct Watch<'a> {
+    requested: &'a AtomicU64,
+    generation: u64,
+}
+
+impl PassObserver for Watch<'_> {
+    fn keep_going(&self) -> bool {
+        self.requested.load(Ordering::Relaxed) == self.generation
+    }
+}
+
+struct Controller {
+    scene: Arc<Scene>,
+    camera: Camera,
+    params: Params,
+    film: Film,
+    unlimited: bool,
+    paused: bool,
+    generation: u64,
+    needs_preview: bool,
+    started: Instant,
+    // Time and count of the full passes of this generation.
+    pass_time: Duration,
+    passes: u32,
+    stats: Stats,
+    requested: Arc<AtomicU64>,
+    outbox: Outbox,
+    wake: Box<dyn Fn() + Send + Sync>,
+}
+
+impl Controller {
+    fn run(
+        mut self,
+        commands: Receiver<(u64, Command)>,
+        pool: rayon::ThreadPool,
+        workers: Arc<Mutex<Vec<JoinHandle<()>>>>,
+    ) {
+        'outer: loop {
+            // Take every command that waits; wait for one when there is nothing to do.
+            loop {
+                let idle = !self.needs_preview && (self.paused || self.target_reached());
+                let next = if idle {
+                    if self.outbox.pending.is_some() {
+                        match commands.recv_timeout(Duration::from_millis(10)) {
+                            Ok(c) => Some(c),
+                            Err(RecvTimeoutError::Timeout) => None,
+                            Err(RecvTimeoutError::Disconnected) => break 'outer,
+                        }
+                    } else {
+                        match commands.recv() {
+                            Ok(c) => Some(c),
+                            Err(_) => break 'outer,
+                        }
+                    }
+                } else {
+                    match commands.try_recv() {
+                        Ok(c) => Some(c),
+                        Err(TryRecvError::Empty) => None,
+                        Err(TryRecvError::Disconnected) => break 'outer,
+                    }
+                };
+                self.outbox.flush();
+                let Some((generation, command)) = next else {
+                    break;
+                };
+                if !self.apply(generation, command) {
+                    break 'outer;
+                }
+            }
+            if self.needs_preview {
+                self.preview(&pool);
+            } else if !self.paused && !self.target_reached() {
+                self.pass(&pool);
+            }
+        }
+        drop(pool);
+        if let Ok(mut workers) = workers.lock() {
+            for handle in workers.drain(..) {
+                let _ = handle.join();
+            }
+        }
+    }
+
+    /// Applies a command; false to shut down.
+    fn apply(&mut self, generation: u64, command: Command) -> bool {
+        let restart = match command {
+            Command::Shutdown => return false,
+            Command::Params(p) => {
+                self.params = p;
+                true
+            }
+            Command::Scene(scene) => {
+                self.camera = scene.camera.clone();
+                self.scene = scene;
+                true
+            }
+            Command::Camera(camera) => {
+                self.camera = camera;
+                true
+            }
+            Command::Resize(w, h) => {
+                self.film.resize(w, h);
+                true
+            }
+            Command::Unlimited(u) => {
+                self.unlimited = u;
+                self.send_frame(false);
+                false
+            }
+            Command::Pause(p) => {
+                self.paused = p;
+                self.send_frame(false);
+                false
+            }
+        };
+        if restart {
+            self.generation = self.generation.max(generation);
+            self.film.clear();
+            self.needs_preview = true;
+            self.started = Instant::now();
+            self.pass_time = Duration::ZERO;
+            self.passes = 0;
+            self.stats = Stats::default();
+        }
+        true
+    }
+
+    fn target(&self) -> Option<u32> {
+        (!self.unlimited).then_some(self.params.spp)
+    }
+
+    fn target_reached(&self) -> bool {
+        self.target().is_some_and(|t| self.film.spp() >= t)
+    }
+
+    fn watch(&self) -> Watch<'_> {
+        Watch {
+            requested: &self.requested,
+            generation: self.generation,
+        }
+    }
+
+    fn preview(&mut self, pool: &rayon::ThreadPool) {
+        let (w, h) = (self.film.width(), self.film.height());
+        let result = pool.install(|| {
+            render_preview(
+                &self.scene,
+                &self.camera,
+                &self.params,
+                w,
+                h,
+                PREVIEW_BLOCK,
+                &self.watch(),
+            )
+        });
+        if let Ok((pixels, stats)) = result {
+            self.needs_preview = false;
+            self.stats += stats;
+            self.emit(Arc::new(pixels), true);
+        }
+    }
+
+    /// Samples per pixel for the next pass: 1, 1, 2, 4, ... up to the cap, kept within the
+    /// time budget, and never past the target.
+    fn next_pass_spp(&self) -> u32 {
+        let grow = if self.passes < 2 {
+            1
+        } else {
+            1 << (self.passes - 1).min(4)
+        };
+        let mut n = grow.min(MAX_PASS_SPP);
+        if self.film.spp() > 0 {
+            let per_spp = self.pass_time.as_secs_f64() / self.film.spp() as f64;
+            if per_spp > 0.0 {
+                n = n.min(((PASS_BUDGET.as_secs_f64() / per_spp) as u32).max(1));
+            }
+        }
+        match self.target() {
+            Some(t) => n.min(t.saturating_sub(self.film.spp())).max(1),
+            None => n,
+        }
+    }
+
+    fn pass(&mut self, pool: &rayon::ThreadPool) {
+        let n = self.next_pass_spp();
+        let start = Instant::now();
+        let watch = Watch {
+            requested: &self.requested,
+            generation: self.generation,
+        };
+        let result = pool.install(|| {
+            render_pass(
+                &self.scene,
+                &self.camera,
+                &self.params,
+                &mut self.film,
+                n,
+                &watch,
+            )
+        });
+        // Cancelled means a newer generation was requested: its command waits, and restarts.
+        if let Ok(stats) = result {
+            self.pass_time += start.elapsed();
+            self.passes += 1;
+            self.stats += stats;
+            self.send_frame(false);
+        }
+    }
+
+    fn progress(&self) -> Progress {
+        let spp = self.film.spp();
+        let target = self.target();
+        let secs = self.pass_time.as_secs_f64();
+        let eta = match target {
+            Some(t) if spp > 0 && secs > 0.0 => Some(Duration::from_secs_f64(
+                secs / spp as f64 * t.saturating_sub(spp) as f64,
+            )),
+            _ => None,
+        };
+        let pass_rays = self.stats.total_rays();
+        Progress {
+            spp,
+            target,
+            elapsed: self.started.elapsed(),
+            rays_per_second: if secs > 0.0 {
+                pass_rays as f64 / secs
+            } else {
+                0.0
+            },
+            eta,
+            noise: self.film.noise(),
+            stats: self.stats,
+            paused: self.paused,
+        }
+    }
+
+    /// Sends the film as it is (or, before any pass, nothing new: progress only).
+    fn send_frame(&mut self, preview: bool) {
+        if self.film.spp() == 0 {
+            return;
+        }
+        let pixels = Arc::new(self.film.pixels().collect());
+        self.emit(pixels, preview);
+    }
+
+    fn emit(&mut self, pixels: Arc<Vec<Color>>, preview: bool) {
+        let frame = Frame {
+            generation: self.generation,
+            width: self.film.width(),
+            height: self.film.height(),
+            pixels,
+            preview,
+            progress: self.progress(),
+        };
+        self.outbox.send(frame);
+        (self.wake)();
+    }
+}

@@ -1,0 +1,261 @@
+//! The progressive engine: fresh generations, the same pixels as the CLI's kernel, and
+//! clean shutdown.
+
+use raylab::math::Color;
+use raylab::params::Params;
+use raylab::render::{Engine, EngineConfig, Film, Frame, render_pass, render_preview};
+use raylab::scene::Scene;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+const W: u32 = 96;
+const H: u32 = 54;
+
+fn engine(scene: &Arc<Scene>, params: Params) -> Engine {
+    Engine::new(
+        Arc::clone(scene),
+        params,
+        W,
+        H,
+        EngineConfig { threads: 2 },
+        || {},
+    )
+    .unwrap()
+}
+
+/// Frames until one satisfies `stop` (which is included), failing after `limit`.
+fn frames_until(e: &Engine, limit: Duration, mut stop: impl FnMut(&Frame) -> bool) -> Vec<Frame> {
+    let deadline = Instant::now() + limit;
+    let mut frames = Vec::new();
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        let f = e
+            .frames()
+            .recv_timeout(left)
+            .expect("a frame before the deadline");
+        let last = stop(&f);
+        frames.push(f);
+        if last {
+            return frames;
+        }
+    }
+}
+
+fn bits(pixels: &[Color]) -> Vec<[u32; 3]> {
+    pixels
+        .iter()
+        .map(|c| c.to_array().map(f32::to_bits))
+        .collect()
+}
+
+/// The film the kernel makes for `params` at `spp` samples, as the engine renders it.
+fn reference(scene: &Scene, params: &Params, spp: u32) -> Vec<Color> {
+    let mut film = Film::new(W, H);
+    render_pass(scene, &scene.camera, params, &mut film, spp, &()).unwrap();
+    film.pixels().collect()
+}
+
+#[test]
+fn every_frame_of_a_new_generation_shows_the_new_parameters() {
+    let scene = Arc::new(Scene::load("default").unwrap());
+    let a = Params {
+        spp: 6,
+        ..scene.params.clone()
+    };
+    let mut e = engine(&scene, a.clone());
+    let first = frames_until(&e, Duration::from_secs(20), |f| f.progress.done());
+    assert!(
+        first[0].preview,
+        "a generation opens with its coarse preview"
+    );
+    assert!(first.iter().all(|f| f.generation == 1));
+
+    let b = Params {
+        ior: Some(1.33),
+        max_depth: 3,
+        ..a.clone()
+    };
+    e.set_params(b.clone());
+    let generation = e.generation();
+    assert_eq!(generation, 2);
+    let frames = frames_until(&e, Duration::from_secs(20), |f| {
+        f.generation == generation && f.progress.done()
+    });
+    let mut spps = Vec::new();
+    for f in frames.iter().filter(|f| f.generation == generation) {
+        let expected = if f.preview {
+            render_preview(&scene, &scene.camera, &b, W, H, 8, &())
+                .unwrap()
+                .0
+        } else {
+            reference(&scene, &b, f.progress.spp)
+        };
+        assert_eq!(
+            bits(&f.pixels),
+            bits(&expected),
+            "frame at {} spp (preview {})",
+            f.progress.spp,
+            f.preview
+        );
+        spps.push(f.progress.spp);
+    }
+    assert_eq!(spps[0], 0, "the preview comes first");
+    assert!(
+        spps.windows(2).all(|w| w[0] < w[1]),
+        "passes only add samples: {spps:?}"
+    );
+    assert_eq!(*spps.last().unwrap(), 6);
+    // The final image is the CLI's, bit for bit.
+    let cli = raylab::render::render(&scene, &b, W, H, &()).unwrap().0;
+    assert_eq!(
+        bits(&frames.last().unwrap().pixels),
+        bits(&cli.pixels().collect::<Vec<_>>())
+    );
+}
+
+#[test]
+fn a_thousand_changes_in_a_second_end_in_the_right_image() {
+    let scene = Arc::new(Scene::load("glass").unwrap());
+    let base = Params {
+        spp: 4,
+        ..scene.params.clone()
+    };
+    let mut e = engine(&scene, base.clone());
+    let start = Instant::now();
+    let mut last = base.clone();
+    for i in 0..1000 {
+        last = Params {
+            ior: Some(1.0 + (i % 200) as f32 / 100.0),
+            seed: i as u64,
+            ..base.clone()
+        };
+        e.set_params(last.clone());
+    }
+    assert!(
+        start.elapsed() < Duration::from_secs(1),
+        "sending must not wait on rendering"
+    );
+    let generation = e.generation();
+    assert_eq!(generation, 1001);
+    let frames = frames_until(&e, Duration::from_secs(30), |f| {
+        f.generation == generation && f.progress.done()
+    });
+    let f = frames.last().unwrap();
+    assert_eq!(bits(&f.pixels), bits(&reference(&scene, &last, 4)));
+    e.shutdown();
+}
+
+#[test]
+fn exposure_does_not_restart_but_everything_else_does() {
+    let scene = Arc::new(Scene::load("default").unwrap());
+    let p = Params {
+        spp: 2,
+        ..scene.params.clone()
+    };
+    let mut e = engine(&scene, p.clone());
+    e.set_params(Params {
+        exposure: 1.5,
+        ..p.clone()
+    });
+    assert_eq!(e.generation(), 1);
+    e.set_params(Params {
+        light_size: 0.5,
+        exposure: 1.5,
+        ..p.clone()
+    });
+    assert_eq!(e.generation(), 2);
+    e.resize(40, 30);
+    let mut camera = scene.camera.clone();
+    camera.fov_deg = 20.0;
+    e.set_camera(camera.clone());
+    e.set_scene(Arc::new(Scene::load("glass").unwrap()));
+    assert_eq!(e.generation(), 5);
+    let frames = frames_until(&e, Duration::from_secs(20), |f| {
+        f.generation == 5 && f.progress.done()
+    });
+    let f = frames.last().unwrap();
+    assert_eq!(
+        (f.width, f.height),
+        (40, 30),
+        "the size survives a scene change"
+    );
+}
+
+#[test]
+fn pause_holds_and_resume_finishes_and_unlimited_runs_on() {
+    let scene = Arc::new(Scene::load("default").unwrap());
+    let p = Params {
+        spp: 64,
+        ..scene.params.clone()
+    };
+    let e = engine(&scene, p);
+    frames_until(&e, Duration::from_secs(20), |f| !f.preview);
+    e.pause();
+    let paused = frames_until(&e, Duration::from_secs(20), |f| f.progress.paused);
+    let held = paused.last().unwrap().progress.spp;
+    // Nothing more comes while paused.
+    assert!(e.frames().recv_timeout(Duration::from_millis(300)).is_err());
+    e.resume();
+    let rest = frames_until(&e, Duration::from_secs(60), |f| f.progress.done());
+    let done = rest.last().unwrap();
+    assert!(done.progress.spp == 64 && held < 64);
+    assert!(done.progress.noise.is_some() && done.progress.rays_per_second > 0.0);
+    assert_eq!(done.progress.eta, Some(Duration::ZERO));
+    let mut e = e;
+    e.set_unlimited(true);
+    let more = frames_until(&e, Duration::from_secs(20), |f| f.progress.spp > 64);
+    assert_eq!(more.last().unwrap().progress.target, None);
+}
+
+/// Names of this process's threads.
+fn thread_names() -> Vec<String> {
+    std::fs::read_dir("/proc/self/task")
+        .map(|d| {
+            d.filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
+                .map(|s| s.trim().to_string())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+#[test]
+fn shutdown_is_prompt_and_leaves_no_thread() {
+    let scene = Arc::new(Scene::load("ray-tree").unwrap());
+    let p = Params {
+        spp: 1 << 16,
+        ..scene.params.clone()
+    };
+    let wakes = Arc::new(AtomicUsize::new(0));
+    let counter = Arc::clone(&wakes);
+    let e = Engine::new(
+        Arc::clone(&scene),
+        p,
+        480,
+        270,
+        EngineConfig { threads: 2 },
+        move || {
+            counter.fetch_add(1, Ordering::Relaxed);
+        },
+    )
+    .unwrap();
+    let prefix = e.thread_prefix();
+    frames_until(&e, Duration::from_secs(20), |f| f.progress.spp >= 2);
+    assert!(
+        wakes.load(Ordering::Relaxed) >= 2,
+        "every frame wakes the display"
+    );
+    let ours = |names: Vec<String>| {
+        names
+            .into_iter()
+            .filter(|n| n.starts_with(&prefix) && n[prefix.len()..].starts_with(['w', 'c']))
+            .count()
+    };
+    assert_eq!(ours(thread_names()), 3, "two workers and the controller");
+    // Mid-pass on a deep ray tree: shutdown stops the workers at their next pixel.
+    let start = Instant::now();
+    e.shutdown();
+    let took = start.elapsed();
+    assert!(took < Duration::from_millis(250), "shutdown took {took:?}");
+    assert_eq!(ours(thread_names()), 0, "threads left behind");
+}
