@@ -5,7 +5,7 @@ use anyhow::{Context, Result, bail};
 use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::params::Params;
-use raylab::render::{PassObserver, Sidecar, render, sidecar_path};
+use raylab::render::{Film, PassObserver, Sidecar, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -182,8 +182,11 @@ fn render_command(args: RenderArgs) -> Result<()> {
     if let Some((w, h)) = args.size {
         (width, height) = (w, h);
     }
+    // A snapshot of a render still refining holds fewer samples than its target.
+    let mut samples = sidecar.as_ref().and_then(|sc| sc.samples);
     if let Some(spp) = args.spp {
         params.set("spp", &spp.to_string()).context("--spp")?;
+        samples = None;
     }
     if let Some(seed) = args.seed {
         params.seed = seed;
@@ -211,8 +214,12 @@ fn render_command(args: RenderArgs) -> Result<()> {
         .progress_chars("=> "),
     );
     let start = Instant::now();
-    let (film, stats) =
-        pool.install(|| render(&scene, &params, width, height, &Progress(bar.clone())))?;
+    let (film, stats) = pool.install(|| {
+        let mut film = Film::new(width, height);
+        let n = samples.unwrap_or(params.spp);
+        let observer = Progress(bar.clone());
+        render_pass(&scene, &scene.camera, &params, &mut film, n, &observer).map(|s| (film, s))
+    })?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -224,6 +231,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         width,
         height,
         params: params.clone(),
+        samples,
         image: args
             .output
             .file_name()
@@ -241,7 +249,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
             scene.name,
             width,
             height,
-            params.spp,
+            samples.unwrap_or(params.spp),
             seconds,
             stats.samples as f64 / 1e6,
             rays as f64 / 1e6,

@@ -115,7 +115,8 @@ impl Material {
     }
 
     /// This material with the parameters' overrides applied: `ior` (unless the material
-    /// fixes its own), `fresnel`, `constant_reflectance` and `phong_exponent`.
+    /// fixes its own), `fresnel`, `constant_reflectance`, `absorption_scale` and
+    /// `phong_exponent`.
     pub fn with_params(&self, params: &Params) -> Material {
         let apply = |d: &Dielectric| Dielectric {
             ior: match params.ior {

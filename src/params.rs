@@ -36,6 +36,8 @@ pub struct Params {
     /// The constant reflectance k of the `constant` Fresnel mode; `None` keeps each
     /// material's own.
     pub constant_reflectance: Option<f32>,
+    /// Multiplies the absorption coefficient σ of every dielectric (0: all clear).
+    pub absorption_scale: f32,
     /// Split (the full ray tree) or stochastic (one branch per hit).
     pub tree: TreeMode,
     /// Pruning by depth: the deepest ray-tree level traced (camera rays are level 0).
@@ -71,6 +73,7 @@ impl Default for Params {
             ior: None,
             fresnel: None,
             constant_reflectance: None,
+            absorption_scale: 1.0,
             tree: TreeMode::Split,
             max_depth: 8,
             min_weight: 0.001,
@@ -218,6 +221,11 @@ impl Params {
             ),
         )?;
         check(
+            (0.0..=100.0).contains(&self.absorption_scale),
+            "absorption_scale",
+            format!("must be between 0 and 100, got {}", self.absorption_scale),
+        )?;
+        check(
             self.max_depth <= MAX_DEPTH,
             "max_depth",
             format!("must be at most {MAX_DEPTH}, got {}", self.max_depth),
@@ -335,6 +343,7 @@ mod tests {
             "ior",
             "fresnel",
             "constant_reflectance",
+            "absorption_scale",
             "tree",
             "max_depth",
             "min_weight",

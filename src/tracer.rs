@@ -63,6 +63,31 @@ impl AddAssign for Stats {
     }
 }
 
+/// What the pinhole ray through a point of the image meets first.
+#[derive(Clone, Copy, Debug)]
+pub struct Pick {
+    /// The object hit.
+    pub object: u32,
+    /// Where.
+    pub point: Vec3,
+    /// Its distance from the eye along the view direction: the focus distance that makes
+    /// it sharp.
+    pub depth: f32,
+}
+
+/// The first surface on the pinhole ray through `film` (0..1 across and down the image)
+/// of an image with aspect ratio `aspect`, seen through `camera`.
+pub fn pick(scene: &Scene, camera: &Camera, aspect: f32, film: Vec2) -> Option<Pick> {
+    let frame = camera.pinhole(aspect);
+    let ray = frame.ray(film, Vec2::ZERO, 0.0);
+    let hit = scene.intersect(&ray, f32::INFINITY)?;
+    Some(Pick {
+        object: hit.object,
+        point: hit.surface.p,
+        depth: (hit.surface.p - camera.position).dot(frame.forward()),
+    })
+}
+
 /// How deeply dielectrics may nest (glass in water in glass ...); deeper entries are ignored.
 pub const MAX_NESTING: usize = 8;
 

@@ -208,3 +208,21 @@ fn a_good_scene_with_a_mesh_and_its_mtl_loads() {
     assert_eq!(scene.material_names, vec!["tri.obj:glow".to_string()]);
     assert_eq!(scene.materials[0].kind(), "emissive");
 }
+
+#[test]
+fn an_obj_file_opens_as_a_framed_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("tri.obj");
+    std::fs::write(&obj, "v 10 10 10\nv 12 10 10\nv 10 13 10\nf 1 2 3\n").unwrap();
+    let scene = Scene::load(obj.to_str().unwrap()).unwrap();
+    assert_eq!(scene.name, "tri");
+    assert!(scene.object_names.iter().any(|n| n == "floor"));
+    // The camera looks at the middle of the mesh.
+    let c = raylab::math::Vec3::new(11.0, 11.5, 10.0);
+    assert!((scene.camera.look_at - c).length() < 1e-5);
+    let e = Scene::load(dir.path().join("missing.obj").to_str().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("missing.obj"), "{e}");
+    std::fs::write(dir.path().join("bad.obj"), "v 1 2\nf 1 2 3\n").unwrap();
+    let e = Scene::load(dir.path().join("bad.obj").to_str().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("bad.obj:1"), "{e}");
+}

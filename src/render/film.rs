@@ -84,6 +84,77 @@ pub fn srgb_encode(linear: f32) -> f32 {
     }
 }
 
+/// 8-bit sRGB of a linear value, clamped to [0, 1]: a 4096-entry table, exact to within
+/// one code value, for converting whole frames quickly on the display thread.
+#[inline]
+pub fn srgb8(linear: f32) -> u8 {
+    static TABLE: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
+    const N: usize = 4096;
+    let table = TABLE.get_or_init(|| {
+        (0..=N)
+            .map(|i| (srgb_encode(i as f32 / N as f32) * 255.0 + 0.5) as u8)
+            .collect()
+    });
+    let v = if linear.is_finite() {
+        linear.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    table[(v * N as f32 + 0.5) as usize]
+}
+
+/// Linear radiance, row-major, to 8-bit sRGB RGBA after scaling by 2^exposure.
+pub fn to_srgba8(pixels: &[Color], exposure: f32) -> Vec<u8> {
+    let scale = exposure.exp2();
+    let mut out = Vec::with_capacity(pixels.len() * 4);
+    for c in pixels {
+        let c = *c * scale;
+        out.extend_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+    }
+    out
+}
+
+/// Writes linear radiance `pixels` (`width` × `height`, row-major): `.png` as 8-bit sRGB
+/// after scaling by 2^exposure, `.exr` as linear radiance.
+pub fn write_image(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixels: &[Color],
+    exposure: f32,
+) -> Result<(), FilmError> {
+    let name = path.display().to_string();
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let written = match ext.as_deref() {
+        Some("png") => {
+            let scale = exposure.exp2();
+            let bytes = pixels.iter().flat_map(|c| {
+                (*c * scale).to_array().map(|v| {
+                    let v = if v.is_finite() {
+                        v.clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    (srgb_encode(v) * 255.0 + 0.5) as u8
+                })
+            });
+            let img = image::RgbImage::from_vec(width, height, bytes.collect())
+                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
+            img.save_with_format(path, image::ImageFormat::Png)
+        }
+        Some("exr") => {
+            let floats = pixels.iter().flat_map(|c| c.to_array()).collect();
+            let img = image::Rgb32FImage::from_vec(width, height, floats)
+                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
+            img.save_with_format(path, image::ImageFormat::OpenExr)
+        }
+        _ => return Err(FilmError::UnsupportedFormat(name)),
+    };
+    written.map_err(|source| FilmError::Write { path: name, source })
+}
+
 impl Film {
     /// An empty film of `width` × `height` pixels.
     pub fn new(width: u32, height: u32) -> Self {
@@ -182,31 +253,10 @@ impl Film {
         img
     }
 
-    /// The linear radiance image (no exposure, no clamping), for EXR.
-    pub fn to_linear(&self) -> image::Rgb32FImage {
-        let mut img = image::Rgb32FImage::new(self.width, self.height);
-        for (px, c) in img.pixels_mut().zip(self.pixels()) {
-            *px = image::Rgb(c.to_array());
-        }
-        img
-    }
-
     /// Writes the film: `.png` as 8-bit sRGB with `exposure`, `.exr` as linear radiance.
     pub fn save(&self, path: &Path, exposure: f32) -> Result<(), FilmError> {
-        let name = path.display().to_string();
-        let ext = path
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        let written = match ext.as_deref() {
-            Some("png") => self
-                .to_srgb8(exposure)
-                .save_with_format(path, image::ImageFormat::Png),
-            Some("exr") => self
-                .to_linear()
-                .save_with_format(path, image::ImageFormat::OpenExr),
-            _ => return Err(FilmError::UnsupportedFormat(name)),
-        };
-        written.map_err(|source| FilmError::Write { path: name, source })
+        let pixels: Vec<Color> = self.pixels().collect();
+        write_image(path, self.width, self.height, &pixels, exposure)
     }
 }
 
@@ -220,6 +270,16 @@ mod tests {
         assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
         // Linear 0.2140 is the sRGB mid-grey 0.5.
         assert!((srgb_encode(0.214_041) - 0.5).abs() < 1e-4);
+    }
+
+    #[test]
+    fn the_srgb_table_matches_the_curve() {
+        for i in 0..=1000 {
+            let v = i as f32 / 1000.0;
+            let exact = (srgb_encode(v) * 255.0 + 0.5) as i32;
+            assert!((srgb8(v) as i32 - exact).abs() <= 1, "{v}");
+        }
+        assert_eq!((srgb8(-1.0), srgb8(2.0), srgb8(f32::NAN)), (0, 255, 0));
     }
 
     #[test]

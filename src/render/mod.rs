@@ -7,7 +7,7 @@ mod kernel;
 mod snapshot;
 
 pub use engine::{Engine, EngineConfig, EngineError, Frame, MAX_PASS_SPP, PREVIEW_BLOCK, Progress};
-pub use film::{Accum, Film, FilmError, srgb_encode};
+pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
 pub use snapshot::{Sidecar, SidecarError, sidecar_path};
 

@@ -21,6 +21,10 @@ pub struct Sidecar {
     pub height: u32,
     /// Every parameter.
     pub params: Params,
+    /// Samples per pixel in the image, when fewer than `params.spp` (a snapshot of a render
+    /// still refining); the regular and jittered patterns lay out `params.spp` samples.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<u32>,
     /// The image file it describes.
     #[serde(default)]
     pub image: Option<String>,

@@ -176,7 +176,7 @@ impl Scene {
         }
         let path = Path::new(name_or_path);
         if path.is_file() {
-            return file::load_file(path);
+            return Scene::load_file(path);
         }
         match builtin(name_or_path) {
             Some(b) => b.load(),
@@ -184,9 +184,60 @@ impl Scene {
         }
     }
 
-    /// Loads a scene file.
+    /// Loads a scene file, or shows an OBJ file (a path ending in `.obj`) on a floor
+    /// under a light, framed by the camera.
     pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
+        if path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("obj"))
+        {
+            return Scene::for_obj(path);
+        }
         file::load_file(path)
+    }
+
+    /// A scene showing the mesh of an OBJ file (its .mtl materials, or grey): the camera
+    /// looks at it from the front and a little above, it stands on a checkered floor, and
+    /// one light shines from the upper left.
+    pub fn for_obj(path: &Path) -> Result<Scene, SceneError> {
+        let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        let file = toml::Value::String(full.display().to_string()).to_string();
+        let label = path.display().to_string();
+        let probe = format!(
+            "[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[mesh]]\nfile = {file}\n"
+        );
+        let mesh_only = Scene::from_toml_str(&probe, &label, Path::new("/"))?;
+        let (lo, hi) = mesh_only
+            .accel
+            .bounds()
+            .ok_or_else(|| SceneError::new(Location::file(&label), "the OBJ file has no faces"))?;
+        let c = 0.5 * (lo + hi);
+        let r = (0.5 * (hi - lo).length()).max(1e-6);
+        let v = |x: f32, y: f32, z: f32| format!("[{x}, {y}, {z}]");
+        let text = format!(
+            "description = \"The mesh of {name}\"\nambient = [0.05, 0.05, 0.05]\n\
+             [image]\nwidth = 960\nheight = 540\n\
+             [camera]\nposition = {eye}\nlook_at = {at}\nfov = 35\n\
+             [material.floor]\ntype = \"diffuse\"\ncolor = [0.8, 0.8, 0.78]\n\
+             checker = {{ color = [0.15, 0.15, 0.17], scale = {scale} }}\n\
+             [[plane]]\nname = \"floor\"\npoint = {floor}\nnormal = [0, 1, 0]\nmaterial = \"floor\"\n\
+             [[mesh]]\nfile = {file}\n\
+             [[point_light]]\nposition = {light}\nintensity = {power}\n",
+            name = path
+                .file_name()
+                .map_or(label.clone(), |n| n.to_string_lossy().into_owned()),
+            eye = v(c.x, c.y + 0.6 * r, c.z + 3.2 * r),
+            at = v(c.x, c.y, c.z),
+            scale = 2.0 / r,
+            floor = v(c.x, lo.y - 1e-3 * r, c.z),
+            light = v(c.x - 2.0 * r, c.y + 4.0 * r, c.z + 3.0 * r),
+            power = 60.0 * r * r,
+        );
+        let mut desc = file::parse(&text, &label, &file::FsAssets(PathBuf::from("/")))?;
+        desc.name = path
+            .file_stem()
+            .map_or(label.clone(), |s| s.to_string_lossy().into_owned());
+        Ok(Scene::new(desc, SceneSource::File(full)))
     }
 
     /// Parses scene text; OBJ paths resolve against `base_dir`.
