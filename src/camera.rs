@@ -5,7 +5,7 @@ use crate::params::Params;
 use glam::Vec2;
 
 /// Where the camera is and what it sees.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Camera {
     /// Eye position (the lens centre).
     pub position: Vec3,

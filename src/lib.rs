@@ -7,7 +7,8 @@
 //! The layers, from the bottom: [`math`] (vectors, rays, deterministic random numbers),
 //! [`optics`] (the lecture's formulas), [`geometry`] (shapes and the BVH), [`material`],
 //! [`light`] and [`camera`], [`scene`] (files, OBJ meshes, built-in scenes), [`tracer`] (the
-//! ray tree), and [`render`] (the film and the one render kernel).
+//! ray tree), [`render`] (the film, the one render kernel, the progressive engine), and
+//! [`app`] (the egui previewer, the only module that knows egui).
 //!
 //! ```
 //! use raylab::{params::Params, render::render, scene::Scene};
@@ -20,6 +21,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod app;
 pub mod camera;
 pub mod geometry;
 pub mod light;

@@ -1,8 +1,8 @@
-//! The `raylab` command: headless rendering and scene listing (the previewer window is
-//! the default command once it lands).
+//! The `raylab` command: the previewer window, and headless rendering, scene listing, the
+//! Fresnel table and the engine benchmark.
 
 use anyhow::{Context, Result, bail};
-use clap::{CommandFactory, Parser, Subcommand};
+use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use raylab::params::Params;
 use raylab::render::{Film, PassObserver, Sidecar, render_pass, sidecar_path};
@@ -17,11 +17,19 @@ use std::time::Instant;
     name = "raylab",
     version,
     about = "An interactive lab for dielectrics and distribution ray tracing",
-    after_help = "Scenes are TOML files (see scenes/README.md) or built-in names; `raylab scenes` lists them."
+    after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
+                  Scenes are TOML files (see scenes/README.md), OBJ files or built-in names; `raylab scenes` lists them.\n\
+                  RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).",
+    args_conflicts_with_subcommands = true
 )]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// The scene to open in the window: a scene file, an OBJ file or a built-in name.
+    scene: Option<String>,
+    /// Worker threads for the window [default: all cores but one].
+    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    threads: Option<u32>,
 }
 
 #[derive(Subcommand)]
@@ -118,6 +126,28 @@ struct RenderArgs {
     quiet: bool,
 }
 
+fn window(scene: Option<String>, threads: Option<u32>) -> Result<()> {
+    let close_after = match std::env::var("RAYLAB_CLOSE_AFTER") {
+        Ok(v) => Some(
+            v.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|s| s.is_finite() && *s >= 0.0)
+                .map(std::time::Duration::from_secs_f64)
+                .with_context(|| format!("RAYLAB_CLOSE_AFTER={v}: not a number of seconds"))?,
+        ),
+        Err(_) => None,
+    };
+    // A scene that does not load still opens the window, which shows the error.
+    let options = raylab::app::AppOptions {
+        scene,
+        threads: threads.map(|t| t as usize),
+        close_after,
+        ..Default::default()
+    };
+    raylab::app::run(options).map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))
+}
+
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
@@ -143,7 +173,7 @@ fn main() -> ExitCode {
         Some(Command::Scenes) => scenes_command(),
         Some(Command::Fresnel(args)) => fresnel_command(&args),
         Some(Command::Bench(args)) => bench_command(&args),
-        None => Cli::command().print_help().map_err(Into::into),
+        None => window(cli.scene, cli.threads),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -182,6 +212,11 @@ fn render_command(args: RenderArgs) -> Result<()> {
     if let Some((w, h)) = args.size {
         (width, height) = (w, h);
     }
+    // A snapshot from the window may have moved the camera.
+    let camera = sidecar
+        .as_ref()
+        .and_then(|sc| sc.camera.clone())
+        .unwrap_or_else(|| scene.camera.clone());
     // A snapshot of a render still refining holds fewer samples than its target.
     let mut samples = sidecar.as_ref().and_then(|sc| sc.samples);
     if let Some(spp) = args.spp {
@@ -218,7 +253,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         let mut film = Film::new(width, height);
         let n = samples.unwrap_or(params.spp);
         let observer = Progress(bar.clone());
-        render_pass(&scene, &scene.camera, &params, &mut film, n, &observer).map(|s| (film, s))
+        render_pass(&scene, &camera, &params, &mut film, n, &observer).map(|s| (film, s))
     })?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
@@ -232,6 +267,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         height,
         params: params.clone(),
         samples,
+        camera: (camera != scene.camera).then(|| camera.clone()),
         image: args
             .output
             .file_name()

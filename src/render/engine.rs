@@ -233,6 +233,11 @@ impl Engine {
         self.params = params;
     }
 
+    /// Starts the current image again from its first sample.
+    pub fn restart_now(&mut self) {
+        self.restart(Command::Params(self.params.clone()));
+    }
+
     /// The parameters last set.
     pub fn params(&self) -> &Params {
         &self.params

@@ -1,5 +1,6 @@
 //! Snapshot sidecars: the JSON beside an image that holds all it takes to render it again.
 
+use crate::camera::Camera;
 use crate::params::Params;
 use crate::tracer::Stats;
 use serde::{Deserialize, Serialize};
@@ -25,6 +26,9 @@ pub struct Sidecar {
     /// still refining); the regular and jittered patterns lay out `params.spp` samples.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub samples: Option<u32>,
+    /// The camera, when it was moved from the scene's (orbited, dollied, zoomed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<Camera>,
     /// The image file it describes.
     #[serde(default)]
     pub image: Option<String>,

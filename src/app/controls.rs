@@ -1,0 +1,239 @@
+//! The side panel: every parameter of the lecture, by topic, each with a tooltip that
+//! explains the concept.
+
+use crate::camera::Camera;
+use crate::material::Material;
+use crate::math::Pattern;
+use crate::optics::{FresnelMode, brewster_angle, critical_angle};
+use crate::params::{Params, TreeMode};
+use crate::scene::Scene;
+use egui::{CollapsingHeader, ComboBox, DragValue, Slider, Ui};
+
+/// What the side panel edits.
+pub struct Controls<'a> {
+    /// The parameter model.
+    pub params: &'a mut Params,
+    /// The camera (field of view).
+    pub camera: &'a mut Camera,
+    /// Run on past the target samples per pixel.
+    pub unlimited: &'a mut bool,
+    /// The next click on the image sets the focus distance.
+    pub click_to_focus: &'a mut bool,
+    /// Render resolution as a fraction of the scene's image size.
+    pub resolution: &'a mut f32,
+    /// The scene, for its own values (shown while a parameter keeps them).
+    pub scene: &'a Scene,
+}
+
+/// The IOR the `ior` parameter would replace: the first dielectric's that is not fixed.
+fn scene_ior(scene: &Scene) -> Option<f32> {
+    scene.materials.iter().find_map(|m| match m.dielectric() {
+        Some(d) if !d.ior_fixed => Some(d.ior),
+        _ => None,
+    })
+}
+
+fn scene_exponent(scene: &Scene) -> Option<f32> {
+    scene.materials.iter().find_map(|m| match m {
+        Material::Glossy { exponent, .. } => Some(*exponent),
+        _ => None,
+    })
+}
+
+fn fresnel_label(mode: Option<FresnelMode>) -> &'static str {
+    match mode {
+        None => "each material's own",
+        Some(FresnelMode::Exact) => "exact (Fs, Fp)",
+        Some(FresnelMode::Schlick) => "Schlick",
+        Some(FresnelMode::SchlickNaive) => "naive Schlick",
+        Some(FresnelMode::Constant) => "constant k",
+    }
+}
+
+fn pattern_tip(p: Pattern) -> &'static str {
+    match p {
+        Pattern::Regular => {
+            "Sample positions on a fixed grid: the same in every pixel, so regular structures alias."
+        }
+        Pattern::Random => {
+            "Independent uniform random positions: no aliasing, but clumps and gaps make noise."
+        }
+        Pattern::Jittered => {
+            "One random position in each cell of a grid (stratified): random, yet evenly spread."
+        }
+        Pattern::Sobol => {
+            "Owen-scrambled Sobol points: evenly spread at every power-of-two count, so each progressive pass stays stratified."
+        }
+    }
+}
+
+/// Draws the side panel's sections.
+pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
+    let p = &mut *c.params;
+    CollapsingHeader::new("Dielectrics and Fresnel").default_open(true).show(ui, |ui| {
+        let own = scene_ior(c.scene);
+        let mut ior = p.ior.or(own).unwrap_or(1.5);
+        let slider = ui
+            .add(Slider::new(&mut ior, 1.0..=2.5).text("IOR").fixed_decimals(3))
+            .on_hover_text(
+                "Index of refraction n of the glass, water or glaze. Snell's law bends the refracted ray: \
+                 n1 sin θi = n2 sin θt. Higher n bends more and reflects more (R0 = ((n−1)/(n+1))²).",
+            );
+        if slider.changed() {
+            p.ior = Some(ior);
+        }
+        ui.horizontal(|ui| {
+            for (name, value, tip) in [("Water", 1.33, "n = 1.33"), ("Glass", 1.5, "n = 1.5"), ("Diamond", 2.42, "n = 2.42")] {
+                if ui.selectable_label(p.ior == Some(value), name).on_hover_text(tip).clicked() {
+                    p.ior = Some(value);
+                }
+            }
+            if ui
+                .add_enabled(p.ior.is_some(), egui::Button::new("Scene"))
+                .on_hover_text("Each material's own index of refraction, as in the scene file.")
+                .clicked()
+            {
+                p.ior = None;
+            }
+        });
+        let crit = critical_angle(ior, 1.0).map_or("none".to_string(), |a| format!("{:.1}°", a.to_degrees()));
+        ui.label(format!("Brewster {:.1}°, critical (inside to air) {crit}", brewster_angle(1.0, ior).to_degrees()))
+            .on_hover_text(
+                "Brewster's angle atan(n2/n1): p-polarized light is not reflected (Fp = 0). \
+                 Critical angle asin(n2/n1), from the denser side: beyond it light is totally reflected.",
+            );
+        ComboBox::from_label("Fresnel")
+            .selected_text(fresnel_label(p.fresnel))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut p.fresnel, None, fresnel_label(None))
+                    .on_hover_text("Keep each material's own reflectance model.");
+                for (mode, tip) in [
+                    (FresnelMode::Exact, "R = (Fs² + Fp²)/2, Fs = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt), Fp = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt)."),
+                    (FresnelMode::Schlick, "R ≈ R0 + (1 − R0)(1 − cos θ)^5, with θ on the less dense side, so it reaches 1 at the critical angle."),
+                    (FresnelMode::SchlickNaive, "Schlick with the incident angle always, as some textbooks write it: from inside it stays near R0 until it jumps to 1 at the critical angle."),
+                    (FresnelMode::Constant, "The same reflectance k at every angle: no brighter rim (the lecture's 'constant' black glazed sphere)."),
+                ] {
+                    ui.selectable_value(&mut p.fresnel, Some(mode), fresnel_label(Some(mode))).on_hover_text(tip);
+                }
+            })
+            .response
+            .on_hover_text("How the reflectance R of dielectrics and glazes depends on the angle.");
+        let mut k = p.constant_reflectance.unwrap_or(0.04);
+        if ui
+            .add(Slider::new(&mut k, 0.0..=1.0).text("k (constant)"))
+            .on_hover_text("The reflectance of the constant model, at every angle (1 under total internal reflection).")
+            .changed()
+        {
+            p.constant_reflectance = Some(k);
+        }
+        ui.add(Slider::new(&mut p.absorption_scale, 0.0..=5.0).text("Absorption ×"))
+            .on_hover_text("Scales every dielectric's absorption σ. Beer–Lambert: light travelling a distance d inside keeps exp(−σ d).");
+    });
+
+    CollapsingHeader::new("Ray tree").default_open(true).show(ui, |ui| {
+        ui.add(Slider::new(&mut p.max_depth, 0..=32).text("Max depth"))
+            .on_hover_text("Pruning by depth: camera rays are level 0, each reflection or refraction one level deeper. Branches below this level are not traced (black).");
+        ui.add(
+            Slider::new(&mut p.min_weight, 0.0..=1.0)
+                .logarithmic(true)
+                .smallest_positive(1e-5)
+                .text("Min weight"),
+        )
+        .on_hover_text("Pruning by attenuation: a branch whose path weight (the product of the reflectances R or 1 − R above it) falls below this is not traced.");
+        ui.horizontal(|ui| {
+            ui.radio_value(&mut p.tree, TreeMode::Split, "Split")
+                .on_hover_text("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.");
+            ui.radio_value(&mut p.tree, TreeMode::Stochastic, "Stochastic")
+                .on_hover_text("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.");
+        });
+    });
+
+    CollapsingHeader::new("Sampling and antialiasing").default_open(true).show(ui, |ui| {
+        ui.add(Slider::new(&mut p.spp, 1..=4096).logarithmic(true).text("Samples per pixel"))
+            .on_hover_text("Supersampling: each pixel averages this many samples (a box filter). More samples, less aliasing and noise; the error falls like 1/√n for random samples.");
+        ui.checkbox(c.unlimited, "Keep refining")
+            .on_hover_text("Run on past the target, until paused.");
+        ComboBox::from_label("Pattern")
+            .selected_text(p.pattern.name())
+            .show_ui(ui, |ui| {
+                for pattern in Pattern::ALL {
+                    ui.selectable_value(&mut p.pattern, pattern, pattern.name()).on_hover_text(pattern_tip(pattern));
+                }
+            })
+            .response
+            .on_hover_text(pattern_tip(p.pattern));
+        ui.horizontal(|ui| {
+            ui.add(DragValue::new(&mut p.seed)).on_hover_text("The seed of every random number: same seed, same image, bit for bit.");
+            ui.label("Seed");
+        });
+    });
+
+    CollapsingHeader::new("Soft shadows").default_open(false).show(ui, |ui| {
+        ui.add(Slider::new(&mut p.light_size, 0.0..=4.0).text("Light size"))
+            .on_hover_text("Scales every area light, keeping its power. Each sample sends its shadow ray to a different point of the light, so shadows get a penumbra as wide as similar triangles predict. 0: point lights, hard shadows.");
+    });
+
+    CollapsingHeader::new("Glossy reflection").default_open(false).show(ui, |ui| {
+        let own = scene_exponent(c.scene);
+        let mut n = p.phong_exponent.or(own).unwrap_or(100.0);
+        if ui
+            .add(Slider::new(&mut n, 1.0..=100_000.0).logarithmic(true).text("Phong exponent"))
+            .on_hover_text("Glossy reflection by jittering the reflected ray over the Phong lobe cos^n α around the mirror direction. Higher n: a tighter lobe, sharper reflections.")
+            .changed()
+        {
+            p.phong_exponent = Some(n);
+        }
+        if ui.add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene")).on_hover_text("Each glossy material's own exponent.").clicked() {
+            p.phong_exponent = None;
+        }
+    });
+
+    CollapsingHeader::new("Camera and depth of field").default_open(true).show(ui, |ui| {
+        ui.add(Slider::new(&mut c.camera.fov_deg, 5.0..=120.0).text("Field of view °"))
+            .on_hover_text("The vertical angle the image spans.");
+        ui.add(Slider::new(&mut p.aperture, 0.0..=0.5).text("Aperture"))
+            .on_hover_text("Thin lens: eye rays start at random points on a lens of this radius (scene units) and pass through the plane of focus. 0 is a pinhole: everything sharp.");
+        let f = c.camera.f_number(p.aperture).map_or("pinhole".to_string(), |n| format!("f/{n:.1}"));
+        ui.label(format!("{f} (35 mm equivalent, 1 unit = 1 m)"));
+        let own = c.camera.look_distance();
+        let mut d = p.focus_distance.unwrap_or(own);
+        if ui
+            .add(Slider::new(&mut d, 0.05..=100.0).logarithmic(true).text("Focus distance"))
+            .on_hover_text("Distance to the plane in focus, along the view direction. Points off it blur into a circle of confusion of diameter 2a|z − s|/s at their depth.")
+            .changed()
+        {
+            p.focus_distance = Some(d);
+        }
+        ui.horizontal(|ui| {
+            ui.toggle_value(c.click_to_focus, "Click to focus")
+                .on_hover_text("Then click the image: the focus distance becomes the depth of the point clicked.");
+            if ui.add_enabled(p.focus_distance.is_some(), egui::Button::new("Look-at")).on_hover_text("Focus on the camera's look-at point.").clicked() {
+                p.focus_distance = None;
+            }
+        });
+        ui.label("Orbit: right-drag. Dolly: Ctrl + wheel.");
+    });
+
+    CollapsingHeader::new("Motion blur").default_open(false).show(ui, |ui| {
+        ui.add(Slider::new(&mut p.shutter_open, 0.0..=1.0).text("Shutter opens"))
+            .on_hover_text("When the shutter opens, in frame time (objects move over the frame, time 0 to 1).");
+        p.shutter = p.shutter.min(1.0 - p.shutter_open);
+        let max = 1.0 - p.shutter_open;
+        ui.add(Slider::new(&mut p.shutter, 0.0..=max).text("Shutter interval"))
+            .on_hover_text("How long the shutter stays open. Each sample's rays get a time in the interval, so moving objects smear over their travel. 0 freezes them.");
+    });
+
+    CollapsingHeader::new("Display").default_open(true).show(ui, |ui| {
+        ui.add(Slider::new(&mut p.exposure, -5.0..=5.0).text("Exposure (stops)"))
+            .on_hover_text("Displayed brightness: pixels are radiance × 2^exposure, then sRGB. Changes the display only, not the render.");
+        ComboBox::from_label("Resolution")
+            .selected_text(format!("{:.0}%", *c.resolution * 100.0))
+            .show_ui(ui, |ui| {
+                for r in [0.25f32, 0.5, 1.0, 2.0] {
+                    ui.selectable_value(c.resolution, r, format!("{:.0}%", r * 100.0));
+                }
+            })
+            .response
+            .on_hover_text("Render resolution, as a fraction of the scene's image size. Lower is faster to refine.");
+    });
+}

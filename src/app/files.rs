@@ -1,0 +1,284 @@
+//! A file browser drawn with egui (Open…, Save as…), and snapshot file names.
+//!
+//! Written here rather than taken from a crate: the desktop-portal dialogs need a session
+//! service that minimal desktops and Xvfb lack, and the egui file-dialog crates lag egui's
+//! version.
+
+use egui::{Key, RichText};
+use std::path::{Path, PathBuf};
+use std::time::{SystemTime, UNIX_EPOCH};
+
+/// What the dialog is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Purpose {
+    /// Open a scene (.toml) or a mesh (.obj).
+    Open,
+    /// Save the image as PNG or EXR.
+    SaveAs,
+}
+
+/// What the user chose.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Choice {
+    /// Still choosing.
+    Pending,
+    /// Closed without a choice.
+    Cancelled,
+    /// This file.
+    File(PathBuf),
+}
+
+/// The state of an open file dialog.
+pub struct FileDialog {
+    /// What it is for.
+    pub purpose: Purpose,
+    dir: PathBuf,
+    /// The file name typed or picked.
+    pub name: String,
+    entries: Vec<(String, bool)>,
+    error: Option<String>,
+}
+
+impl FileDialog {
+    /// A dialog showing `dir`, with `name` proposed (for saving).
+    pub fn new(purpose: Purpose, dir: PathBuf, name: String) -> Self {
+        let mut d = FileDialog {
+            purpose,
+            dir,
+            name,
+            entries: Vec::new(),
+            error: None,
+        };
+        d.list();
+        d
+    }
+
+    fn wanted(&self, name: &str) -> bool {
+        let lower = name.to_ascii_lowercase();
+        match self.purpose {
+            Purpose::Open => lower.ends_with(".toml") || lower.ends_with(".obj"),
+            Purpose::SaveAs => lower.ends_with(".png") || lower.ends_with(".exr"),
+        }
+    }
+
+    /// Reads the folder: sub-folders first, then the files of the wanted kinds.
+    fn list(&mut self) {
+        self.entries.clear();
+        match std::fs::read_dir(&self.dir) {
+            Ok(read) => {
+                self.error = None;
+                for entry in read.flatten() {
+                    let name = entry.file_name().to_string_lossy().into_owned();
+                    if name.starts_with('.') {
+                        continue;
+                    }
+                    let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+                    if is_dir || self.wanted(&name) {
+                        self.entries.push((name, is_dir));
+                    }
+                }
+                self.entries.sort_by(|a, b| {
+                    b.1.cmp(&a.1)
+                        .then_with(|| a.0.to_lowercase().cmp(&b.0.to_lowercase()))
+                });
+            }
+            Err(e) => self.error = Some(format!("{}: {e}", self.dir.display())),
+        }
+    }
+
+    fn enter(&mut self, dir: PathBuf) {
+        self.dir = dir;
+        self.list();
+    }
+
+    /// Draws the dialog; returns the choice.
+    pub fn ui(&mut self, ctx: &egui::Context) -> Choice {
+        let mut choice = Choice::Pending;
+        let title = match self.purpose {
+            Purpose::Open => "Open a scene or OBJ file",
+            Purpose::SaveAs => "Save the image as…",
+        };
+        let modal = egui::Modal::new(egui::Id::unique("raylab-file-dialog")).show(ctx, |ui| {
+            ui.set_width(520.0);
+            ui.heading(title);
+            ui.horizontal(|ui| {
+                if ui
+                    .button("⬆ Up")
+                    .on_hover_text("The parent folder")
+                    .clicked()
+                    && let Some(parent) = self.dir.parent()
+                {
+                    self.enter(parent.to_path_buf());
+                }
+                ui.label(RichText::new(self.dir.display().to_string()).monospace());
+            });
+            if let Some(e) = &self.error {
+                ui.colored_label(ui.visuals().error_fg_color, e);
+            }
+            egui::ScrollArea::vertical()
+                .max_height(300.0)
+                .show(ui, |ui| {
+                    let mut go = None;
+                    for (name, is_dir) in &self.entries {
+                        let label = if *is_dir {
+                            format!("📁 {name}")
+                        } else {
+                            format!("📄 {name}")
+                        };
+                        let selected = !*is_dir && *name == self.name;
+                        let r = ui.selectable_label(selected, label);
+                        if r.clicked() {
+                            if *is_dir {
+                                go = Some(self.dir.join(name));
+                            } else {
+                                self.name = name.clone();
+                            }
+                        }
+                        if r.double_clicked() && !*is_dir {
+                            choice = Choice::File(self.dir.join(name));
+                        }
+                    }
+                    if let Some(dir) = go {
+                        self.enter(dir);
+                    }
+                });
+            ui.horizontal(|ui| {
+                ui.label("File name:");
+                let edit = ui.add(egui::TextEdit::singleline(&mut self.name).desired_width(300.0));
+                if edit.lost_focus()
+                    && ui.input(|i| i.key_pressed(Key::Enter))
+                    && !self.name.is_empty()
+                {
+                    choice = Choice::File(self.dir.join(&self.name));
+                }
+            });
+            if self.purpose == Purpose::SaveAs {
+                ui.horizontal(|ui| {
+                    ui.label("Format:");
+                    for (ext, tip) in [
+                        ("png", "8-bit sRGB with the display exposure"),
+                        ("exr", "linear radiance, 32-bit float"),
+                    ] {
+                        let on = self.name.to_ascii_lowercase().ends_with(&format!(".{ext}"));
+                        if ui
+                            .selectable_label(on, ext.to_uppercase())
+                            .on_hover_text(tip)
+                            .clicked()
+                        {
+                            let stem = Path::new(&self.name)
+                                .file_stem()
+                                .map_or("image".into(), |s| s.to_string_lossy().into_owned());
+                            self.name = format!("{stem}.{ext}");
+                        }
+                    }
+                });
+            }
+            ui.horizontal(|ui| {
+                let verb = if self.purpose == Purpose::Open {
+                    "Open"
+                } else {
+                    "Save"
+                };
+                if ui
+                    .add_enabled(!self.name.is_empty(), egui::Button::new(verb))
+                    .clicked()
+                {
+                    choice = Choice::File(self.dir.join(&self.name));
+                }
+                if ui.button("Cancel").clicked() {
+                    choice = Choice::Cancelled;
+                }
+            });
+        });
+        if modal.should_close() && choice == Choice::Pending {
+            choice = Choice::Cancelled;
+        }
+        // A typed path may name a folder: enter it instead of choosing it.
+        if let Choice::File(path) = &choice
+            && path.is_dir()
+        {
+            let dir = path.clone();
+            self.name.clear();
+            self.enter(dir);
+            return Choice::Pending;
+        }
+        choice
+    }
+}
+
+/// `YYYYMMDD-HHMMSS` in UTC for a time since the epoch.
+pub fn timestamp(t: SystemTime) -> String {
+    let secs = t.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs()) as i64;
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}{month:02}{day:02}-{:02}{:02}{:02}",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+/// `dir/<scene>-<timestamp>.png`, with `-2`, `-3`, ... if that file exists already.
+pub fn snapshot_path(dir: &Path, scene: &str, t: SystemTime) -> PathBuf {
+    let safe: String = scene
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let base = format!("{safe}-{}", timestamp(t));
+    let mut path = dir.join(format!("{base}.png"));
+    let mut n = 2;
+    while path.exists() || path.with_extension("json").exists() {
+        path = dir.join(format!("{base}-{n}.png"));
+        n += 1;
+    }
+    path
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Duration;
+
+    #[test]
+    fn timestamps_are_utc_calendar_dates() {
+        assert_eq!(timestamp(UNIX_EPOCH), "19700101-000000");
+        // 2026-11-19 04:39:05 UTC (checked with Python's datetime).
+        let t = UNIX_EPOCH + Duration::from_secs(1_795_063_145);
+        assert_eq!(timestamp(t), "20261119-043905");
+        // A leap day.
+        assert_eq!(
+            timestamp(UNIX_EPOCH + Duration::from_secs(951_782_400)),
+            "20000229-000000"
+        );
+    }
+
+    #[test]
+    fn snapshot_names_never_overwrite() {
+        let dir = tempfile::tempdir().unwrap();
+        let t = UNIX_EPOCH + Duration::from_secs(86_400);
+        let first = snapshot_path(dir.path(), "ray tree", t);
+        assert_eq!(first.file_name().unwrap(), "ray_tree-19700102-000000.png");
+        std::fs::write(&first, b"x").unwrap();
+        let second = snapshot_path(dir.path(), "ray tree", t);
+        assert_eq!(
+            second.file_name().unwrap(),
+            "ray_tree-19700102-000000-2.png"
+        );
+    }
+}

@@ -1,0 +1,942 @@
+//! The previewer: an egui/eframe window over the progressive engine. The only module that
+//! knows egui.
+//!
+//! The window never waits: frames arrive from the engine over a channel (with a repaint
+//! request), scenes load on a thread of their own, and every change of a control is sent
+//! to the engine at the end of the frame in which it happened.
+
+mod controls;
+mod files;
+mod view;
+
+pub use controls::{Controls, controls_ui};
+pub use files::{Choice, FileDialog, Purpose, snapshot_path, timestamp};
+pub use view::{ViewEvent, ViewState, image_ui};
+
+use crate::camera::Camera;
+use crate::params::Params;
+use crate::render::{
+    Engine, EngineConfig, EngineError, Frame, Sidecar, sidecar_path, to_srgba8, write_image,
+};
+use crate::scene::{BUILTIN_SCENES, Scene, SceneError, SceneSource};
+use crate::tracer::pick;
+use crossbeam_channel::{Receiver, Sender};
+use egui::{CentralPanel, Color32, Key, KeyboardShortcut, Modifiers, Panel, RichText};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant, SystemTime};
+
+/// How the window starts.
+#[derive(Clone, Debug)]
+pub struct AppOptions {
+    /// The scene to open (a file or built-in name); `None` reopens the last one.
+    pub scene: Option<String>,
+    /// Where snapshots go.
+    pub snapshot_dir: PathBuf,
+    /// Where the scene picker looks for scene files.
+    pub scenes_dir: PathBuf,
+    /// Worker threads; `None` leaves one core to the window.
+    pub threads: Option<usize>,
+    /// Close the window after this long (for scripted runs).
+    pub close_after: Option<Duration>,
+    /// Remember the scene, parameters and camera between runs.
+    pub persist: bool,
+}
+
+impl Default for AppOptions {
+    fn default() -> Self {
+        AppOptions {
+            scene: None,
+            snapshot_dir: PathBuf::from("screenshots"),
+            scenes_dir: PathBuf::from("scenes"),
+            threads: None,
+            close_after: None,
+            persist: true,
+        }
+    }
+}
+
+/// What the window remembers between runs.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct Persisted {
+    scene: String,
+    params: Params,
+    camera: Camera,
+    resolution: f32,
+    unlimited: bool,
+}
+
+const STORAGE_KEY: &str = "raylab";
+
+/// Why a scene is being loaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LoadPurpose {
+    /// Opened by the user: the scene's defaults replace the parameters.
+    Open,
+    /// Its file changed on disk: parameters the user changed are kept.
+    Reload,
+}
+
+struct Loaded {
+    purpose: LoadPurpose,
+    result: Result<Scene, SceneError>,
+}
+
+struct Toast {
+    text: String,
+    error: bool,
+    until: Instant,
+}
+
+/// The previewer application.
+pub struct RaylabApp {
+    options: AppOptions,
+    engine: Engine,
+    scene: Arc<Scene>,
+    params: Params,
+    camera: Camera,
+    sent_camera: Camera,
+    unlimited: bool,
+    paused: bool,
+    resolution: f32,
+    frame: Option<Frame>,
+    texture: Option<egui::TextureHandle>,
+    texture_stale: bool,
+    shown_exposure: f32,
+    view: ViewState,
+    click_to_focus: bool,
+    error: Option<String>,
+    toasts: Vec<Toast>,
+    dialog: Option<FileDialog>,
+    loads: (Sender<Loaded>, Receiver<Loaded>),
+    loading: usize,
+    watched: Option<(PathBuf, Option<SystemTime>)>,
+    last_poll: Instant,
+    close_at: Option<Instant>,
+}
+
+/// Opens the previewer window and runs it until it is closed.
+pub fn run(options: AppOptions) -> eframe::Result {
+    let native = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("raylab")
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([640.0, 400.0])
+            .with_drag_and_drop(true),
+        persist_window: options.persist,
+        ..Default::default()
+    };
+    eframe::run_native(
+        "raylab",
+        native,
+        Box::new(move |cc| Ok(Box::new(RaylabApp::new(cc, options)?))),
+    )
+}
+
+/// The image size for a scene at a resolution scale.
+fn render_size(scene: &Scene, resolution: f32) -> (u32, u32) {
+    let side = |v: u32| ((v as f32 * resolution).round() as u32).max(1);
+    (side(scene.width), side(scene.height))
+}
+
+/// The parameters after the scene's defaults change from `old` to `new`: a parameter the
+/// user left at the old default takes the new one; one the user changed stays.
+fn merge_defaults(current: &Params, old: &Params, new: &Params) -> Params {
+    let json = |p: &Params| {
+        serde_json::to_value(p)
+            .ok()
+            .and_then(|v| v.as_object().cloned())
+            .unwrap_or_default()
+    };
+    let (cur, old, new) = (json(current), json(old), json(new));
+    let merged: serde_json::Map<String, serde_json::Value> = cur
+        .iter()
+        .map(|(k, v)| {
+            let v = if old.get(k) == Some(v) {
+                new.get(k).unwrap_or(v)
+            } else {
+                v
+            };
+            (k.clone(), v.clone())
+        })
+        .collect();
+    serde_json::from_value(serde_json::Value::Object(merged)).unwrap_or_else(|_| current.clone())
+}
+
+impl RaylabApp {
+    /// Builds the app: opens the scene (or the remembered one), starts the engine.
+    pub fn new(cc: &eframe::CreationContext<'_>, options: AppOptions) -> Result<Self, EngineError> {
+        let remembered: Option<Persisted> = if options.persist {
+            cc.storage.and_then(|s| eframe::get_value(s, STORAGE_KEY))
+        } else {
+            None
+        };
+        let mut error = None;
+        let wanted = options
+            .scene
+            .clone()
+            .or_else(|| remembered.as_ref().map(|r| r.scene.clone()));
+        let scene = match wanted.as_deref().map(Scene::load) {
+            Some(Ok(scene)) => scene,
+            Some(Err(e)) => {
+                error = Some(e.to_string());
+                BUILTIN_SCENES[0]
+                    .load()
+                    .unwrap_or_else(|_| unreachable_default())
+            }
+            None => BUILTIN_SCENES[0]
+                .load()
+                .unwrap_or_else(|_| unreachable_default()),
+        };
+        let scene = Arc::new(scene);
+        // The remembered parameters belong to the remembered scene only.
+        let (params, camera, resolution, unlimited) = match remembered {
+            Some(r) if r.scene == scene.source.reference() && r.params.validate().is_ok() => (
+                r.params,
+                r.camera,
+                r.resolution.clamp(0.1, 4.0),
+                r.unlimited,
+            ),
+            _ => (scene.params.clone(), scene.camera.clone(), 1.0, false),
+        };
+        let (w, h) = render_size(&scene, resolution);
+        let ctx = cc.egui_ctx.clone();
+        let config = options
+            .threads
+            .map_or_else(EngineConfig::with_ui, |threads| EngineConfig { threads });
+        let mut engine = Engine::new(
+            Arc::clone(&scene),
+            params.clone(),
+            w,
+            h,
+            config,
+            move || ctx.request_repaint(),
+        )?;
+        if camera != scene.camera {
+            engine.set_camera(camera.clone());
+        }
+        if unlimited {
+            engine.set_unlimited(true);
+        }
+        let close_at = options.close_after.map(|d| Instant::now() + d);
+        let mut app = RaylabApp {
+            options,
+            engine,
+            sent_camera: camera.clone(),
+            camera,
+            params,
+            unlimited,
+            paused: false,
+            resolution,
+            frame: None,
+            texture: None,
+            texture_stale: false,
+            shown_exposure: 0.0,
+            view: ViewState::default(),
+            click_to_focus: false,
+            error,
+            toasts: Vec::new(),
+            dialog: None,
+            loads: crossbeam_channel::unbounded(),
+            loading: 0,
+            watched: None,
+            last_poll: Instant::now(),
+            close_at,
+            scene,
+        };
+        app.watch_scene_file();
+        Ok(app)
+    }
+
+    /// The scene shown.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The parameters the controls hold.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The engine (for its parameters and generation).
+    pub fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    /// The last scene error shown, if any.
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    /// The newest frame received.
+    pub fn latest_frame(&self) -> Option<&Frame> {
+        self.frame.as_ref()
+    }
+
+    /// The messages shown at the bottom right.
+    pub fn toasts(&self) -> Vec<String> {
+        self.toasts.iter().map(|t| t.text.clone()).collect()
+    }
+
+    /// Whether a scene is loading.
+    pub fn is_loading(&self) -> bool {
+        self.loading > 0
+    }
+
+    fn toast(&mut self, text: impl Into<String>, error: bool) {
+        self.toasts.push(Toast {
+            text: text.into(),
+            error,
+            until: Instant::now() + Duration::from_secs(if error { 8 } else { 4 }),
+        });
+    }
+
+    /// Loads a scene file, built-in name or OBJ file on a thread of its own.
+    pub fn open_scene(&mut self, reference: &str) {
+        self.load(reference.to_string(), LoadPurpose::Open);
+    }
+
+    fn load(&mut self, reference: String, purpose: LoadPurpose) {
+        let tx = self.loads.0.clone();
+        self.loading += 1;
+        std::thread::spawn(move || {
+            let result = Scene::load(&reference);
+            let _ = tx.send(Loaded { purpose, result });
+        });
+    }
+
+    fn watch_scene_file(&mut self) {
+        self.watched = match &self.scene.source {
+            SceneSource::File(path) => Some((path.clone(), modified(path))),
+            _ => None,
+        };
+    }
+
+    fn receive_scenes(&mut self) {
+        while let Ok(loaded) = self.loads.1.try_recv() {
+            self.loading = self.loading.saturating_sub(1);
+            match loaded.result {
+                Ok(scene) => {
+                    let scene = Arc::new(scene);
+                    self.params = match loaded.purpose {
+                        LoadPurpose::Open => scene.params.clone(),
+                        LoadPurpose::Reload => {
+                            merge_defaults(&self.params, &self.scene.params, &scene.params)
+                        }
+                    };
+                    let keep_camera =
+                        loaded.purpose == LoadPurpose::Reload && self.camera != self.scene.camera;
+                    if !keep_camera {
+                        self.camera = scene.camera.clone();
+                    }
+                    self.sent_camera = scene.camera.clone();
+                    let verb = if loaded.purpose == LoadPurpose::Open {
+                        "Opened"
+                    } else {
+                        "Reloaded"
+                    };
+                    let text = format!("{verb} {}", scene.name);
+                    self.engine.set_scene(Arc::clone(&scene));
+                    let (w, h) = render_size(&scene, self.resolution);
+                    self.engine.resize(w, h);
+                    self.scene = scene;
+                    self.error = None;
+                    self.view.fit();
+                    self.watch_scene_file();
+                    self.toast(text, false);
+                }
+                Err(e) => {
+                    // The scene shown stays; the message says what is wrong and where.
+                    self.error = Some(e.to_string());
+                    self.toast("The scene has an error: see above the image", true);
+                }
+            }
+        }
+    }
+
+    fn poll_scene_file(&mut self) {
+        if self.last_poll.elapsed() < Duration::from_millis(500) {
+            return;
+        }
+        self.last_poll = Instant::now();
+        if let Some((path, seen)) = &mut self.watched {
+            let now = modified(path);
+            if now != *seen {
+                *seen = now;
+                let reference = path.display().to_string();
+                self.load(reference, LoadPurpose::Reload);
+            }
+        }
+    }
+
+    fn receive_frames(&mut self) {
+        if let Some(frame) = self.engine.frames().try_iter().last() {
+            self.paused = frame.progress.paused;
+            self.frame = Some(frame);
+            self.texture_stale = true;
+        }
+    }
+
+    fn upload_texture(&mut self, ctx: &egui::Context) {
+        if self.params.exposure != self.shown_exposure {
+            self.texture_stale = true;
+        }
+        let Some(frame) = &self.frame else { return };
+        if !self.texture_stale {
+            return;
+        }
+        let rgba = to_srgba8(&frame.pixels, self.params.exposure);
+        let image = egui::ColorImage::from_rgba_unmultiplied(
+            [frame.width as usize, frame.height as usize],
+            &rgba,
+        );
+        // Sharp pixels when zoomed in for pixel-peeping, smooth when fitted smaller.
+        let options = egui::TextureOptions {
+            magnification: egui::TextureFilter::Nearest,
+            minification: egui::TextureFilter::Linear,
+            ..Default::default()
+        };
+        match &mut self.texture {
+            Some(t) => t.set(image, options),
+            None => self.texture = Some(ctx.load_texture("raylab-image", image, options)),
+        }
+        self.shown_exposure = self.params.exposure;
+        self.texture_stale = false;
+    }
+
+    /// Sends what the controls changed to the engine.
+    fn sync_engine(&mut self) {
+        if self.params.validate().is_err() {
+            return;
+        }
+        if &self.params != self.engine.params() {
+            self.engine.set_params(self.params.clone());
+        }
+        if self.camera != self.sent_camera {
+            self.engine.set_camera(self.camera.clone());
+            self.sent_camera = self.camera.clone();
+        }
+        let size = render_size(&self.scene, self.resolution);
+        if self
+            .frame
+            .as_ref()
+            .is_some_and(|f| (f.width, f.height) != size)
+            && self
+                .frame
+                .as_ref()
+                .is_some_and(|f| f.generation == self.engine.generation())
+        {
+            self.engine.resize(size.0, size.1);
+        }
+    }
+
+    fn toggle_pause(&mut self) {
+        if self.paused {
+            self.engine.resume();
+        } else {
+            self.engine.pause();
+        }
+        self.paused = !self.paused;
+    }
+
+    /// Parameters and camera back to the scene's.
+    pub fn reset_to_defaults(&mut self) {
+        self.params = self.scene.params.clone();
+        self.camera = self.scene.camera.clone();
+        self.view.fit();
+    }
+
+    /// Writes the newest full frame to `path` (PNG or EXR) with its sidecar.
+    pub fn save_to(&mut self, path: &Path) -> Result<PathBuf, String> {
+        let Some(frame) = self.frame.as_ref().filter(|f| !f.preview) else {
+            return Err("Nothing to save yet: wait for the first pass".into());
+        };
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        // The frame's own parameters: those the engine rendered it with.
+        let params = self.engine.params().clone();
+        write_image(
+            path,
+            frame.width,
+            frame.height,
+            &frame.pixels,
+            self.params.exposure,
+        )
+        .map_err(|e| e.to_string())?;
+        let spp = frame.progress.spp;
+        let sidecar = Sidecar {
+            raylab_version: crate::VERSION.to_string(),
+            scene: self.scene.source.reference(),
+            width: frame.width,
+            height: frame.height,
+            params: Params {
+                exposure: self.params.exposure,
+                ..params.clone()
+            },
+            samples: (spp != params.spp).then_some(spp),
+            camera: (self.sent_camera != self.scene.camera).then(|| self.sent_camera.clone()),
+            image: path.file_name().map(|n| n.to_string_lossy().into_owned()),
+            seconds: Some(frame.progress.elapsed.as_secs_f64()),
+            stats: Some(frame.progress.stats),
+        };
+        let json = sidecar_path(path);
+        sidecar.write(&json).map_err(|e| e.to_string())?;
+        Ok(path.to_path_buf())
+    }
+
+    /// Ctrl+S: `screenshots/<scene>-<timestamp>.png` and its sidecar.
+    pub fn save_snapshot(&mut self) {
+        let path = snapshot_path(
+            &self.options.snapshot_dir,
+            &self.scene.name,
+            SystemTime::now(),
+        );
+        self.report_save(&path);
+    }
+
+    fn report_save(&mut self, path: &Path) {
+        match self.save_to(path) {
+            Ok(p) => {
+                let text = format!("Saved {} and {}", p.display(), sidecar_path(&p).display());
+                self.toast(text, false);
+            }
+            Err(e) => self.toast(format!("Not saved: {e}"), true),
+        }
+    }
+
+    fn shortcuts(&mut self, ctx: &egui::Context) {
+        let (save, open) = ctx.input_mut(|i| {
+            (
+                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::S)),
+                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::O)),
+            )
+        });
+        if save {
+            self.save_snapshot();
+        }
+        if open {
+            self.open_dialog();
+        }
+        if ctx.egui_wants_keyboard_input() || self.dialog.is_some() {
+            return;
+        }
+        let (space, r, f, one) = ctx.input(|i| {
+            let plain = i.modifiers.is_none();
+            (
+                plain && i.key_pressed(Key::Space),
+                plain && i.key_pressed(Key::R),
+                plain && i.key_pressed(Key::F),
+                plain && i.key_pressed(Key::Num1),
+            )
+        });
+        if space {
+            self.toggle_pause();
+        }
+        if r {
+            self.engine.restart_now();
+        }
+        if f {
+            self.view.fit();
+        }
+        if one {
+            self.view.one_to_one(ctx.pixels_per_point());
+        }
+    }
+
+    fn open_dialog(&mut self) {
+        let dir = std::env::current_dir().map_or(self.options.scenes_dir.clone(), |d| {
+            d.join(&self.options.scenes_dir)
+        });
+        let dir = if dir.is_dir() {
+            dir
+        } else {
+            std::env::current_dir().unwrap_or_default()
+        };
+        self.dialog = Some(FileDialog::new(Purpose::Open, dir, String::new()));
+    }
+
+    fn save_as_dialog(&mut self) {
+        let dir = &self.options.snapshot_dir;
+        let dir = if dir.is_dir() {
+            dir.clone()
+        } else {
+            std::env::current_dir().unwrap_or_default()
+        };
+        let name = snapshot_path(&dir, &self.scene.name, SystemTime::now())
+            .file_name()
+            .map_or("image.png".into(), |n| n.to_string_lossy().into_owned());
+        self.dialog = Some(FileDialog::new(Purpose::SaveAs, dir, name));
+    }
+
+    fn dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .collect()
+        });
+        for path in dropped {
+            let ext = path
+                .extension()
+                .map(|e| e.to_string_lossy().to_ascii_lowercase());
+            if matches!(ext.as_deref(), Some("toml") | Some("obj")) {
+                self.open_scene(&path.display().to_string());
+            } else {
+                self.toast(
+                    format!(
+                        "{}: drop a scene (.toml) or mesh (.obj) file",
+                        path.display()
+                    ),
+                    true,
+                );
+            }
+        }
+    }
+
+    fn toolbar_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            let current = self.scene.source.reference();
+            let mut chosen = None;
+            egui::ComboBox::from_id_salt("scene-picker")
+                .selected_text(format!("Scene: {}", self.scene.name))
+                .width(220.0)
+                .show_ui(ui, |ui| {
+                    for b in BUILTIN_SCENES {
+                        let reference = format!("builtin:{}", b.name);
+                        if ui.selectable_label(current == reference, b.name).on_hover_text(b.description()).clicked() {
+                            chosen = Some(reference);
+                        }
+                    }
+                    ui.separator();
+                    for path in scene_files(&self.options.scenes_dir) {
+                        let label = path.display().to_string();
+                        if ui.selectable_label(false, &label).clicked() {
+                            chosen = Some(label);
+                        }
+                    }
+                    ui.separator();
+                    if ui.selectable_label(false, "Open…").clicked() {
+                        chosen = Some(String::new());
+                    }
+                })
+                .response
+                .on_hover_text("Built-in scenes, the files in scenes/, or Open… (Ctrl+O). You can also drop a .toml or .obj file on the window.");
+            match chosen {
+                Some(r) if r.is_empty() => self.open_dialog(),
+                Some(r) => self.open_scene(&r),
+                None => {}
+            }
+            if self.loading > 0 {
+                ui.spinner();
+            }
+            ui.separator();
+            let pause = if self.paused { "Resume" } else { "Pause" };
+            if ui.button(pause).on_hover_text("Pause or resume refining (Space).").clicked() {
+                self.toggle_pause();
+            }
+            if ui.button("⟲ Restart").on_hover_text("Start refining again from the first sample (R).").clicked() {
+                self.engine.restart_now();
+            }
+            if ui.button("Reset").on_hover_text("Every parameter and the camera back to the scene's defaults.").clicked() {
+                self.reset_to_defaults();
+            }
+            ui.separator();
+            if ui.button("Save snapshot").on_hover_text("Save the image and its parameters to screenshots/ (Ctrl+S).").clicked() {
+                self.save_snapshot();
+            }
+            if ui.button("Save as…").on_hover_text("Choose where, and PNG or EXR.").clicked() {
+                self.save_as_dialog();
+            }
+            ui.separator();
+            if ui.button("Fit").on_hover_text("Fit the image to the window (F).").clicked() {
+                self.view.fit();
+            }
+            if ui.button("1:1").on_hover_text("One image pixel per screen pixel (1).").clicked() {
+                self.view.one_to_one(ui.ctx().pixels_per_point());
+            }
+        });
+    }
+
+    fn status_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            let Some(f) = &self.frame else {
+                ui.label("starting…");
+                return;
+            };
+            let p = &f.progress;
+            let (fraction, text) = match p.target {
+                Some(t) => (p.spp as f32 / t.max(1) as f32, format!("{} / {} spp", p.spp, t)),
+                None => (1.0, format!("{} spp (no limit)", p.spp)),
+            };
+            ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(text).desired_width(220.0))
+                .on_hover_text("Samples per pixel done, of the target.");
+            ui.separator();
+            ui.label(format!("{:.2} M rays/s", p.rays_per_second / 1e6));
+            ui.separator();
+            ui.label(format!("{:.1} s", p.elapsed.as_secs_f32())).on_hover_text("Time since the image started.");
+            if let Some(eta) = p.eta.filter(|_| !p.done()) {
+                ui.separator();
+                ui.label(format!("{:.1} s left", eta.as_secs_f32()));
+            }
+            if let Some(noise) = p.noise {
+                ui.separator();
+                let converged = if noise < 0.005 { " (converged)" } else { "" };
+                ui.label(format!("noise {:.2}%{converged}", noise * 100.0))
+                    .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of the even and odd samples' means.");
+            }
+            if self.paused {
+                ui.separator();
+                ui.label(RichText::new("paused").strong());
+            }
+            ui.separator();
+            ui.label(format!("{}×{}", f.width, f.height));
+        });
+    }
+
+    fn image_panel_ui(&mut self, ui: &mut egui::Ui) {
+        if let Some(e) = self.error.clone() {
+            egui::Frame::new()
+                .fill(Color32::from_rgb(110, 24, 24))
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        ui.label(RichText::new("⚠").color(Color32::WHITE));
+                        ui.label(RichText::new(&e).color(Color32::WHITE).monospace());
+                        if ui.small_button("✕").on_hover_text("Dismiss").clicked() {
+                            self.error = None;
+                        }
+                    });
+                });
+        }
+        let size = self
+            .frame
+            .as_ref()
+            .map_or(render_size(&self.scene, self.resolution), |f| {
+                (f.width, f.height)
+            });
+        let events = image_ui(ui, &mut self.view, self.texture.as_ref(), size);
+        for event in events {
+            match event {
+                ViewEvent::Click(film) if self.click_to_focus => {
+                    let aspect = size.0 as f32 / size.1 as f32;
+                    match pick(
+                        &self.scene,
+                        &self.camera,
+                        aspect,
+                        glam::Vec2::new(film.x, film.y),
+                    ) {
+                        Some(hit) => {
+                            self.params.focus_distance = Some(hit.depth.max(0.01));
+                            let name = self.scene.object_names[hit.object as usize].clone();
+                            self.toast(format!("Focused on {name} at {:.2}", hit.depth), false);
+                        }
+                        None => self.toast("Nothing there to focus on", true),
+                    }
+                    self.click_to_focus = false;
+                }
+                ViewEvent::Click(_) => {}
+                ViewEvent::Orbit(delta) => orbit(&mut self.camera, delta),
+                ViewEvent::Dolly(amount) => dolly(&mut self.camera, amount),
+            }
+        }
+    }
+
+    fn dialog_ui(&mut self, ctx: &egui::Context) {
+        let Some(dialog) = &mut self.dialog else {
+            return;
+        };
+        let purpose = dialog.purpose;
+        match dialog.ui(ctx) {
+            Choice::Pending => {}
+            Choice::Cancelled => self.dialog = None,
+            Choice::File(path) => {
+                self.dialog = None;
+                match purpose {
+                    Purpose::Open => self.open_scene(&path.display().to_string()),
+                    Purpose::SaveAs => self.report_save(&path),
+                }
+            }
+        }
+    }
+
+    fn toasts_ui(&mut self, ctx: &egui::Context) {
+        let now = Instant::now();
+        self.toasts.retain(|t| t.until > now);
+        if self.toasts.is_empty() {
+            return;
+        }
+        egui::Area::new(egui::Id::unique("raylab-toasts"))
+            .anchor(egui::Align2::RIGHT_BOTTOM, [-12.0, -36.0])
+            .order(egui::Order::Foreground)
+            .interactable(false)
+            .show(ctx, |ui| {
+                for t in &self.toasts {
+                    let fill = if t.error {
+                        Color32::from_rgb(130, 30, 30)
+                    } else {
+                        Color32::from_rgb(30, 70, 40)
+                    };
+                    egui::Frame::new()
+                        .fill(fill)
+                        .corner_radius(4.0)
+                        .inner_margin(8.0)
+                        .show(ui, |ui| {
+                            ui.label(RichText::new(&t.text).color(Color32::WHITE));
+                        });
+                }
+            });
+        ctx.request_repaint_after(Duration::from_millis(250));
+    }
+}
+
+/// Turns the camera about its target: horizontal drag about the up axis, vertical about
+/// the camera's right axis (stopping short of the poles).
+fn orbit(camera: &mut Camera, delta: egui::Vec2) {
+    let offset = camera.position - camera.look_at;
+    let up = camera.up.normalize();
+    let yaw = glam::Quat::from_axis_angle(up.into(), -delta.x * 0.005);
+    let mut offset: crate::math::Vec3 = yaw * offset;
+    let right = offset.cross(up).normalize_or_zero();
+    let pitched: crate::math::Vec3 =
+        glam::Quat::from_axis_angle(right.into(), delta.y * 0.005) * offset;
+    if pitched.normalize().dot(up).abs() < 0.995 {
+        offset = pitched;
+    }
+    camera.position = camera.look_at + offset;
+}
+
+/// Moves the camera towards its target (positive) or away, by a factor per wheel step.
+fn dolly(camera: &mut Camera, amount: f32) {
+    let offset = camera.position - camera.look_at;
+    let scale = (-amount * 0.002).exp().clamp(0.5, 2.0);
+    let new = offset * scale;
+    if new.length() > 1e-3 {
+        camera.position = camera.look_at + new;
+    }
+}
+
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
+
+/// The scene files in `dir`, sorted.
+fn scene_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|d| {
+            d.flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+}
+
+/// The built-in default scene is compiled in and tested; failing to parse it is a bug.
+fn unreachable_default() -> Scene {
+    panic!("the built-in default scene does not load: a build error")
+}
+
+impl eframe::App for RaylabApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.receive_frames();
+        self.receive_scenes();
+        self.poll_scene_file();
+        self.dropped_files(&ctx);
+        self.shortcuts(&ctx);
+        self.upload_texture(&ctx);
+
+        Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
+        Panel::bottom("status").show(ui, |ui| self.status_ui(ui));
+        Panel::left("controls")
+            .resizable(true)
+            .default_size(320.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let mut controls = Controls {
+                        params: &mut self.params,
+                        camera: &mut self.camera,
+                        unlimited: &mut self.unlimited,
+                        click_to_focus: &mut self.click_to_focus,
+                        resolution: &mut self.resolution,
+                        scene: &self.scene,
+                    };
+                    let unlimited = *controls.unlimited;
+                    controls_ui(ui, &mut controls);
+                    if self.unlimited != unlimited {
+                        self.engine.set_unlimited(self.unlimited);
+                    }
+                });
+            });
+        CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
+        self.dialog_ui(&ctx);
+        self.toasts_ui(&ctx);
+        self.sync_engine();
+        if self.params.exposure != self.shown_exposure {
+            ctx.request_repaint();
+        }
+
+        // Keep polling the scene file for changes while the window is idle.
+        ctx.request_repaint_after(Duration::from_millis(500));
+        if self.close_at.is_some_and(|t| Instant::now() >= t) {
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        if !self.options.persist {
+            return;
+        }
+        let state = Persisted {
+            scene: self.scene.source.reference(),
+            params: self.params.clone(),
+            camera: self.camera.clone(),
+            resolution: self.resolution,
+            unlimited: self.unlimited,
+        };
+        eframe::set_value(storage, STORAGE_KEY, &state);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reload_keeps_what_the_user_changed_and_takes_new_defaults() {
+        let old = Params::default();
+        let new = Params {
+            spp: 64,
+            max_depth: 3,
+            ..Params::default()
+        };
+        let current = Params {
+            max_depth: 12,
+            ..Params::default()
+        };
+        let merged = merge_defaults(&current, &old, &new);
+        assert_eq!(merged.spp, 64, "left at the old default: takes the new one");
+        assert_eq!(merged.max_depth, 12, "changed by the user: kept");
+    }
+
+    #[test]
+    fn orbit_keeps_the_distance_and_dolly_changes_it() {
+        let mut c = Camera::looking_at(
+            crate::math::Vec3::new(0.0, 1.0, 5.0),
+            crate::math::Vec3::ZERO,
+            crate::math::Vec3::Y,
+            40.0,
+        );
+        let d = c.look_distance();
+        orbit(&mut c, egui::vec2(120.0, -40.0));
+        assert!((c.look_distance() - d).abs() < 1e-4);
+        assert!(c.position.x.abs() > 0.1);
+        dolly(&mut c, 100.0);
+        assert!(c.look_distance() < d);
+    }
+}
