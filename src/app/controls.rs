@@ -89,7 +89,7 @@ pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 }
             }
             if ui
-                .add_enabled(p.ior.is_some(), egui::Button::new("Scene"))
+                .add_enabled(p.ior.is_some(), egui::Button::new("Scene IOR"))
                 .on_hover_text("Each material's own index of refraction, as in the scene file.")
                 .clicked()
             {
@@ -183,7 +183,7 @@ pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         {
             p.phong_exponent = Some(n);
         }
-        if ui.add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene")).on_hover_text("Each glossy material's own exponent.").clicked() {
+        if ui.add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene n")).on_hover_text("Each glossy material's own exponent.").clicked() {
             p.phong_exponent = None;
         }
     });

@@ -102,10 +102,7 @@ impl FileDialog {
             ui.set_width(520.0);
             ui.heading(title);
             ui.horizontal(|ui| {
-                if ui
-                    .button("⬆ Up")
-                    .on_hover_text("The parent folder")
-                    .clicked()
+                if ui.button("Up").on_hover_text("The parent folder").clicked()
                     && let Some(parent) = self.dir.parent()
                 {
                     self.enter(parent.to_path_buf());
@@ -121,9 +118,9 @@ impl FileDialog {
                     let mut go = None;
                     for (name, is_dir) in &self.entries {
                         let label = if *is_dir {
-                            format!("📁 {name}")
+                            format!("{name}/")
                         } else {
-                            format!("📄 {name}")
+                            name.clone()
                         };
                         let selected = !*is_dir && *name == self.name;
                         let r = ui.selectable_label(selected, label);

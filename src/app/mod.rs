@@ -111,7 +111,11 @@ pub struct RaylabApp {
     dialog: Option<FileDialog>,
     loads: (Sender<Loaded>, Receiver<Loaded>),
     loading: usize,
-    watched: Option<(PathBuf, Option<SystemTime>)>,
+    // The scene file to reload when it changes, when it was last seen to change, and
+    // whether it is the scene shown (reload) or one that failed to open (open again).
+    watched: Option<(PathBuf, Option<SystemTime>, LoadPurpose)>,
+    // The file of the last Open, to watch if it fails.
+    opening: Option<PathBuf>,
     last_poll: Instant,
     close_at: Option<Instant>,
 }
@@ -241,6 +245,7 @@ impl RaylabApp {
             loads: crossbeam_channel::unbounded(),
             loading: 0,
             watched: None,
+            opening: None,
             last_poll: Instant::now(),
             close_at,
             scene,
@@ -298,6 +303,9 @@ impl RaylabApp {
     }
 
     fn load(&mut self, reference: String, purpose: LoadPurpose) {
+        if purpose == LoadPurpose::Open {
+            self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
+        }
         let tx = self.loads.0.clone();
         self.loading += 1;
         std::thread::spawn(move || {
@@ -308,7 +316,7 @@ impl RaylabApp {
 
     fn watch_scene_file(&mut self) {
         self.watched = match &self.scene.source {
-            SceneSource::File(path) => Some((path.clone(), modified(path))),
+            SceneSource::File(path) => Some((path.clone(), modified(path), LoadPurpose::Reload)),
             _ => None,
         };
     }
@@ -347,7 +355,13 @@ impl RaylabApp {
                     self.toast(text, false);
                 }
                 Err(e) => {
-                    // The scene shown stays; the message says what is wrong and where.
+                    // The scene shown stays; the message says what is wrong and where. A
+                    // file that failed to open is watched: fixing it opens it.
+                    if loaded.purpose == LoadPurpose::Open
+                        && let Some(path) = self.opening.take()
+                    {
+                        self.watched = Some((path.clone(), modified(&path), LoadPurpose::Open));
+                    }
                     self.error = Some(e.to_string());
                     self.toast("The scene has an error: see above the image", true);
                 }
@@ -360,12 +374,12 @@ impl RaylabApp {
             return;
         }
         self.last_poll = Instant::now();
-        if let Some((path, seen)) = &mut self.watched {
+        if let Some((path, seen, purpose)) = &mut self.watched {
             let now = modified(path);
             if now != *seen {
                 *seen = now;
-                let reference = path.display().to_string();
-                self.load(reference, LoadPurpose::Reload);
+                let (reference, purpose) = (path.display().to_string(), *purpose);
+                self.load(reference, purpose);
             }
         }
     }
@@ -600,9 +614,10 @@ impl RaylabApp {
         ui.horizontal(|ui| {
             let current = self.scene.source.reference();
             let mut chosen = None;
-            egui::ComboBox::from_id_salt("scene-picker")
-                .selected_text(format!("Scene: {}", self.scene.name))
+            egui::ComboBox::from_label("Scene")
+                .selected_text(self.scene.name.as_str())
                 .width(220.0)
+                .height(560.0)
                 .show_ui(ui, |ui| {
                     for b in BUILTIN_SCENES {
                         let reference = format!("builtin:{}", b.name);
@@ -637,7 +652,7 @@ impl RaylabApp {
             if ui.button(pause).on_hover_text("Pause or resume refining (Space).").clicked() {
                 self.toggle_pause();
             }
-            if ui.button("⟲ Restart").on_hover_text("Start refining again from the first sample (R).").clicked() {
+            if ui.button("Restart").on_hover_text("Start refining again from the first sample (R).").clicked() {
                 self.engine.restart_now();
             }
             if ui.button("Reset").on_hover_text("Every parameter and the camera back to the scene's defaults.").clicked() {
@@ -703,9 +718,9 @@ impl RaylabApp {
                 .inner_margin(6.0)
                 .show(ui, |ui| {
                     ui.horizontal(|ui| {
-                        ui.label(RichText::new("⚠").color(Color32::WHITE));
+                        ui.label(RichText::new("Error:").color(Color32::WHITE).strong());
                         ui.label(RichText::new(&e).color(Color32::WHITE).monospace());
-                        if ui.small_button("✕").on_hover_text("Dismiss").clicked() {
+                        if ui.small_button("Dismiss").clicked() {
                             self.error = None;
                         }
                     });

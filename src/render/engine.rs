@@ -173,6 +173,7 @@ impl Engine {
             generation: 1,
             needs_preview: true,
             started: Instant::now(),
+            finished: None,
             pass_time: Duration::ZERO,
             passes: 0,
             stats: Stats::default(),
@@ -345,6 +346,8 @@ struct Controller {
     generation: u64,
     needs_preview: bool,
     started: Instant,
+    // How long the generation took to reach its target, once it has.
+    finished: Option<Duration>,
     // Time and count of the full passes of this generation.
     pass_time: Duration,
     passes: u32,
@@ -430,6 +433,7 @@ impl Controller {
             }
             Command::Unlimited(u) => {
                 self.unlimited = u;
+                self.finished = self.target_reached().then(|| self.started.elapsed());
                 self.send_frame(false);
                 false
             }
@@ -444,6 +448,7 @@ impl Controller {
             self.film.clear();
             self.needs_preview = true;
             self.started = Instant::now();
+            self.finished = None;
             self.pass_time = Duration::ZERO;
             self.passes = 0;
             self.stats = Stats::default();
@@ -529,6 +534,9 @@ impl Controller {
             self.pass_time += start.elapsed();
             self.passes += 1;
             self.stats += stats;
+            if self.target_reached() {
+                self.finished = Some(self.started.elapsed());
+            }
             self.send_frame(false);
         }
     }
@@ -547,7 +555,7 @@ impl Controller {
         Progress {
             spp,
             target,
-            elapsed: self.started.elapsed(),
+            elapsed: self.finished.unwrap_or_else(|| self.started.elapsed()),
             rays_per_second: if secs > 0.0 {
                 pass_rays as f64 / secs
             } else {

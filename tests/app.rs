@@ -1,0 +1,258 @@
+//! The previewer window, driven through its accessibility tree as a user would: by the
+//! labels of its controls (egui_kittest, no display needed).
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raylab::app::{AppOptions, RaylabApp};
+use raylab::optics::FresnelMode;
+use raylab::render::Sidecar;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
+    let options = AppOptions {
+        scene: Some(scene.to_string()),
+        snapshot_dir: snapshots.to_path_buf(),
+        threads: Some(1),
+        persist: false,
+        ..Default::default()
+    };
+    Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| RaylabApp::new(cc, options.clone()).expect("the engine starts"))
+}
+
+/// Steps the UI until `done` holds, with the workers rendering in between.
+fn step_until(h: &mut Harness<'static, RaylabApp>, what: &str, done: impl Fn(&RaylabApp) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while !done(h.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.step();
+}
+
+#[test]
+fn moving_the_ior_slider_sets_the_engines_ior_and_restarts_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    step_until(&mut h, "the first frame", |a| a.latest_frame().is_some());
+    let before = h.state().engine().generation();
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(2.0);
+    h.step();
+    h.step();
+    assert_eq!(h.state().engine().params().ior, Some(2.0));
+    assert!(h.state().engine().generation() > before, "a new generation");
+    // The preset buttons set it too, and Scene gives each material its own back.
+    h.get_by_label("Water").click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().engine().params().ior, Some(1.33));
+    h.get_by_label("Scene IOR").click();
+    h.step();
+    h.step();
+    assert_eq!(h.state().engine().params().ior, None);
+    // The frames that follow belong to the new generation.
+    let generation = h.state().engine().generation();
+    step_until(&mut h, "a frame of the new generation", |a| {
+        a.latest_frame().is_some_and(|f| f.generation == generation)
+    });
+}
+
+#[test]
+fn switching_the_fresnel_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glazed", dir.path());
+    h.step();
+    assert_eq!(h.state().engine().params().fresnel, None);
+    h.get_by_role_and_label(Role::ComboBox, "Fresnel").click();
+    h.run_steps(3);
+    h.get_by_label("Schlick").click();
+    h.step();
+    h.step();
+    assert_eq!(
+        h.state().engine().params().fresnel,
+        Some(FresnelMode::Schlick)
+    );
+    h.get_by_role_and_label(Role::ComboBox, "Fresnel").click();
+    h.run_steps(3);
+    h.get_by_label("constant k").click();
+    h.step();
+    h.step();
+    assert_eq!(
+        h.state().engine().params().fresnel,
+        Some(FresnelMode::Constant)
+    );
+}
+
+#[test]
+fn save_writes_the_png_and_a_sidecar_with_the_right_parameters() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.get_by_role_and_label(Role::Slider, "Max depth")
+        .set_value_accesskit(3.0);
+    h.step();
+    let generation = h.state().engine().generation();
+    step_until(&mut h, "the finished image", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.generation == generation && f.progress.done())
+    });
+    h.get_by_label("Save snapshot").click();
+    h.step();
+    let files: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    let png = files
+        .iter()
+        .find(|p| p.extension().is_some_and(|e| e == "png"))
+        .expect("a PNG");
+    assert!(
+        png.file_name()
+            .unwrap()
+            .to_string_lossy()
+            .starts_with("default-")
+    );
+    let sidecar = Sidecar::read(&png.with_extension("json")).unwrap();
+    assert_eq!(sidecar.scene, "builtin:default");
+    assert_eq!(sidecar.params.max_depth, 3);
+    assert_eq!(&sidecar.params, h.state().engine().params());
+    assert_eq!((sidecar.width, sidecar.height), (960, 540));
+    assert!(h.state().toasts().iter().any(|t| t.starts_with("Saved")));
+    let img = image::open(png).unwrap();
+    assert_eq!((img.width(), img.height()), (960, 540));
+}
+
+#[test]
+fn a_failed_save_says_so_and_keeps_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    // A file where the snapshot folder should be: nothing can be written there.
+    let blocked = dir.path().join("not-a-folder");
+    std::fs::write(&blocked, b"").unwrap();
+    let mut h = app("default", &blocked);
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.preview)
+    });
+    h.get_by_label("Save snapshot").click();
+    h.step();
+    assert!(
+        h.state()
+            .toasts()
+            .iter()
+            .any(|t| t.starts_with("Not saved")),
+        "{:?}",
+        h.state().toasts()
+    );
+    assert!(h.state().latest_frame().is_some());
+}
+
+#[test]
+fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[sphere]]\ncenter = [0, 1, 0]\nradius = -2\n").unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.state_mut().open_scene(bad.to_str().unwrap());
+    step_until(&mut h, "the load to finish", |a| !a.is_loading());
+    let error = h.state().error().expect("an error").to_string();
+    assert!(
+        error.ends_with("bad.toml:6:10: must be greater than 0, got -2"),
+        "{error}"
+    );
+    // Shown in the window, and the old scene still there.
+    h.get_by_label(&error);
+    assert_eq!(h.state().scene().name, "default");
+    // Fixing the file opens it (the failed file is watched).
+    std::thread::sleep(Duration::from_millis(1100));
+    std::fs::write(&bad, "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[sphere]]\ncenter = [0, 1, 0]\nradius = 2\n").unwrap();
+    step_until(&mut h, "the fixed scene", |a| a.scene().name == "bad");
+    assert_eq!(h.state().error(), None);
+}
+
+#[test]
+fn space_pauses_and_reset_restores_the_scene_defaults() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.preview)
+    });
+    h.key_press(egui::Key::Space);
+    h.step();
+    step_until(&mut h, "the pause", |a| {
+        a.latest_frame().is_some_and(|f| f.progress.paused)
+    });
+    h.get_by_label("Resume");
+    // The section is folded at first: open it, as a user would.
+    h.get_by_label("Soft shadows").click();
+    h.step();
+    h.get_by_role_and_label(Role::Slider, "Light size")
+        .set_value_accesskit(3.0);
+    h.step();
+    assert_eq!(h.state().params().light_size, 3.0);
+    h.get_by_label("Reset").click();
+    h.step();
+    assert_eq!(h.state().params(), &h.state().scene().params);
+}
+
+#[test]
+fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
+    // egui's test harness refuses to draw a glyph its fonts lack: showing every section,
+    // the tooltips with formulas, the dialogs and the scene list finds any.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glossy", dir.path());
+    h.step();
+    for section in ["Soft shadows", "Glossy reflection", "Motion blur"] {
+        h.get_by_label(section).click();
+        h.step();
+    }
+    for slider in [
+        "IOR",
+        "Min weight",
+        "Samples per pixel",
+        "Focus distance",
+        "Aperture",
+        "Light size",
+        "Phong exponent",
+        "Shutter interval",
+        "Exposure (stops)",
+        "Absorption ×",
+        "Max depth",
+    ] {
+        h.get_by_role_and_label(Role::Slider, slider).hover();
+        h.run_steps(40);
+    }
+    h.get_by_role_and_label(Role::ComboBox, "Fresnel").click();
+    h.run_steps(3);
+    for mode in ["exact (Fs, Fp)", "Schlick", "naive Schlick", "constant k"] {
+        h.get_by_label(mode).hover();
+        h.run_steps(40);
+    }
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::ComboBox, "Pattern").click();
+    h.run_steps(3);
+    h.get_by_label("jittered").hover();
+    h.run_steps(40);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    // The scene list, then Open… and Save as….
+    h.get_by_role_and_label(Role::ComboBox, "Scene").click();
+    h.run_steps(3);
+    h.get_by_label("Open…").scroll_to_me();
+    h.run_steps(3);
+    h.get_by_label("Open…").click();
+    h.run_steps(3);
+    h.get_by_label("Open a scene or OBJ file");
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+    h.get_by_label("Save as…").click();
+    h.run_steps(3);
+    h.get_by_label("Save the image as…");
+    h.get_by_label("Cancel").click();
+    h.run_steps(3);
+}
