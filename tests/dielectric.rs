@@ -10,7 +10,7 @@ use raylab::math::{Color, Ray, SampleStream, Vec3};
 use raylab::optics::FresnelMode;
 use raylab::params::{MAX_DEPTH, Params, TreeMode};
 use raylab::render::{Film, render};
-use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use raylab::scene::{Scene, SceneDesc};
 use raylab::tracer::{Media, Stats, Tracer};
 
 fn glass(ior: f32, absorption: Color) -> Material {
@@ -29,37 +29,13 @@ fn scene(
     background: Color,
     medium_ior: f32,
 ) -> Scene {
-    let (objects, materials) = objects
-        .into_iter()
-        .enumerate()
-        .map(|(i, (shape, m))| {
-            (
-                Object {
-                    name: format!("object {i}"),
-                    shape,
-                    material: i as u32,
-                },
-                (format!("material {i}"), m),
-            )
-        })
-        .unzip();
-    Scene::new(
-        SceneDesc {
-            name: "test".into(),
-            description: String::new(),
-            camera,
-            width: 32,
-            height: 32,
-            params: Params::default(),
-            materials,
-            objects,
-            lights: vec![],
-            ambient: Color::ZERO,
-            background: Background::Constant(background),
-            medium_ior,
-        },
-        SceneSource::Code,
-    )
+    let mut desc = SceneDesc::empty(camera);
+    for (i, (shape, material)) in objects.into_iter().enumerate() {
+        desc.add(format!("object {i}"), shape, material);
+    }
+    desc.background = Background::Constant(background);
+    desc.medium_ior = medium_ior;
+    desc.build()
 }
 
 fn sphere(center: Vec3, radius: f32) -> Shape {

@@ -4,44 +4,21 @@
 
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Quad, Shape, Sphere};
-use raylab::light::{Background, Light, LightShape};
+use raylab::light::{Light, LightShape};
 use raylab::material::{Material, Texture};
 use raylab::math::{Color, Pattern, Ray, SampleStream, Vec3};
 use raylab::params::Params;
 use raylab::render::{Film, render};
-use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use raylab::scene::{Scene, SceneDesc};
 use raylab::tracer::{Media, Stats, Tracer};
 
 fn scene(objects: Vec<(Shape, Material)>, lights: Vec<Light>, camera: Camera) -> Scene {
-    let (objects, materials) = objects
-        .into_iter()
-        .enumerate()
-        .map(|(i, (shape, m))| {
-            let object = Object {
-                name: format!("object {i}"),
-                shape,
-                material: i as u32,
-            };
-            (object, (format!("material {i}"), m))
-        })
-        .unzip();
-    Scene::new(
-        SceneDesc {
-            name: "test".into(),
-            description: String::new(),
-            camera,
-            width: 64,
-            height: 64,
-            params: Params::default(),
-            materials,
-            objects,
-            lights,
-            ambient: Color::ZERO,
-            background: Background::Constant(Color::ZERO),
-            medium_ior: 1.0,
-        },
-        SceneSource::Code,
-    )
+    let mut desc = SceneDesc::empty(camera);
+    for (i, (shape, material)) in objects.into_iter().enumerate() {
+        desc.add(format!("object {i}"), shape, material);
+    }
+    desc.lights = lights;
+    desc.build()
 }
 
 fn glow() -> Material {

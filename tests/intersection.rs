@@ -3,11 +3,9 @@
 
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Quad, Shape, Sphere};
-use raylab::light::Background;
 use raylab::material::{Material, Texture};
 use raylab::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
-use raylab::params::Params;
-use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use raylab::scene::{Scene, SceneDesc};
 
 /// Deterministic uniform numbers for tests.
 struct Rng(SampleStream);
@@ -36,39 +34,16 @@ impl Rng {
 }
 
 fn scene_of(shapes: Vec<Shape>) -> Scene {
-    let objects = shapes
-        .into_iter()
-        .enumerate()
-        .map(|(i, shape)| Object {
-            name: format!("object {i}"),
-            shape,
-            material: 0,
-        })
-        .collect();
-    Scene::new(
-        SceneDesc {
-            name: "test".into(),
-            description: String::new(),
-            camera: Camera::looking_at(Vec3::Z, Vec3::ZERO, Vec3::Y, 45.0),
-            width: 16,
-            height: 16,
-            params: Params::default(),
-            materials: vec![(
-                "grey".into(),
-                Material::Diffuse {
-                    albedo: Texture::Solid(Color::splat(0.5)),
-                    specular: Color::ZERO,
-                    exponent: 1.0,
-                },
-            )],
-            objects,
-            lights: vec![],
-            ambient: Color::ZERO,
-            background: Background::Constant(Color::ONE),
-            medium_ior: 1.0,
-        },
-        SceneSource::Code,
-    )
+    let mut desc = SceneDesc::empty(Camera::looking_at(Vec3::Z, Vec3::ZERO, Vec3::Y, 45.0));
+    let grey = Material::Diffuse {
+        albedo: Texture::Solid(Color::splat(0.5)),
+        specular: Color::ZERO,
+        exponent: 1.0,
+    };
+    for (i, shape) in shapes.into_iter().enumerate() {
+        desc.add(format!("object {i}"), shape, grey.clone());
+    }
+    desc.build()
 }
 
 /// A soup of random triangles in a box of side `size` around `center`.

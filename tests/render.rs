@@ -7,7 +7,7 @@ use raylab::material::{Material, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
 use raylab::render::{Film, render, render_pass};
-use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use raylab::scene::{Scene, SceneDesc};
 use std::f32::consts::PI;
 
 fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
@@ -82,27 +82,20 @@ fn top_down(
     fov: f32,
     background: Color,
 ) -> Scene {
-    Scene::new(
-        SceneDesc {
-            name: "closed form".into(),
-            description: String::new(),
-            camera: Camera::looking_at(Vec3::new(0.0, height, 0.0), Vec3::ZERO, Vec3::Z, fov),
-            width: 24,
-            height: 24,
-            params: Params::default(),
-            materials: vec![("m".into(), material)],
-            objects: vec![Object {
-                name: "floor".into(),
-                shape: Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
-                material: 0,
-            }],
-            lights,
-            ambient: Color::ZERO,
-            background: Background::Constant(background),
-            medium_ior: 1.0,
-        },
-        SceneSource::Code,
-    )
+    let mut desc = SceneDesc::empty(Camera::looking_at(
+        Vec3::new(0.0, height, 0.0),
+        Vec3::ZERO,
+        Vec3::Z,
+        fov,
+    ));
+    desc.add(
+        "floor",
+        Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+        material,
+    );
+    desc.lights = lights;
+    desc.background = Background::Constant(background);
+    desc.build()
 }
 
 #[test]

@@ -82,6 +82,44 @@ pub struct SceneDesc {
     pub medium_ior: f32,
 }
 
+impl SceneDesc {
+    /// A scene holding nothing but `camera`: no objects, no lights, black background and
+    /// ambient, air around, default parameters, 64 × 64 pixels. For scenes built in code.
+    pub fn empty(camera: Camera) -> Self {
+        SceneDesc {
+            name: "code".into(),
+            description: String::new(),
+            camera,
+            width: 64,
+            height: 64,
+            params: Params::default(),
+            materials: Vec::new(),
+            objects: Vec::new(),
+            lights: Vec::new(),
+            ambient: Color::ZERO,
+            background: crate::light::Background::Constant(Color::ZERO),
+            medium_ior: 1.0,
+        }
+    }
+
+    /// Adds an object with a material of its own; returns the object's index.
+    pub fn add(&mut self, name: impl Into<String>, shape: Shape, material: Material) -> u32 {
+        let name = name.into();
+        self.materials.push((name.clone(), material));
+        self.objects.push(Object {
+            name,
+            shape,
+            material: self.materials.len() as u32 - 1,
+        });
+        self.objects.len() as u32 - 1
+    }
+
+    /// The scene, with its BVH built.
+    pub fn build(self) -> Scene {
+        Scene::new(self, SceneSource::Code)
+    }
+}
+
 /// A ray's nearest hit in a scene.
 #[derive(Clone, Copy, Debug)]
 pub struct Hit {

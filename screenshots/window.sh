@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Screenshots of the previewer window: runs it under Xvfb (a virtual display), drives it
+# with xdotool as a person would, and saves what the screen shows into screenshots/.
+# Needs: apt-get install xvfb xdotool imagemagick
+# The coordinates are those of the window's layout at 1280x800.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+export DISPLAY=":${RAYLAB_DISPLAY:-97}"
+Xvfb "$DISPLAY" -screen 0 1280x800x24 >/dev/null 2>&1 &
+xvfb=$!
+# Start from each scene's defaults, not from what an earlier run remembered.
+XDG_DATA_HOME=$(mktemp -d)
+export XDG_DATA_HOME
+trap 'kill $xvfb 2>/dev/null; rm -rf "$XDG_DATA_HOME"' EXIT
+sleep 1
+
+app=
+launch() {
+  RAYLAB_CLOSE_AFTER=90 ./target/release/raylab "$@" --threads 2 >/dev/null 2>&1 &
+  app=$!
+  win=$(xdotool search --sync --name '^raylab' | head -1)
+  xdotool windowfocus --sync "$win"
+}
+quit() { kill "$app" 2>/dev/null || true; wait "$app" 2>/dev/null || true; }
+shot() { import -window root "screenshots/$1.png"; echo "screenshots/$1.png"; }
+click() { xdotool mousemove "$1" "$2"; sleep 0.2; xdotool click 1; sleep 0.3; }
+# Press at (x1, y1), move to (x2, y2) in steps; the button stays down.
+press_and_move() {
+  xdotool mousemove "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.2
+  xdotool mousemove $(( ($1 + $3) / 2 )) "$4"; sleep 0.2
+  xdotool mousemove "$3" "$4"; sleep 0.15
+}
+
+# The default scene, refined.
+launch default
+sleep 5
+shot window-default
+
+# Dragging the IOR slider: the coarse previews follow the hand.
+press_and_move 61 60 110 60
+shot window-ior-drag
+xdotool mouseup 1
+sleep 5
+shot window-ior-2.3
+
+# Pixel-peeping: zoom into the glass sphere's rim with the wheel.
+xdotool mousemove 1130 330
+for _ in $(seq 12); do xdotool click 4; sleep 0.05; done
+sleep 1
+shot window-zoom
+quit
+
+# Total internal reflection, with water's IOR: the prism opens onto the red wall.
+launch tir
+sleep 1
+click 51 83
+sleep 7
+shot window-tir-water
+quit
+
+# Depth of field: click to focus on the far sphere.
+launch depth-of-field
+sleep 2
+click 72 556
+click 1010 345
+sleep 6
+shot window-focus
+quit
+
+# A scene file with an error: the window shows where, and keeps the previous scene.
+bad=$(mktemp --suffix=.toml)
+printf '[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[sphere]]\ncenter = [0, 1, 0]\nradius = -2\n' > "$bad"
+launch "$bad"
+sleep 4
+shot window-error
+# Ctrl+O: the file dialog.
+xdotool key ctrl+o
+sleep 1
+shot window-open
+quit
+rm -f "$bad"
