@@ -325,31 +325,18 @@ fn check_output(path: &Path) -> Result<()> {
 }
 
 fn fresnel_command(args: &FresnelArgs) -> Result<()> {
-    use raylab::optics::{cos_transmitted, fresnel_exact, schlick, schlick_naive};
     use std::io::Write;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(
         out,
         "theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive"
     )?;
-    // Whole steps from 0, then 90 itself if the step does not land on it.
-    let steps = (90.0 / args.step + 1e-9).floor() as usize;
-    let mut angles: Vec<f64> = (0..=steps).map(|i| i as f64 * args.step).collect();
-    if angles.last().is_some_and(|&a| (a - 90.0).abs() > 1e-9) {
-        angles.push(90.0);
-    }
-    for theta in angles {
-        let cos_i = (theta.to_radians().cos() as f32).max(0.0);
-        let (n1, n2) = (args.n1, args.n2);
-        let theta_t = cos_transmitted(cos_i, n1, n2)
-            .map(|c| format!("{:.4}", (c as f64).acos().to_degrees()))
-            .unwrap_or_default();
-        let (f_s, f_p, r) = fresnel_exact(cos_i, n1, n2);
+    for row in raylab::optics::fresnel_table(args.n1, args.n2, args.step) {
+        let theta_t = row.theta_t.map(|t| format!("{t:.4}")).unwrap_or_default();
         writeln!(
             out,
-            "{theta},{theta_t},{f_s:.6},{f_p:.6},{r:.6},{:.6},{:.6}",
-            schlick(cos_i, n1, n2),
-            schlick_naive(cos_i, n1, n2)
+            "{},{theta_t},{:.6},{:.6},{:.6},{:.6},{:.6}",
+            row.theta_i, row.f_s, row.f_p, row.r_exact, row.r_schlick, row.r_schlick_naive
         )?;
     }
     out.flush()?;

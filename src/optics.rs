@@ -106,6 +106,52 @@ pub fn critical_angle(n1: f32, n2: f32) -> Option<f32> {
     (n1 > n2).then(|| (n2 / n1).asin())
 }
 
+/// One angle of the Fresnel curves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FresnelRow {
+    /// Angle of incidence, degrees.
+    pub theta_i: f32,
+    /// Angle of refraction, degrees; `None` under total internal reflection.
+    pub theta_t: Option<f32>,
+    /// Amplitude ratio of s-polarized light (its reflectance is F_s²).
+    pub f_s: f32,
+    /// Amplitude ratio of p-polarized light (its reflectance is F_p²).
+    pub f_p: f32,
+    /// Exact reflectance (F_s² + F_p²)/2.
+    pub r_exact: f32,
+    /// Schlick's approximation, cosine on the less dense side.
+    pub r_schlick: f32,
+    /// Schlick's approximation with the incident cosine.
+    pub r_schlick_naive: f32,
+}
+
+/// The Fresnel curves from `n1` into `n2` at every `step` degrees from 0 to 90, with 90
+/// itself always included.
+pub fn fresnel_table(n1: f32, n2: f32, step: f64) -> Vec<FresnelRow> {
+    let steps = (90.0 / step + 1e-9).floor() as usize;
+    let mut angles: Vec<f64> = (0..=steps).map(|i| i as f64 * step).collect();
+    if angles.last().is_some_and(|&a| (a - 90.0).abs() > 1e-9) {
+        angles.push(90.0);
+    }
+    angles
+        .into_iter()
+        .map(|theta| {
+            let cos_i = (theta.to_radians().cos() as f32).max(0.0);
+            let (f_s, f_p, r_exact) = fresnel_exact(cos_i, n1, n2);
+            FresnelRow {
+                theta_i: theta as f32,
+                theta_t: cos_transmitted(cos_i, n1, n2)
+                    .map(|c| (c as f64).acos().to_degrees() as f32),
+                f_s,
+                f_p,
+                r_exact,
+                r_schlick: schlick(cos_i, n1, n2),
+                r_schlick_naive: schlick_naive(cos_i, n1, n2),
+            }
+        })
+        .collect()
+}
+
 /// How the reflectance of a dielectric or glazed surface is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]

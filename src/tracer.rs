@@ -143,6 +143,159 @@ fn transmittance(sigma: Color, t: f32) -> Color {
     Color::select(sigma.cmpeq(Color::ZERO), Color::ONE, (-sigma * t).exp())
 }
 
+/// The kind of a ray in the tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum RayKind {
+    /// From the eye.
+    Camera,
+    /// Mirror, glossy or Fresnel reflection.
+    Reflect,
+    /// Refraction into or out of a dielectric.
+    Refract,
+    /// Towards a light.
+    Shadow,
+}
+
+/// Why a branch of the ray tree ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum End {
+    /// It left the scene: the background's radiance.
+    Miss,
+    /// It reached a light or an emitting surface.
+    LightHit,
+    /// It ended on a diffuse surface, whose shading (shadow rays) absorbs the rest.
+    Absorbed,
+    /// It split into child rays.
+    Split,
+    /// Not traced: it would exceed the maximum depth.
+    DepthLimit,
+    /// Not traced: its path weight fell below the minimum.
+    WeightLimit,
+    /// The refracted ray does not exist: total internal reflection.
+    TotalInternalReflection,
+    /// A shadow ray that reached its light.
+    Lit,
+    /// A shadow ray blocked on its way.
+    Occluded,
+}
+
+/// What a recorded ray met, with the lecture's quantities at a dielectric.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct NodeHit {
+    /// The object hit.
+    pub object: u32,
+    /// Its material.
+    pub material: u32,
+    /// Where.
+    pub point: Vec3,
+    /// Angle of incidence, degrees.
+    pub theta_i: f32,
+    /// At a dielectric: the angle of refraction (degrees), if it exists.
+    pub theta_t: Option<f32>,
+    /// At a dielectric or glaze: the indices n1 → n2.
+    pub n1_n2: Option<(f32, f32)>,
+    /// At a dielectric or glaze: the Fresnel amplitudes F_s, F_p.
+    pub f_s_f_p: Option<(f32, f32)>,
+    /// At a dielectric or glaze: the exact reflectance and Schlick's.
+    pub r_exact_schlick: Option<(f32, f32)>,
+    /// The reflectance R the tree used (by the current Fresnel model).
+    pub r: Option<f32>,
+}
+
+/// One ray of a recorded tree.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct TreeNode {
+    /// The node it branched from.
+    pub parent: Option<usize>,
+    /// What kind of ray.
+    pub kind: RayKind,
+    /// The ray (for a pruned branch, none was traced: its would-be direction).
+    pub ray: Ray,
+    /// Its level in the tree (camera rays 0).
+    pub depth: u32,
+    /// The factor its parent gave it (R, 1 − R, a reflectance).
+    pub branch_weight: f32,
+    /// The product of the factors from the camera down to it.
+    pub path_weight: f32,
+    /// What it met, if anything.
+    pub hit: Option<NodeHit>,
+    /// Where it ended (the hit point, or a point far along a miss).
+    pub end_point: Vec3,
+    /// Why it ended.
+    pub end: End,
+    /// The radiance it brought back.
+    pub radiance: Color,
+}
+
+/// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of
+/// this compiles away; the inspector uses [`RayTree`].
+pub trait Recorder {
+    /// A ray about to be traced; returns its id.
+    fn ray(&mut self, _node: TreeNode) -> usize {
+        0
+    }
+    /// Amends a ray's record once its hit, end and radiance are known.
+    fn finish(&mut self, _id: usize, _f: &dyn Fn(&mut TreeNode)) {}
+    /// Whether anything is recorded (skips work done only for the record).
+    fn on(&self) -> bool {
+        false
+    }
+}
+
+/// Records nothing.
+pub struct NoRecorder;
+impl Recorder for NoRecorder {}
+
+/// The whole tree of one camera sample, in the order it was traced.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct RayTree {
+    /// Every ray, parents before children.
+    pub nodes: Vec<TreeNode>,
+}
+
+impl RayTree {
+    /// The children of node `id`, in order.
+    pub fn children(&self, id: usize) -> impl Iterator<Item = (usize, &TreeNode)> {
+        self.nodes
+            .iter()
+            .enumerate()
+            .filter(move |(_, n)| n.parent == Some(id))
+    }
+}
+
+impl Recorder for RayTree {
+    fn ray(&mut self, node: TreeNode) -> usize {
+        self.nodes.push(node);
+        self.nodes.len() - 1
+    }
+    fn finish(&mut self, id: usize, f: &dyn Fn(&mut TreeNode)) {
+        if let Some(n) = self.nodes.get_mut(id) {
+            f(n);
+        }
+    }
+    fn on(&self) -> bool {
+        true
+    }
+}
+
+/// What travels down the tree with every ray: the sample's random numbers, the counters,
+/// and the recorder.
+struct Walk<'w, R: Recorder> {
+    rng: &'w mut SampleStream,
+    stats: &'w mut Stats,
+    rec: &'w mut R,
+}
+
+/// Where a ray sits in the tree.
+#[derive(Clone, Copy)]
+struct Branch {
+    depth: u32,
+    weight: f32,
+    kind: RayKind,
+    parent: Option<usize>,
+    factor: f32,
+}
+
 /// Traces the samples of one image of one scene under one set of parameters.
 pub struct Tracer<'a> {
     scene: &'a Scene,
@@ -192,6 +345,25 @@ impl<'a> Tracer<'a> {
     /// Radiance of sample number `sample` of pixel (x, y). Its random numbers depend only
     /// on (seed, pixel, sample), so the result does too.
     pub fn sample(&self, x: u32, y: u32, sample: u32, stats: &mut Stats) -> Color {
+        self.sample_recorded(x, y, sample, stats, &mut NoRecorder)
+    }
+
+    /// The whole ray tree of sample `sample` of pixel (x, y), with the radiance it gives:
+    /// exactly what [`Tracer::sample`] computes, recorded.
+    pub fn inspect(&self, x: u32, y: u32, sample: u32) -> (RayTree, Color) {
+        let mut tree = RayTree::default();
+        let c = self.sample_recorded(x, y, sample, &mut Stats::default(), &mut tree);
+        (tree, c)
+    }
+
+    fn sample_recorded<R: Recorder>(
+        &self,
+        x: u32,
+        y: u32,
+        sample: u32,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> Color {
         let p = self.params;
         let mut rng =
             SampleStream::with_pattern(p.pattern, p.spp, p.seed, y * self.width + x, sample);
@@ -206,7 +378,19 @@ impl<'a> Tracer<'a> {
         let ray = self.frame.ray(film, lens, time);
         stats.samples += 1;
         stats.camera_rays += 1;
-        self.trace(&ray, 0, 1.0, &Media::default(), &mut rng, stats)
+        let mut walk = Walk {
+            rng: &mut rng,
+            stats,
+            rec,
+        };
+        let root = Branch {
+            depth: 0,
+            weight: 1.0,
+            kind: RayKind::Camera,
+            parent: None,
+            factor: 1.0,
+        };
+        self.trace_in(&ray, root, &Media::default(), &mut walk)
     }
 
     /// The index of refraction of the medium a ray in `media` travels through.
@@ -229,6 +413,38 @@ impl<'a> Tracer<'a> {
         rng: &mut SampleStream,
         stats: &mut Stats,
     ) -> Color {
+        let branch = Branch {
+            depth,
+            weight,
+            kind: RayKind::Camera,
+            parent: None,
+            factor: 1.0,
+        };
+        self.trace_in(
+            ray,
+            branch,
+            media,
+            &mut Walk {
+                rng,
+                stats,
+                rec: &mut NoRecorder,
+            },
+        )
+    }
+
+    fn trace_in<R: Recorder>(&self, ray: &Ray, b: Branch, media: &Media, w: &mut Walk<R>) -> Color {
+        let id = w.rec.ray(TreeNode {
+            parent: b.parent,
+            kind: b.kind,
+            ray: *ray,
+            depth: b.depth,
+            branch_weight: b.factor,
+            path_weight: b.weight,
+            hit: None,
+            end_point: ray.at(100.0),
+            end: End::Miss,
+            radiance: Color::ZERO,
+        });
         let sigma = media
             .innermost()
             .and_then(|m| self.materials[m as usize].dielectric())
@@ -243,36 +459,101 @@ impl<'a> Tracer<'a> {
                 emitted = Some(radiance);
             }
         }
-        if let Some(radiance) = emitted {
-            return transmittance(sigma, nearest) * radiance;
-        }
-        let Some(hit) = hit else {
-            return transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
+        let (radiance, end) = if let Some(radiance) = emitted {
+            (transmittance(sigma, nearest) * radiance, End::LightHit)
+        } else if let Some(hit) = hit {
+            // Beer–Lambert along the segment just travelled.
+            let tr = transmittance(sigma, hit.surface.t);
+            let b = Branch {
+                weight: b.weight * tr.max_element(),
+                ..b
+            };
+            let (l, end) = self.shade(ray, &hit, b, id, media, w);
+            (tr * l, end)
+        } else {
+            let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
+            (l, End::Miss)
         };
-        // Beer–Lambert along the segment just travelled.
-        let tr = transmittance(sigma, hit.surface.t);
-        tr * self.shade(
-            ray,
-            &hit,
-            depth,
-            weight * tr.max_element(),
-            media,
-            rng,
-            stats,
-        )
+        if w.rec.on() {
+            let end_point = if nearest.is_finite() {
+                ray.at(nearest)
+            } else {
+                ray.at(100.0)
+            };
+            w.rec.finish(id, &|n| {
+                n.end = end;
+                n.radiance = radiance;
+                n.end_point = end_point;
+            });
+        }
+        radiance
     }
 
+    /// Traces a child of node `parent` if the pruning rules allow, recording why not.
     #[allow(clippy::too_many_arguments)]
-    fn shade(
+    fn child<R: Recorder>(
+        &self,
+        parent: usize,
+        b: Branch,
+        kind: RayKind,
+        factor: f32,
+        weight: f32,
+        ray: &Ray,
+        media: &Media,
+        w: &mut Walk<R>,
+    ) -> Color {
+        let why = if b.depth >= self.params.max_depth {
+            w.stats.pruned_by_depth += 1;
+            Some(End::DepthLimit)
+        } else if weight < self.params.min_weight {
+            w.stats.pruned_by_weight += 1;
+            Some(End::WeightLimit)
+        } else {
+            None
+        };
+        let child = Branch {
+            depth: b.depth + 1,
+            weight,
+            kind,
+            parent: Some(parent),
+            factor,
+        };
+        match why {
+            Some(end) => {
+                let id = w.rec.ray(TreeNode {
+                    parent: Some(parent),
+                    kind,
+                    ray: *ray,
+                    depth: child.depth,
+                    branch_weight: factor,
+                    path_weight: weight,
+                    hit: None,
+                    end_point: ray.origin,
+                    end,
+                    radiance: Color::ZERO,
+                });
+                let _ = id;
+                Color::ZERO
+            }
+            None => {
+                match kind {
+                    RayKind::Refract => w.stats.refraction_rays += 1,
+                    _ => w.stats.reflection_rays += 1,
+                }
+                self.trace_in(ray, child, media, w)
+            }
+        }
+    }
+
+    fn shade<R: Recorder>(
         &self,
         ray: &Ray,
         hit: &Hit,
-        depth: u32,
-        weight: f32,
+        b: Branch,
+        id: usize,
         media: &Media,
-        rng: &mut SampleStream,
-        stats: &mut Stats,
-    ) -> Color {
+        w: &mut Walk<R>,
+    ) -> (Color, End) {
         let s = &hit.surface;
         let entering = ray.dir.dot(s.n_geom) < 0.0;
         // Normals facing the side the ray arrived from.
@@ -281,6 +562,21 @@ impl<'a> Tracer<'a> {
         } else {
             (-s.n_geom, -s.n_shade)
         };
+        if w.rec.on() {
+            let cos_i = (-ray.dir).dot(n_shade).clamp(0.0, 1.0);
+            let node_hit = NodeHit {
+                object: hit.object,
+                material: hit.material,
+                point: s.p,
+                theta_i: cos_i.acos().to_degrees(),
+                theta_t: None,
+                n1_n2: None,
+                f_s_f_p: None,
+                r_exact_schlick: None,
+                r: None,
+            };
+            w.rec.finish(id, &|n| n.hit = Some(node_hit));
+        }
         let reflected = || {
             let dir = reflect(ray.dir, n_shade);
             // A shading normal can tilt the mirror direction below the surface.
@@ -296,22 +592,30 @@ impl<'a> Tracer<'a> {
             }
         };
         match &self.materials[hit.material as usize] {
-            Material::Emissive { radiance } => *radiance,
+            Material::Emissive { radiance } => (*radiance, End::LightHit),
             Material::Diffuse {
                 albedo,
                 specular,
                 exponent,
-            } => self.diffuse(
-                ray, hit, n_geom, n_shade, albedo, *specular, *exponent, rng, stats,
+            } => (
+                self.diffuse(
+                    ray, hit, n_geom, n_shade, albedo, *specular, *exponent, id, w,
+                ),
+                End::Absorbed,
             ),
             Material::Mirror { reflectance } => {
-                match self.branch(depth, weight * reflectance.max_element(), stats) {
-                    Some(w) => {
-                        stats.reflection_rays += 1;
-                        *reflectance * self.trace(&reflected(), depth + 1, w, media, rng, stats)
-                    }
-                    None => Color::ZERO,
-                }
+                let weight = b.weight * reflectance.max_element();
+                let l = self.child(
+                    id,
+                    b,
+                    RayKind::Reflect,
+                    reflectance.max_element(),
+                    weight,
+                    &reflected(),
+                    media,
+                    w,
+                );
+                (*reflectance * l, End::Split)
             }
             Material::Glossy {
                 reflectance,
@@ -319,10 +623,7 @@ impl<'a> Tracer<'a> {
             } => {
                 // Jitter the mirror direction over the Phong lobe around it. Sampling the
                 // normalized lobe exactly, each jittered ray carries the reflectance.
-                let u = rng.next_2d();
-                let Some(w) = self.branch(depth, weight * reflectance.max_element(), stats) else {
-                    return Color::ZERO;
-                };
+                let u = w.rng.next_2d();
                 let mut child = reflected();
                 let mut dir = to_world(phong_lobe(u, *exponent), child.dir);
                 // Lobe directions below the surface are folded back above it (mirrored in
@@ -332,8 +633,18 @@ impl<'a> Tracer<'a> {
                     dir = (dir - 2.0 * below * n_geom).normalize();
                 }
                 child.dir = dir;
-                stats.reflection_rays += 1;
-                *reflectance * self.trace(&child, depth + 1, w, media, rng, stats)
+                let weight = b.weight * reflectance.max_element();
+                let l = self.child(
+                    id,
+                    b,
+                    RayKind::Reflect,
+                    reflectance.max_element(),
+                    weight,
+                    &child,
+                    media,
+                    w,
+                );
+                (*reflectance * l, End::Split)
             }
             Material::Glazed { coat, base } => {
                 // The coat is seen from the medium the ray travels in; nothing enters it.
@@ -342,39 +653,40 @@ impl<'a> Tracer<'a> {
                 let r = coat
                     .fresnel
                     .reflectance(cos_i, n1, n2, coat.constant_reflectance);
-                let mut l = (1.0 - r)
-                    * self.diffuse(
-                        ray,
-                        hit,
-                        n_geom,
-                        n_shade,
-                        base,
-                        Color::ZERO,
-                        1.0,
-                        rng,
-                        stats,
-                    );
-                if r > 0.0
-                    && let Some(w) = self.branch(depth, weight * r, stats)
-                {
-                    stats.reflection_rays += 1;
-                    l += r * self.trace(&reflected(), depth + 1, w, media, rng, stats);
+                if w.rec.on() {
+                    record_interface(w.rec, id, cos_i, n1, n2, r);
                 }
-                l
+                let mut l = (1.0 - r)
+                    * self.diffuse(ray, hit, n_geom, n_shade, base, Color::ZERO, 1.0, id, w);
+                if r > 0.0 {
+                    l += r * self.child(
+                        id,
+                        b,
+                        RayKind::Reflect,
+                        r,
+                        b.weight * r,
+                        &reflected(),
+                        media,
+                        w,
+                    );
+                }
+                (l, End::Split)
             }
-            Material::Dielectric(d) => self.dielectric(
-                ray,
-                hit,
-                d,
-                entering,
-                n_geom,
-                n_shade,
-                reflected(),
-                depth,
-                weight,
-                media,
-                rng,
-                stats,
+            Material::Dielectric(d) => (
+                self.dielectric(
+                    ray,
+                    hit,
+                    d,
+                    entering,
+                    n_geom,
+                    n_shade,
+                    reflected(),
+                    b,
+                    id,
+                    media,
+                    w,
+                ),
+                End::Split,
             ),
         }
     }
@@ -383,7 +695,7 @@ impl<'a> Tracer<'a> {
     /// refracted child of weight 1 − R (or, in stochastic mode, one of them with
     /// probability R and 1 − R).
     #[allow(clippy::too_many_arguments)]
-    fn dielectric(
+    fn dielectric<R: Recorder>(
         &self,
         ray: &Ray,
         hit: &Hit,
@@ -392,11 +704,10 @@ impl<'a> Tracer<'a> {
         n_geom: Vec3,
         n_shade: Vec3,
         reflected: Ray,
-        depth: u32,
-        weight: f32,
+        b: Branch,
+        id: usize,
         media: &Media,
-        rng: &mut SampleStream,
-        stats: &mut Stats,
+        w: &mut Walk<R>,
     ) -> Color {
         let p = hit.surface.p;
         let (n1, n2, media_t) = if entering {
@@ -422,59 +733,83 @@ impl<'a> Tracer<'a> {
         let r = match refracted {
             Some(_) => d.fresnel.reflectance(cos_i, n1, n2, d.constant_reflectance),
             None => {
-                stats.tir_events += 1;
+                w.stats.tir_events += 1;
                 1.0
             }
         };
+        if w.rec.on() {
+            record_interface(w.rec, id, cos_i, n1, n2, r);
+            if refracted.is_none() {
+                // The refracted branch that total internal reflection forbids.
+                w.rec.ray(TreeNode {
+                    parent: Some(id),
+                    kind: RayKind::Refract,
+                    ray: reflected,
+                    depth: b.depth + 1,
+                    branch_weight: 0.0,
+                    path_weight: 0.0,
+                    hit: None,
+                    end_point: p,
+                    end: End::TotalInternalReflection,
+                    radiance: Color::ZERO,
+                });
+            }
+        }
         match self.params.tree {
             TreeMode::Split => {
                 let mut l = Color::ZERO;
-                if r > 0.0
-                    && let Some(w) = self.branch(depth, weight * r, stats)
-                {
-                    stats.reflection_rays += 1;
-                    l += r * self.trace(&reflected, depth + 1, w, media, rng, stats);
+                if r > 0.0 {
+                    l += r * self.child(
+                        id,
+                        b,
+                        RayKind::Reflect,
+                        r,
+                        b.weight * r,
+                        &reflected,
+                        media,
+                        w,
+                    );
                 }
                 if let Some(t) = refracted
                     && r < 1.0
-                    && let Some(w) = self.branch(depth, weight * (1.0 - r), stats)
                 {
-                    stats.refraction_rays += 1;
-                    l += (1.0 - r) * self.trace(&t, depth + 1, w, &media_t, rng, stats);
+                    l += (1.0 - r)
+                        * self.child(
+                            id,
+                            b,
+                            RayKind::Refract,
+                            1.0 - r,
+                            b.weight * (1.0 - r),
+                            &t,
+                            &media_t,
+                            w,
+                        );
                 }
                 l
             }
             TreeMode::Stochastic => {
                 // Choosing a child with probability equal to its weight leaves the path
                 // weight unchanged: R / P(reflect) = 1.
-                let Some(w) = self.branch(depth, weight, stats) else {
-                    return Color::ZERO;
-                };
+                if b.depth >= self.params.max_depth || b.weight < self.params.min_weight {
+                    // Let `child` count and record the cut.
+                    return self.child(
+                        id,
+                        b,
+                        RayKind::Reflect,
+                        1.0,
+                        b.weight,
+                        &reflected,
+                        media,
+                        w,
+                    );
+                }
                 match refracted {
-                    Some(t) if rng.next_1d() >= r => {
-                        stats.refraction_rays += 1;
-                        self.trace(&t, depth + 1, w, &media_t, rng, stats)
+                    Some(t) if w.rng.next_1d() >= r => {
+                        self.child(id, b, RayKind::Refract, 1.0, b.weight, &t, &media_t, w)
                     }
-                    _ => {
-                        stats.reflection_rays += 1;
-                        self.trace(&reflected, depth + 1, w, media, rng, stats)
-                    }
+                    _ => self.child(id, b, RayKind::Reflect, 1.0, b.weight, &reflected, media, w),
                 }
             }
-        }
-    }
-
-    /// Whether a child at `depth + 1` with path weight `weight` is traced (the lecture's
-    /// two pruning rules), counting the branches cut.
-    fn branch(&self, depth: u32, weight: f32, stats: &mut Stats) -> Option<f32> {
-        if depth >= self.params.max_depth {
-            stats.pruned_by_depth += 1;
-            None
-        } else if weight < self.params.min_weight {
-            stats.pruned_by_weight += 1;
-            None
-        } else {
-            Some(weight)
         }
     }
 
@@ -482,7 +817,7 @@ impl<'a> Tracer<'a> {
     /// each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ, with f the Lambert plus
     /// normalized Phong BRDF.
     #[allow(clippy::too_many_arguments)]
-    fn diffuse(
+    fn diffuse<R: Recorder>(
         &self,
         ray: &Ray,
         hit: &Hit,
@@ -491,8 +826,8 @@ impl<'a> Tracer<'a> {
         albedo: &Texture,
         specular: Color,
         exponent: f32,
-        rng: &mut SampleStream,
-        stats: &mut Stats,
+        id: usize,
+        w: &mut Walk<R>,
     ) -> Color {
         let albedo = albedo.eval(hit.surface.uv);
         let p = hit.surface.p;
@@ -500,7 +835,7 @@ impl<'a> Tracer<'a> {
         let view = -ray.dir;
         let mut sum = self.scene.ambient * albedo;
         for light in &self.lights {
-            let u = rng.next_2d();
+            let u = w.rng.next_2d();
             let Some(ls) = light.sample(p, u) else {
                 continue;
             };
@@ -508,25 +843,57 @@ impl<'a> Tracer<'a> {
             if cos <= 0.0 || n_geom.dot(ls.dir) <= 0.0 {
                 continue;
             }
-            stats.shadow_rays += 1;
+            w.stats.shadow_rays += 1;
             let shadow = Ray {
                 origin,
                 dir: ls.dir,
                 time: ray.time,
             };
             // Stop just short of the light's surface (it is not in the BVH anyway).
-            if self.scene.occluded(&shadow, ls.dist * (1.0 - 1e-4)) {
-                continue;
+            let blocked = self.scene.occluded(&shadow, ls.dist * (1.0 - 1e-4));
+            let mut contribution = Color::ZERO;
+            if !blocked {
+                let mut f = albedo / PI;
+                if specular != Color::ZERO {
+                    let cos_alpha = reflect(-ls.dir, n).dot(view).max(0.0);
+                    f += specular * (exponent + 2.0) / (2.0 * PI) * cos_alpha.powf(exponent);
+                }
+                contribution = f * ls.value * cos;
+                sum += contribution;
             }
-            let mut f = albedo / PI;
-            if specular != Color::ZERO {
-                let cos_alpha = reflect(-ls.dir, n).dot(view).max(0.0);
-                f += specular * (exponent + 2.0) / (2.0 * PI) * cos_alpha.powf(exponent);
+            if w.rec.on() {
+                w.rec.ray(TreeNode {
+                    parent: Some(id),
+                    kind: RayKind::Shadow,
+                    ray: shadow,
+                    depth: 0,
+                    branch_weight: 1.0,
+                    path_weight: 0.0,
+                    hit: None,
+                    end_point: shadow.at(ls.dist),
+                    end: if blocked { End::Occluded } else { End::Lit },
+                    radiance: contribution,
+                });
             }
-            sum += f * ls.value * cos;
         }
         sum
     }
+}
+
+/// Records the lecture's quantities at a dielectric interface hit by node `id`.
+fn record_interface<R: Recorder>(rec: &mut R, id: usize, cos_i: f32, n1: f32, n2: f32, r: f32) {
+    let (f_s, f_p, r_exact) = crate::optics::fresnel_exact(cos_i, n1, n2);
+    let theta_t = crate::optics::cos_transmitted(cos_i, n1, n2).map(|c| c.acos().to_degrees());
+    let r_schlick = crate::optics::schlick(cos_i, n1, n2);
+    rec.finish(id, &|n| {
+        if let Some(h) = &mut n.hit {
+            h.theta_t = theta_t;
+            h.n1_n2 = Some((n1, n2));
+            h.f_s_f_p = Some((f_s, f_p));
+            h.r_exact_schlick = Some((r_exact, r_schlick));
+            h.r = Some(r);
+        }
+    });
 }
 
 #[cfg(test)]

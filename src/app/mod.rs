@@ -7,10 +7,12 @@
 
 mod controls;
 mod files;
+mod instruments;
 mod view;
 
 pub use controls::{Controls, controls_ui};
 pub use files::{Choice, FileDialog, Purpose, snapshot_path, timestamp};
+pub use instruments::{Direction, fresnel_plot_ui};
 pub use view::{ViewEvent, ViewState, image_ui};
 
 use crate::camera::Camera;

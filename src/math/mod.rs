@@ -16,7 +16,7 @@ pub type Color = glam::Vec3A;
 /// A ray `origin + t * dir` at one instant `time` (the motion-blur time of its camera sample).
 ///
 /// `dir` is kept normalized: the intersection routines and `t` as a distance rely on it.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Ray {
     /// Where the ray starts.
     pub origin: Vec3,
