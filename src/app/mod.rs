@@ -12,7 +12,9 @@ mod view;
 
 pub use controls::{Controls, controls_ui};
 pub use files::{Choice, FileDialog, Purpose, snapshot_path, timestamp};
-pub use instruments::{Direction, fresnel_plot_ui};
+pub use instruments::{
+    Direction, Inspection, LECTURE, Slide, fresnel_plot_ui, inspector_ui, sample_pattern_ui,
+};
 pub use view::{ViewEvent, ViewState, image_ui};
 
 use crate::camera::Camera;
@@ -108,6 +110,15 @@ pub struct RaylabApp {
     shown_exposure: f32,
     view: ViewState,
     click_to_focus: bool,
+    // Instruments.
+    show_fresnel: bool,
+    fresnel_direction: Direction,
+    inspect_mode: bool,
+    inspection: Option<Inspection>,
+    show_patterns: bool,
+    // The lecture slide being shown: its parameters wait for its scene to load.
+    pending_slide: Option<&'static Slide>,
+    caption: Option<&'static str>,
     error: Option<String>,
     toasts: Vec<Toast>,
     dialog: Option<FileDialog>,
@@ -250,6 +261,13 @@ impl RaylabApp {
             opening: None,
             last_poll: Instant::now(),
             close_at,
+            show_fresnel: false,
+            fresnel_direction: Direction::OutsideIn,
+            inspect_mode: false,
+            inspection: None,
+            show_patterns: false,
+            pending_slide: None,
+            caption: None,
             scene,
         };
         app.watch_scene_file();
@@ -330,7 +348,21 @@ impl RaylabApp {
                 Ok(scene) => {
                     let scene = Arc::new(scene);
                     self.params = match loaded.purpose {
-                        LoadPurpose::Open => scene.params.clone(),
+                        LoadPurpose::Open => {
+                            let mut p = scene.params.clone();
+                            // A lecture slide sets its parameters on top of its scene's.
+                            if let Some(slide) = self.pending_slide.take().filter(|s| {
+                                scene.source.reference() == format!("builtin:{}", s.scene)
+                            }) {
+                                for (name, value) in slide.params {
+                                    let _ = p.set(name, value);
+                                }
+                                self.caption = Some(slide.caption);
+                            } else {
+                                self.caption = None;
+                            }
+                            p
+                        }
                         LoadPurpose::Reload => {
                             merge_defaults(&self.params, &self.scene.params, &scene.params)
                         }
@@ -351,6 +383,7 @@ impl RaylabApp {
                     let (w, h) = render_size(&scene, self.resolution);
                     self.engine.resize(w, h);
                     self.scene = scene;
+                    self.inspection = None;
                     self.error = None;
                     self.view.fit();
                     self.watch_scene_file();
@@ -674,6 +707,24 @@ impl RaylabApp {
             if ui.button("1:1").on_hover_text("One image pixel per screen pixel (1).").clicked() {
                 self.view.one_to_one(ui.ctx().pixels_per_point());
             }
+            ui.separator();
+            ui.menu_button("Instruments", |ui| {
+                ui.checkbox(&mut self.show_fresnel, "Fresnel plot")
+                    .on_hover_text("R_s, R_p, exact R, Schlick and naive Schlick against the angle, for the current IOR.");
+                ui.checkbox(&mut self.inspect_mode, "Ray-tree inspector: click a pixel")
+                    .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
+                ui.checkbox(&mut self.show_patterns, "Sample patterns")
+                    .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
+            });
+            ui.menu_button("Lecture", |ui| {
+                for slide in LECTURE {
+                    if ui.button(slide.title).clicked() {
+                        self.pending_slide = Some(slide);
+                        self.open_scene(&format!("builtin:{}", slide.scene));
+                        ui.close();
+                    }
+                }
+            });
         });
     }
 
@@ -734,7 +785,31 @@ impl RaylabApp {
             .map_or(render_size(&self.scene, self.resolution), |f| {
                 (f.width, f.height)
             });
-        let events = image_ui(ui, &mut self.view, self.texture.as_ref(), size);
+        let (events, image_rect) = image_ui(ui, &mut self.view, self.texture.as_ref(), size);
+        let aspect = size.0 as f32 / size.1 as f32;
+        if let Some(inspection) = &self.inspection {
+            let frame = self.camera.pinhole(aspect);
+            instruments::draw_tree_overlay(
+                &ui.painter_at(ui.min_rect()),
+                image_rect,
+                &frame,
+                &inspection.tree,
+            );
+        }
+        if let Some(caption) = self.caption {
+            let area = ui.min_rect();
+            let galley = ui.painter().layout(
+                caption.to_string(),
+                egui::FontId::proportional(16.0),
+                Color32::WHITE,
+                area.width() - 40.0,
+            );
+            let pos = egui::pos2(area.min.x + 20.0, area.max.y - galley.size().y - 20.0);
+            let back = egui::Rect::from_min_size(pos, galley.size()).expand(8.0);
+            ui.painter()
+                .rect_filled(back, 4.0, Color32::from_black_alpha(180));
+            ui.painter().galley(pos, galley, Color32::WHITE);
+        }
         for event in events {
             match event {
                 ViewEvent::Click(film) if self.click_to_focus => {
@@ -754,10 +829,108 @@ impl RaylabApp {
                     }
                     self.click_to_focus = false;
                 }
+                ViewEvent::Click(film) if self.inspect_mode => {
+                    let x = ((film.x * size.0 as f32) as u32).min(size.0 - 1);
+                    let y = ((film.y * size.1 as f32) as u32).min(size.1 - 1);
+                    self.inspect((x, y), size);
+                }
                 ViewEvent::Click(_) => {}
                 ViewEvent::Orbit(delta) => orbit(&mut self.camera, delta),
                 ViewEvent::Dolly(amount) => dolly(&mut self.camera, amount),
             }
+        }
+    }
+
+    /// Records the ray tree of `pixel`'s first sample with the current parameters and camera.
+    fn inspect(&mut self, pixel: (u32, u32), size: (u32, u32)) {
+        let tracer = crate::tracer::Tracer::with_camera(
+            &self.scene,
+            &self.camera,
+            &self.params,
+            size.0,
+            size.1,
+        );
+        let (tree, radiance) = tracer.inspect(pixel.0, pixel.1, 0);
+        self.inspection = Some(Inspection {
+            pixel,
+            size,
+            params: self.params.clone(),
+            camera: self.camera.clone(),
+            tree,
+            radiance,
+        });
+    }
+
+    /// Keeps the inspected tree in step with the controls.
+    fn refresh_inspection(&mut self) {
+        if let Some(i) = &self.inspection
+            && (i.params != self.params || i.camera != self.camera)
+            && self.params.validate().is_ok()
+        {
+            let (pixel, size) = (i.pixel, i.size);
+            self.inspect(pixel, size);
+        }
+    }
+
+    fn instruments_ui(&mut self, ctx: &egui::Context) {
+        self.refresh_inspection();
+        if self.show_fresnel {
+            let ior = self.params.ior.or_else(|| {
+                self.scene
+                    .materials
+                    .iter()
+                    .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
+            });
+            let marker = self
+                .inspection
+                .as_ref()
+                .and_then(|i| i.tree.nodes.first())
+                .and_then(|n| n.hit)
+                .map(|h| h.theta_i);
+            let mut open = true;
+            egui::Window::new("Fresnel plot")
+                .open(&mut open)
+                .default_width(520.0)
+                .show(ctx, |ui| {
+                    fresnel_plot_ui(ui, ior.unwrap_or(1.5), &mut self.fresnel_direction, marker);
+                });
+            self.show_fresnel = open;
+        }
+        if self.inspect_mode || self.inspection.is_some() {
+            let mut open = true;
+            egui::Window::new("Ray-tree inspector")
+                .open(&mut open)
+                .default_width(460.0)
+                .show(ctx, |ui| {
+                    ui.checkbox(
+                        &mut self.inspect_mode,
+                        "Clicking the image inspects a pixel",
+                    );
+                    match &self.inspection {
+                        Some(i) => inspector_ui(
+                            ui,
+                            i,
+                            &self.scene.object_names,
+                            &self.scene.material_names,
+                        ),
+                        None => {
+                            ui.label("Click a pixel of the image.");
+                        }
+                    }
+                });
+            if !open {
+                self.inspect_mode = false;
+                self.inspection = None;
+            }
+        }
+        if self.show_patterns {
+            let mut open = true;
+            egui::Window::new("Sample patterns")
+                .open(&mut open)
+                .show(ctx, |ui| {
+                    sample_pattern_ui(ui, self.params.pattern, self.params.spp, self.params.seed);
+                });
+            self.show_patterns = open;
         }
     }
 
@@ -893,6 +1066,7 @@ impl eframe::App for RaylabApp {
         CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
         self.dialog_ui(&ctx);
         self.toasts_ui(&ctx);
+        self.instruments_ui(&ctx);
         self.sync_engine();
         if self.params.exposure != self.shown_exposure {
             ctx.request_repaint();

@@ -36,13 +36,14 @@ pub enum ViewEvent {
     Dolly(f32),
 }
 
-/// Draws the image (`size` pixels) and returns what the user did to it.
+/// Draws the image (`size` pixels); returns what the user did to it, and where on the
+/// screen the image is (for overlays).
 pub fn image_ui(
     ui: &mut Ui,
     view: &mut ViewState,
     texture: Option<&egui::TextureHandle>,
     size: (u32, u32),
-) -> Vec<ViewEvent> {
+) -> (Vec<ViewEvent>, Rect) {
     let area = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(area, Sense::click_and_drag());
     let image = vec2(size.0 as f32, size.1 as f32);
@@ -116,5 +117,5 @@ pub fn image_ui(
             events.push(ViewEvent::Click(p));
         }
     }
-    events
+    (events, rect)
 }
