@@ -256,3 +256,83 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
     h.get_by_label("Cancel").click();
     h.run_steps(3);
 }
+
+#[test]
+fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.preview)
+    });
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Ray-tree inspector: click a pixel").click();
+    h.run_steps(3);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    // Click the glass sphere: a little left of the image's centre, above the middle.
+    let image = h.get_by_role_and_label(Role::Slider, "IOR").rect(); // the panel's left edge
+    let (w, hgt) = (1280.0, 800.0);
+    let centre = egui::pos2((image.max.x + w) / 2.0 - 50.0, hgt / 2.0 - 60.0);
+    h.hover_at(centre);
+    h.run_steps(2);
+    h.event(egui::Event::PointerButton {
+        pos: centre,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: centre,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(3);
+    let inspection = h.state().inspection().expect("a tree");
+    let root = &inspection.tree.nodes[0];
+    let hit = root.hit.expect("the camera ray hits something");
+    assert_eq!(
+        h.state().scene().object_names[hit.object as usize],
+        "glass sphere"
+    );
+    assert_eq!(hit.n1_n2, Some((1.0, 1.5)));
+    h.get_by_label("Camera ray, level 0: glass sphere (glass) — split into child rays");
+    // Moving the IOR re-inspects the same pixel.
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+    let hit = h.state().inspection().unwrap().tree.nodes[0].hit.unwrap();
+    assert_eq!(hit.n1_n2, Some((1.0, 2.0)));
+    // The Fresnel plot opens from the same menu.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Fresnel plot").click();
+    h.run_steps(3);
+    h.get_by_label("Air into material");
+    h.get_by_label("Material out to air").click();
+    h.run_steps(3);
+}
+
+#[test]
+fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.get_by_label("Lecture").click();
+    h.run_steps(3);
+    h.get_by_label("Pruning the ray tree").click();
+    h.run_steps(2);
+    step_until(&mut h, "the slide's scene", |a| {
+        a.scene().name == "ray-tree"
+    });
+    assert_eq!(h.state().params().max_depth, 2);
+    assert!(h.state().caption().unwrap().contains("depth 2"));
+    // Sample patterns for the slide's settings.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Sample patterns").click();
+    h.run_steps(3);
+    h.get_by_label("Point on the lens");
+}

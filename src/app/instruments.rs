@@ -42,7 +42,7 @@ pub fn fresnel_plot_ui(
     let brewster = brewster_angle(n1, n2).to_degrees();
     let critical = critical_angle(n1, n2).map(f32::to_degrees);
     ui.label(format!(
-        "n1 = {n1:.3} → n2 = {n2:.3}. R0 = {:.4}. Brewster {brewster:.2}°{}",
+        "n1 = {n1:.3} -> n2 = {n2:.3}. R0 = {:.4}. Brewster {brewster:.2}°{}",
         rows[0].r_exact,
         critical.map_or(String::new(), |c| format!(", critical {c:.2}°"))
     ));
@@ -212,7 +212,7 @@ fn node_ui(
                     if let Some(h) = n.hit {
                         row("θi", format!("{:.2}°", h.theta_i));
                         if let Some((n1, n2)) = h.n1_n2 {
-                            row("n1 → n2", format!("{n1:.3} → {n2:.3}"));
+                            row("n1 -> n2", format!("{n1:.3} -> {n2:.3}"));
                             row(
                                 "θt",
                                 h.theta_t

@@ -304,6 +304,16 @@ impl RaylabApp {
         self.toasts.iter().map(|t| t.text.clone()).collect()
     }
 
+    /// The inspected ray tree, if a pixel was clicked in inspect mode.
+    pub fn inspection(&self) -> Option<&Inspection> {
+        self.inspection.as_ref()
+    }
+
+    /// The caption of the lecture slide shown, if any.
+    pub fn caption(&self) -> Option<&str> {
+        self.caption
+    }
+
     /// Whether a scene is loading.
     pub fn is_loading(&self) -> bool {
         self.loading > 0
