@@ -250,3 +250,43 @@ fn non_finite_samples_are_dropped_and_counted_never_written() {
         "a pixel with no valid sample shows black"
     );
 }
+
+#[test]
+fn the_cost_of_a_pixel_is_the_rays_its_samples_traced() {
+    let mirror = top_down(
+        Material::Mirror {
+            reflectance: Color::splat(0.7),
+        },
+        vec![],
+        2.0,
+        40.0,
+        Color::ONE,
+    );
+    let cost = |scene: &Scene, max_depth| {
+        let params = Params {
+            spp: 3,
+            max_depth,
+            ..Params::default()
+        };
+        render(scene, &params, 6, 6, &()).unwrap().0.cost()
+    };
+    assert!(
+        cost(&mirror, 8).iter().all(|&c| c == 2.0),
+        "camera + reflection"
+    );
+    assert!(
+        cost(&mirror, 0).iter().all(|&c| c == 1.0),
+        "the reflection pruned"
+    );
+    let lit = top_down(
+        grey(0.5),
+        vec![Light::point(Vec3::new(0.0, 1.0, 0.0), Color::ONE)],
+        2.0,
+        40.0,
+        Color::ZERO,
+    );
+    assert!(
+        cost(&lit, 8).iter().all(|&c| c == 2.0),
+        "camera + shadow ray"
+    );
+}

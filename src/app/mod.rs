@@ -116,6 +116,8 @@ pub struct RaylabApp {
     inspect_mode: bool,
     inspection: Option<Inspection>,
     show_patterns: bool,
+    show_cost: bool,
+    shown_cost: bool,
     // The lecture slide being shown: its parameters wait for its scene to load.
     pending_slide: Option<&'static Slide>,
     caption: Option<&'static str>,
@@ -266,6 +268,8 @@ impl RaylabApp {
             inspect_mode: false,
             inspection: None,
             show_patterns: false,
+            show_cost: false,
+            shown_cost: false,
             pending_slide: None,
             caption: None,
             scene,
@@ -438,14 +442,20 @@ impl RaylabApp {
     }
 
     fn upload_texture(&mut self, ctx: &egui::Context) {
-        if self.params.exposure != self.shown_exposure {
+        if self.params.exposure != self.shown_exposure || self.show_cost != self.shown_cost {
             self.texture_stale = true;
         }
         let Some(frame) = &self.frame else { return };
         if !self.texture_stale {
             return;
         }
-        let rgba = to_srgba8(&frame.pixels, self.params.exposure);
+        let rgba = if self.show_cost && !frame.cost.is_empty() {
+            let (lo, hi) = instruments::cost_range(&frame.cost);
+            instruments::heat_map_rgba(&frame.cost, lo, hi)
+        } else {
+            to_srgba8(&frame.pixels, self.params.exposure)
+        };
+        self.shown_cost = self.show_cost;
         let image = egui::ColorImage::from_rgba_unmultiplied(
             [frame.width as usize, frame.height as usize],
             &rgba,
@@ -723,6 +733,8 @@ impl RaylabApp {
                     .on_hover_text("R_s, R_p, exact R, Schlick and naive Schlick against the angle, for the current IOR.");
                 ui.checkbox(&mut self.inspect_mode, "Ray-tree inspector: click a pixel")
                     .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
+                ui.checkbox(&mut self.show_cost, "Cost heat map")
+                    .on_hover_text("Rays traced per sample in each pixel, black (few) to yellow (many): where the ray tree is deep. Compare pruning by depth and by weight.");
                 ui.checkbox(&mut self.show_patterns, "Sample patterns")
                     .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
             });
@@ -768,6 +780,11 @@ impl RaylabApp {
             if self.paused {
                 ui.separator();
                 ui.label(RichText::new("paused").strong());
+            }
+            if self.show_cost && !f.cost.is_empty() {
+                let (lo, hi) = instruments::cost_range(&f.cost);
+                ui.separator();
+                ui.label(format!("cost: {lo:.1} (black) to {hi:.1} (yellow) rays per sample"));
             }
             ui.separator();
             ui.label(format!("{}×{}", f.width, f.height));

@@ -95,6 +95,8 @@ pub struct Frame {
     /// Linear mean radiance, row-major from the top left. Every pixel changes from one
     /// frame to the next (a pass adds samples to all of them), so frames are whole.
     pub pixels: Arc<Vec<Color>>,
+    /// Rays traced per sample in every pixel (the cost heat map); empty for a preview.
+    pub cost: Arc<Vec<f32>>,
     /// True for the coarse preview (one sample per block).
     pub preview: bool,
     /// Progress at this frame.
@@ -487,7 +489,7 @@ impl Controller {
         if let Ok((pixels, stats)) = result {
             self.needs_preview = false;
             self.stats += stats;
-            self.emit(Arc::new(pixels), true);
+            self.emit(Arc::new(pixels), Arc::new(Vec::new()), true);
         }
     }
 
@@ -574,15 +576,17 @@ impl Controller {
             return;
         }
         let pixels = Arc::new(self.film.pixels().collect());
-        self.emit(pixels, preview);
+        let cost = Arc::new(self.film.cost());
+        self.emit(pixels, cost, preview);
     }
 
-    fn emit(&mut self, pixels: Arc<Vec<Color>>, preview: bool) {
+    fn emit(&mut self, pixels: Arc<Vec<Color>>, cost: Arc<Vec<f32>>, preview: bool) {
         let frame = Frame {
             generation: self.generation,
             width: self.film.width(),
             height: self.film.height(),
             pixels,
+            cost,
             preview,
             progress: self.progress(),
         };

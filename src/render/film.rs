@@ -15,6 +15,8 @@ pub struct Accum {
     pub count: u32,
     /// Odd-numbered samples summed.
     pub odd_count: u32,
+    /// Rays traced for this pixel's samples, of every kind: its cost.
+    pub rays: u32,
 }
 
 impl Accum {
@@ -204,6 +206,12 @@ impl Film {
     /// The mean radiance of pixel (x, y); black before any sample.
     pub fn pixel(&self, x: u32, y: u32) -> Color {
         self.pixels[(y * self.width + x) as usize].mean()
+    }
+
+    /// Rays traced per sample in every pixel, row-major: the cost of each pixel's tree.
+    pub fn cost(&self) -> Vec<f32> {
+        let spp = self.spp.max(1) as f32;
+        self.pixels.iter().map(|p| p.rays as f32 / spp).collect()
     }
 
     /// Mean radiance of every pixel, row-major.

@@ -59,7 +59,11 @@ pub fn render_pass(
                 }
                 let (x, y) = (i as u32 % width, y0 + i as u32 / width);
                 for s in first..first + samples {
+                    let before = stats.total_rays();
                     let c = tracer.sample(x, y, s, &mut stats);
+                    pixel.rays = pixel
+                        .rays
+                        .saturating_add((stats.total_rays() - before) as u32);
                     if c.is_finite() {
                         pixel.add(s, c);
                     } else {
