@@ -336,3 +336,45 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.run_steps(3);
     h.get_by_label("Point on the lens");
 }
+
+#[test]
+fn a_b_compare_renders_both_sides() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glazed", dir.path());
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("A/B compare").click();
+    h.run_steps(3);
+    h.get_by_label("constant | Fresnel").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().params().fresnel,
+        Some(FresnelMode::Constant),
+        "side A"
+    );
+    let (b, _) = h.state().compare_side_b().expect("the A/B view is on");
+    assert_eq!(b.fresnel, Some(FresnelMode::Exact), "side B");
+    step_until(&mut h, "both sides to finish", |a| {
+        a.latest_frame().is_some_and(|f| f.progress.done())
+            && a.compare_side_b()
+                .is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
+    });
+    // The two sides differ only in the Fresnel model: the same light, other reflections.
+    let a = h.state().latest_frame().unwrap().pixels.clone();
+    let b = h
+        .state()
+        .compare_side_b()
+        .unwrap()
+        .1
+        .unwrap()
+        .pixels
+        .clone();
+    assert_eq!(a.len(), b.len());
+    assert!(a.iter().zip(b.iter()).any(|(x, y)| x != y));
+    // Other controls move both sides.
+    h.get_by_role_and_label(Role::Slider, "Max depth")
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+    assert_eq!(h.state().compare_side_b().unwrap().0.max_depth, 2);
+}

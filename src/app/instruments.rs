@@ -449,3 +449,72 @@ pub fn cost_range(cost: &[f32]) -> (f32, f32) {
         (lo.min(c), hi.max(c))
     })
 }
+
+/// What the two sides of the A/B view differ in.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CompareKind {
+    /// Schlick's approximation against the exact Fresnel equations.
+    SchlickExact,
+    /// Random against jittered samples, at the same samples per pixel.
+    RandomJittered,
+    /// Constant reflectance against Fresnel.
+    ConstantFresnel,
+    /// The split ray tree against the stochastic one.
+    SplitStochastic,
+    /// The parameters as they were when frozen (B) against the controls (A).
+    Frozen(crate::params::Params),
+}
+
+impl CompareKind {
+    /// The presets, for the menu.
+    pub fn presets() -> [(&'static str, CompareKind); 4] {
+        [
+            ("Schlick | exact", CompareKind::SchlickExact),
+            ("random | jittered", CompareKind::RandomJittered),
+            ("constant | Fresnel", CompareKind::ConstantFresnel),
+            ("split | stochastic tree", CompareKind::SplitStochastic),
+        ]
+    }
+
+    /// The labels of side A and side B.
+    pub fn labels(&self) -> (&'static str, &'static str) {
+        match self {
+            CompareKind::SchlickExact => ("A: Schlick", "B: exact Fresnel"),
+            CompareKind::RandomJittered => ("A: random", "B: jittered"),
+            CompareKind::ConstantFresnel => ("A: constant k", "B: exact Fresnel"),
+            CompareKind::SplitStochastic => ("A: split tree", "B: stochastic tree"),
+            CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
+        }
+    }
+
+    /// Side A's parameters when the comparison starts.
+    pub fn side_a(&self, p: &crate::params::Params) -> crate::params::Params {
+        use crate::optics::FresnelMode;
+        use crate::params::{Pattern, TreeMode};
+        let mut p = p.clone();
+        match self {
+            CompareKind::SchlickExact => p.fresnel = Some(FresnelMode::Schlick),
+            CompareKind::RandomJittered => p.pattern = Pattern::Random,
+            CompareKind::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
+            CompareKind::SplitStochastic => p.tree = TreeMode::Split,
+            CompareKind::Frozen(_) => {}
+        }
+        p
+    }
+
+    /// Side B's parameters, given side A's: A's with the compared setting changed.
+    pub fn side_b(&self, a: &crate::params::Params) -> crate::params::Params {
+        use crate::optics::FresnelMode;
+        use crate::params::{Pattern, TreeMode};
+        let mut p = a.clone();
+        match self {
+            CompareKind::SchlickExact | CompareKind::ConstantFresnel => {
+                p.fresnel = Some(FresnelMode::Exact)
+            }
+            CompareKind::RandomJittered => p.pattern = Pattern::Jittered,
+            CompareKind::SplitStochastic => p.tree = TreeMode::Stochastic,
+            CompareKind::Frozen(b) => return b.clone(),
+        }
+        p
+    }
+}

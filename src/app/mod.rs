@@ -13,7 +13,8 @@ mod view;
 pub use controls::{Controls, controls_ui};
 pub use files::{Choice, FileDialog, Purpose, snapshot_path, timestamp};
 pub use instruments::{
-    Direction, Inspection, LECTURE, Slide, fresnel_plot_ui, inspector_ui, sample_pattern_ui,
+    CompareKind, Direction, Inspection, LECTURE, Slide, fresnel_plot_ui, inspector_ui,
+    sample_pattern_ui,
 };
 pub use view::{ViewEvent, ViewState, image_ui};
 
@@ -87,6 +88,18 @@ struct Loaded {
     result: Result<Scene, SceneError>,
 }
 
+/// The A/B view: side B's own engine and image, and where the divider is.
+struct Compare {
+    kind: CompareKind,
+    engine: Engine,
+    frame: Option<Frame>,
+    texture: Option<egui::TextureHandle>,
+    stale: bool,
+    sent_camera: Camera,
+    // The divider's position across the image, 0 (all B) to 1 (all A).
+    divider: f32,
+}
+
 struct Toast {
     text: String,
     error: bool,
@@ -118,6 +131,7 @@ pub struct RaylabApp {
     show_patterns: bool,
     show_cost: bool,
     shown_cost: bool,
+    compare: Option<Compare>,
     // The lecture slide being shown: its parameters wait for its scene to load.
     pending_slide: Option<&'static Slide>,
     caption: Option<&'static str>,
@@ -270,6 +284,7 @@ impl RaylabApp {
             show_patterns: false,
             show_cost: false,
             shown_cost: false,
+            compare: None,
             pending_slide: None,
             caption: None,
             scene,
@@ -311,6 +326,13 @@ impl RaylabApp {
     /// The inspected ray tree, if a pixel was clicked in inspect mode.
     pub fn inspection(&self) -> Option<&Inspection> {
         self.inspection.as_ref()
+    }
+
+    /// Side B's parameters and its newest frame, while the A/B view is on.
+    pub fn compare_side_b(&self) -> Option<(&Params, Option<&Frame>)> {
+        self.compare
+            .as_ref()
+            .map(|c| (c.engine.params(), c.frame.as_ref()))
     }
 
     /// The caption of the lecture slide shown, if any.
@@ -735,6 +757,25 @@ impl RaylabApp {
                     .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
                 ui.checkbox(&mut self.show_cost, "Cost heat map")
                     .on_hover_text("Rays traced per sample in each pixel, black (few) to yellow (many): where the ray tree is deep. Compare pruning by depth and by weight.");
+                ui.menu_button("A/B compare", |ui| {
+                    for (label, kind) in CompareKind::presets() {
+                        if ui.button(label).clicked() {
+                            self.start_compare(ui.ctx(), kind);
+                            ui.close();
+                        }
+                    }
+                    let frozen = ui
+                        .button("the controls | frozen copy")
+                        .on_hover_text("B keeps the parameters as they are now; change A with the controls.");
+                    if frozen.clicked() {
+                        self.start_compare(ui.ctx(), CompareKind::Frozen(self.params.clone()));
+                        ui.close();
+                    }
+                    if ui.add_enabled(self.compare.is_some(), egui::Button::new("Off")).clicked() {
+                        self.compare = None;
+                        ui.close();
+                    }
+                });
                 ui.checkbox(&mut self.show_patterns, "Sample patterns")
                     .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
             });
@@ -813,6 +854,7 @@ impl RaylabApp {
                 (f.width, f.height)
             });
         let (events, image_rect) = image_ui(ui, &mut self.view, self.texture.as_ref(), size);
+        self.compare_overlay_ui(ui, image_rect);
         let aspect = size.0 as f32 / size.1 as f32;
         if let Some(inspection) = &self.inspection {
             let frame = self.camera.pinhole(aspect);
@@ -866,6 +908,121 @@ impl RaylabApp {
                 ViewEvent::Dolly(amount) => dolly(&mut self.camera, amount),
             }
         }
+    }
+
+    /// Splits the view between the controls' parameters (A) and `kind`'s other side (B).
+    fn start_compare(&mut self, ctx: &egui::Context, kind: CompareKind) {
+        self.params = kind.side_a(&self.params);
+        let (w, h) = render_size(&self.scene, self.resolution);
+        let ctx = ctx.clone();
+        let b = kind.side_b(&self.params);
+        match Engine::new(
+            Arc::clone(&self.scene),
+            b,
+            w,
+            h,
+            EngineConfig::with_ui(),
+            move || ctx.request_repaint(),
+        ) {
+            Ok(mut engine) => {
+                engine.set_camera(self.sent_camera.clone());
+                engine.set_unlimited(self.unlimited);
+                self.compare = Some(Compare {
+                    kind,
+                    engine,
+                    frame: None,
+                    texture: None,
+                    stale: false,
+                    sent_camera: self.sent_camera.clone(),
+                    divider: 0.5,
+                });
+            }
+            Err(e) => self.toast(format!("Cannot compare: {e}"), true),
+        }
+    }
+
+    /// Keeps side B in step with the controls, and takes its frames.
+    fn sync_compare(&mut self, ctx: &egui::Context) {
+        let Some(c) = &mut self.compare else { return };
+        let b = c.kind.side_b(&self.params);
+        if b.validate().is_ok() && &b != c.engine.params() {
+            c.engine.set_params(b);
+        }
+        if c.sent_camera != self.sent_camera {
+            c.engine.set_camera(self.sent_camera.clone());
+            c.sent_camera = self.sent_camera.clone();
+        }
+        if let Some(frame) = c.engine.frames().try_iter().last() {
+            c.frame = Some(frame);
+            c.stale = true;
+        }
+        if let Some(f) = &c.frame
+            && (c.stale || self.params.exposure != self.shown_exposure)
+        {
+            let rgba = to_srgba8(&f.pixels, self.params.exposure);
+            let image = egui::ColorImage::from_rgba_unmultiplied(
+                [f.width as usize, f.height as usize],
+                &rgba,
+            );
+            let options = egui::TextureOptions {
+                magnification: egui::TextureFilter::Nearest,
+                minification: egui::TextureFilter::Linear,
+                ..Default::default()
+            };
+            match &mut c.texture {
+                Some(t) => t.set(image, options),
+                None => c.texture = Some(ctx.load_texture("raylab-image-b", image, options)),
+            }
+            c.stale = false;
+        }
+    }
+
+    /// Draws side B right of the divider, the divider, and the two sides' labels.
+    fn compare_overlay_ui(&mut self, ui: &mut egui::Ui, image: egui::Rect) {
+        let Some(c) = &mut self.compare else { return };
+        let x = image.min.x + c.divider * image.width();
+        let clip = egui::Rect::from_min_max(egui::pos2(x, image.min.y), image.max)
+            .intersect(ui.clip_rect());
+        if let Some(t) = &c.texture {
+            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+            ui.painter()
+                .with_clip_rect(clip)
+                .image(t.id(), image, uv, Color32::WHITE);
+        }
+        let handle = egui::Rect::from_center_size(
+            egui::pos2(x, image.center().y),
+            egui::vec2(14.0, image.height()),
+        );
+        let response = ui.interact(handle, egui::Id::unique("ab-divider"), egui::Sense::drag());
+        if response.dragged() {
+            c.divider =
+                ((x + response.drag_delta().x - image.min.x) / image.width()).clamp(0.0, 1.0);
+        }
+        let painter = ui.painter();
+        painter.line_segment(
+            [egui::pos2(x, image.min.y), egui::pos2(x, image.max.y)],
+            egui::Stroke::new(2.0, Color32::WHITE),
+        );
+        painter.circle_filled(egui::pos2(x, image.center().y), 7.0, Color32::WHITE);
+        let (a, b) = c.kind.labels();
+        let spp = |f: &Option<Frame>| f.as_ref().map_or(0, |f| f.progress.spp);
+        let font = egui::FontId::proportional(15.0);
+        let a_text = format!("{a} ({} spp)", spp(&self.frame));
+        let b_text = format!("{b} ({} spp)", spp(&c.frame));
+        painter.text(
+            image.min + egui::vec2(10.0, 10.0),
+            egui::Align2::LEFT_TOP,
+            a_text,
+            font.clone(),
+            Color32::WHITE,
+        );
+        painter.text(
+            egui::pos2(image.max.x - 10.0, image.min.y + 10.0),
+            egui::Align2::RIGHT_TOP,
+            b_text,
+            font,
+            Color32::WHITE,
+        );
     }
 
     /// Records the ray tree of `pixel`'s first sample with the current parameters and camera.
@@ -1095,6 +1252,7 @@ impl eframe::App for RaylabApp {
         self.toasts_ui(&ctx);
         self.instruments_ui(&ctx);
         self.sync_engine();
+        self.sync_compare(&ctx);
         if self.params.exposure != self.shown_exposure {
             ctx.request_repaint();
         }
