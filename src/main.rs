@@ -42,9 +42,29 @@ enum Command {
     /// F_p, R) and Schlick's approximations. theta_t is empty under total internal
     /// reflection.
     Fresnel(FresnelArgs),
+    /// Render a contact sheet: one labelled image per value of a parameter, side by side.
+    Sweep(SweepArgs),
     /// Measure the progressive engine: latency from a parameter change to the first frame
     /// of the new generation, the time of a full-resolution 1-spp pass, and rays per second.
     Bench(BenchArgs),
+}
+
+#[derive(clap::Args)]
+struct SweepArgs {
+    /// A scene file or built-in name.
+    scene: String,
+    /// The parameter and its values, e.g. spp=1,4,16 or fresnel=schlick,exact.
+    #[arg(long, value_name = "NAME=V1,V2,...")]
+    param: String,
+    /// The sheet to write (.png).
+    #[arg(short, long, value_name = "SHEET.png")]
+    output: PathBuf,
+    /// Size of each image [default: the scene's, halved].
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(u32, u32)>,
+    /// Set other parameters for every image (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    set: Vec<String>,
 }
 
 #[derive(clap::Args)]
@@ -173,6 +193,7 @@ fn main() -> ExitCode {
         Some(Command::Scenes) => scenes_command(),
         Some(Command::Fresnel(args)) => fresnel_command(&args),
         Some(Command::Bench(args)) => bench_command(&args),
+        Some(Command::Sweep(args)) => sweep_command(&args),
         None => window(cli.scene, cli.threads),
     };
     match result {
@@ -340,6 +361,39 @@ fn fresnel_command(args: &FresnelArgs) -> Result<()> {
         )?;
     }
     out.flush()?;
+    Ok(())
+}
+
+fn sweep_command(args: &SweepArgs) -> Result<()> {
+    let (name, values) = raylab::render::parse_sweep(&args.param).context("--param")?;
+    let scene = Scene::load(&args.scene)?;
+    let mut params = scene.params.clone();
+    for assignment in &args.set {
+        params.set_assignment(assignment).context("--set")?;
+    }
+    let ext = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if ext.as_deref() != Some("png") {
+        bail!("{}: a contact sheet is a .png", args.output.display());
+    }
+    let (w, h) = args
+        .size
+        .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));
+    let start = Instant::now();
+    let sheet =
+        raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
+    sheet
+        .save_with_format(&args.output, image::ImageFormat::Png)
+        .with_context(|| format!("{}: cannot write the sheet", args.output.display()))?;
+    eprintln!(
+        "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
+        scene.name,
+        values.len(),
+        start.elapsed().as_secs_f64(),
+        args.output.display()
+    );
     Ok(())
 }
 

@@ -378,3 +378,27 @@ fn a_b_compare_renders_both_sides() {
     h.run_steps(3);
     assert_eq!(h.state().compare_side_b().unwrap().0.max_depth, 2);
 }
+
+#[test]
+fn the_contact_sheet_button_saves_a_sheet() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glazed", dir.path());
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Contact sheet…").click();
+    h.run_steps(3);
+    h.get_by_label("Render sheet").click();
+    h.run_steps(2);
+    step_until(&mut h, "the sheet", |a| {
+        a.toasts().iter().any(|t| t.contains("contact sheet"))
+    });
+    let sheet = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .find(|e| e.file_name().to_string_lossy().contains("-sweep-spp-"))
+        .expect("the sheet file");
+    let img = image::open(sheet.path()).unwrap();
+    // Three tiles of half the scene's 960×540.
+    assert_eq!(img.width(), 3 * 480 + 4 * 8);
+}

@@ -332,3 +332,45 @@ fn bench_reports_latency_pass_time_and_rays_per_second() {
         "{out}"
     );
 }
+
+#[test]
+fn sweep_writes_a_labelled_contact_sheet() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = raylab(
+        &[
+            "sweep",
+            "glazed",
+            "--param",
+            "fresnel=constant,exact",
+            "--size",
+            "60x40",
+            "-o",
+            "sheet.png",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let sheet = image::open(d.join("sheet.png")).unwrap();
+    // Two tiles of 60×40 with 8-pixel gaps, and a 28-pixel label band.
+    assert_eq!(
+        (sheet.width(), sheet.height()),
+        (2 * 60 + 3 * 8, 40 + 28 + 2 * 8)
+    );
+    fails(
+        &["sweep", "glazed", "--param", "fresnel=fancy", "-o", "x.png"],
+        d,
+        "fresnel",
+    );
+    fails(
+        &["sweep", "glazed", "--param", "nope=1", "-o", "x.png"],
+        d,
+        "unknown parameter",
+    );
+    fails(
+        &["sweep", "glazed", "--param", "spp", "-o", "x.png"],
+        d,
+        "NAME=VALUE",
+    );
+    assert!(!d.join("x.png").exists());
+}

@@ -100,6 +100,13 @@ struct Compare {
     divider: f32,
 }
 
+/// The contact sheet window.
+struct SheetForm {
+    param: String,
+    values: String,
+    running: Option<Receiver<Result<PathBuf, String>>>,
+}
+
 struct Toast {
     text: String,
     error: bool,
@@ -132,6 +139,8 @@ pub struct RaylabApp {
     show_cost: bool,
     shown_cost: bool,
     compare: Option<Compare>,
+    // The contact sheet window: the parameter, its values, and a sheet being rendered.
+    sheet: Option<SheetForm>,
     // The lecture slide being shown: its parameters wait for its scene to load.
     pending_slide: Option<&'static Slide>,
     caption: Option<&'static str>,
@@ -285,6 +294,7 @@ impl RaylabApp {
             show_cost: false,
             shown_cost: false,
             compare: None,
+            sheet: None,
             pending_slide: None,
             caption: None,
             scene,
@@ -776,6 +786,14 @@ impl RaylabApp {
                         ui.close();
                     }
                 });
+                if ui.button("Contact sheet…").on_hover_text("One labelled image per value of a parameter, side by side, saved as a PNG.").clicked() {
+                    self.sheet = Some(SheetForm {
+                        param: "spp".into(),
+                        values: "1,4,16".into(),
+                        running: None,
+                    });
+                    ui.close();
+                }
                 ui.checkbox(&mut self.show_patterns, "Sample patterns")
                     .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
             });
@@ -1006,22 +1024,25 @@ impl RaylabApp {
         painter.circle_filled(egui::pos2(x, image.center().y), 7.0, Color32::WHITE);
         let (a, b) = c.kind.labels();
         let spp = |f: &Option<Frame>| f.as_ref().map_or(0, |f| f.progress.spp);
-        let font = egui::FontId::proportional(15.0);
         let a_text = format!("{a} ({} spp)", spp(&self.frame));
         let b_text = format!("{b} ({} spp)", spp(&c.frame));
-        painter.text(
-            image.min + egui::vec2(10.0, 10.0),
-            egui::Align2::LEFT_TOP,
+        // Labels on dark plates: legible over a white sky too.
+        let label = |text: String, anchor: egui::Pos2, align: egui::Align2| {
+            let galley =
+                painter.layout_no_wrap(text, egui::FontId::proportional(15.0), Color32::WHITE);
+            let rect = align.anchor_size(anchor, galley.size());
+            painter.rect_filled(rect.expand(5.0), 4.0, Color32::from_black_alpha(170));
+            painter.galley(rect.min, galley, Color32::WHITE);
+        };
+        label(
             a_text,
-            font.clone(),
-            Color32::WHITE,
+            image.min + egui::vec2(12.0, 12.0),
+            egui::Align2::LEFT_TOP,
         );
-        painter.text(
-            egui::pos2(image.max.x - 10.0, image.min.y + 10.0),
-            egui::Align2::RIGHT_TOP,
+        label(
             b_text,
-            font,
-            Color32::WHITE,
+            egui::pos2(image.max.x - 12.0, image.min.y + 12.0),
+            egui::Align2::RIGHT_TOP,
         );
     }
 
@@ -1056,8 +1077,102 @@ impl RaylabApp {
         }
     }
 
+    /// The contact sheet window, and the sheet rendering in the background.
+    fn sheet_ui(&mut self, ctx: &egui::Context) {
+        let Some(form) = &mut self.sheet else { return };
+        if let Some(rx) = &form.running
+            && let Ok(result) = rx.try_recv()
+        {
+            form.running = None;
+            match result {
+                Ok(path) => self.toasts.push(Toast {
+                    text: format!("Saved the contact sheet {}", path.display()),
+                    error: false,
+                    until: Instant::now() + Duration::from_secs(6),
+                }),
+                Err(e) => self.toasts.push(Toast {
+                    text: format!("No contact sheet: {e}"),
+                    error: true,
+                    until: Instant::now() + Duration::from_secs(8),
+                }),
+            }
+        }
+        let mut open = true;
+        let mut start = false;
+        egui::Window::new("Contact sheet").open(&mut open).show(ctx, |ui| {
+            egui::ComboBox::from_label("Parameter").selected_text(form.param.as_str()).show_ui(ui, |ui| {
+                for name in Params::names() {
+                    ui.selectable_value(&mut form.param, name.clone(), name);
+                }
+            });
+            ui.horizontal(|ui| {
+                ui.label("Values");
+                ui.text_edit_singleline(&mut form.values).on_hover_text("Comma separated, as --set takes them: 1,4,16 or schlick,exact.");
+            });
+            ui.label("Each image is half the scene's size, with the other parameters as they are now.");
+            if form.running.is_some() {
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.label("rendering…");
+                });
+            } else if ui.button("Render sheet").clicked() {
+                start = true;
+            }
+        });
+        if start {
+            let values: Vec<String> = form
+                .values
+                .split(',')
+                .map(|v| v.trim().to_string())
+                .filter(|v| !v.is_empty())
+                .collect();
+            let (tx, rx) = crossbeam_channel::bounded(1);
+            form.running = Some(rx);
+            let scene = Arc::clone(&self.scene);
+            let camera = self.camera.clone();
+            let params = self.params.clone();
+            let name = form.param.clone();
+            let path = self.options.snapshot_dir.join(format!(
+                "{}-sweep-{name}-{}.png",
+                scene.name,
+                timestamp(SystemTime::now())
+            ));
+            let ctx = ctx.clone();
+            std::thread::spawn(move || {
+                let (w, h) = ((scene.width / 2).max(1), (scene.height / 2).max(1));
+                let result = crate::render::contact_sheet(
+                    &scene,
+                    &camera,
+                    &params,
+                    w,
+                    h,
+                    &name,
+                    &values,
+                    &(),
+                )
+                .map_err(|e| e.to_string())
+                .and_then(|sheet| {
+                    if let Some(dir) = path.parent() {
+                        std::fs::create_dir_all(dir)
+                            .map_err(|e| format!("{}: {e}", dir.display()))?;
+                    }
+                    sheet
+                        .save(&path)
+                        .map_err(|e| format!("{}: {e}", path.display()))?;
+                    Ok(path)
+                });
+                let _ = tx.send(result);
+                ctx.request_repaint();
+            });
+        }
+        if !open {
+            self.sheet = None;
+        }
+    }
+
     fn instruments_ui(&mut self, ctx: &egui::Context) {
         self.refresh_inspection();
+        self.sheet_ui(ctx);
         if self.show_fresnel {
             let ior = self.params.ior.or_else(|| {
                 self.scene

@@ -4,11 +4,13 @@
 mod engine;
 mod film;
 mod kernel;
+mod sheet;
 mod snapshot;
 
 pub use engine::{Engine, EngineConfig, EngineError, Frame, MAX_PASS_SPP, PREVIEW_BLOCK, Progress};
 pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
+pub use sheet::{SheetError, contact_sheet, parse_sweep};
 pub use snapshot::{Sidecar, SidecarError, sidecar_path};
 
 use crate::params::Params;

@@ -1,0 +1,188 @@
+//! Contact sheets: one image per value of a parameter, side by side and labelled, like the
+//! lecture's comparison figures.
+
+use super::{Cancelled, Film, PassObserver, render_pass};
+use crate::camera::Camera;
+use crate::params::{ParamError, Params};
+use crate::scene::Scene;
+use font8x8::UnicodeFonts;
+use image::{Rgb, RgbImage};
+
+/// A sheet that cannot be made.
+#[derive(Debug, thiserror::Error)]
+pub enum SheetError {
+    /// A value does not suit the parameter.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    /// No values.
+    #[error("a sweep needs at least one value")]
+    Empty,
+    /// Stopped.
+    #[error(transparent)]
+    Cancelled(#[from] Cancelled),
+}
+
+/// Parses `name=v1,v2,...` into the name and its values.
+pub fn parse_sweep(spec: &str) -> Result<(String, Vec<String>), ParamError> {
+    let (name, values) = spec
+        .split_once('=')
+        .ok_or_else(|| ParamError::Syntax(spec.to_string()))?;
+    let values: Vec<String> = values
+        .split(',')
+        .map(|v| v.trim().to_string())
+        .filter(|v| !v.is_empty())
+        .collect();
+    Ok((name.trim().to_string(), values))
+}
+
+/// Columns of a sheet of `n` images: at most four across.
+fn columns(n: usize) -> usize {
+    n.clamp(1, 4)
+}
+
+const GAP: u32 = 8;
+const LABEL: u32 = 28;
+const SCALE: u32 = 2;
+
+/// Renders one `width` × `height` image of `scene` through `camera` for each value of
+/// parameter `name` (set as `--set name=value` would, on top of `base`), and lays them out
+/// in rows of up to four, each labelled `name = value`.
+#[allow(clippy::too_many_arguments)]
+pub fn contact_sheet(
+    scene: &Scene,
+    camera: &Camera,
+    base: &Params,
+    width: u32,
+    height: u32,
+    name: &str,
+    values: &[String],
+    observer: &dyn PassObserver,
+) -> Result<RgbImage, SheetError> {
+    if values.is_empty() {
+        return Err(SheetError::Empty);
+    }
+    // Check every value before rendering any.
+    let params: Vec<Params> = values
+        .iter()
+        .map(|v| {
+            let mut p = base.clone();
+            p.set(name, v).map(|_| p)
+        })
+        .collect::<Result<_, _>>()?;
+    let cols = columns(values.len()) as u32;
+    let rows = values.len().div_ceil(cols as usize) as u32;
+    let mut sheet = RgbImage::from_pixel(
+        cols * width + (cols + 1) * GAP,
+        rows * (height + LABEL) + (rows + 1) * GAP,
+        Rgb([24, 24, 24]),
+    );
+    for (i, (p, value)) in params.iter().zip(values).enumerate() {
+        let mut film = Film::new(width, height);
+        render_pass(scene, camera, p, &mut film, p.spp, observer)?;
+        let tile = film.to_srgb8(p.exposure);
+        let (col, row) = (i as u32 % cols, i as u32 / cols);
+        let x0 = GAP + col * (width + GAP);
+        let y0 = GAP + row * (height + LABEL + GAP);
+        image::imageops::replace(&mut sheet, &tile, x0 as i64, y0 as i64);
+        draw_text(
+            &mut sheet,
+            x0 + 4,
+            y0 + height + (LABEL - 8 * SCALE) / 2,
+            &format!("{name} = {value}"),
+        );
+    }
+    Ok(sheet)
+}
+
+/// Draws `text` in the 8×8 font at twice its size, white, with its top left at (x, y).
+fn draw_text(img: &mut RgbImage, x: u32, y: u32, text: &str) {
+    for (k, c) in text.chars().enumerate() {
+        let glyph = font8x8::BASIC_FONTS
+            .get(c)
+            .or_else(|| font8x8::BASIC_FONTS.get('?'))
+            .unwrap_or([0; 8]);
+        for (row, bits) in glyph.iter().enumerate() {
+            for col in 0..8u32 {
+                // Bit 0 is the leftmost pixel of the row.
+                if bits >> col & 1 == 1 {
+                    for dy in 0..SCALE {
+                        for dx in 0..SCALE {
+                            let px = x + (k as u32 * 8 + col) * SCALE + dx;
+                            let py = y + row as u32 * SCALE + dy;
+                            if px < img.width() && py < img.height() {
+                                img.put_pixel(px, py, Rgb([255, 255, 255]));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sweep_specs_parse() {
+        assert_eq!(
+            parse_sweep("spp=1, 4,16").unwrap(),
+            ("spp".into(), vec!["1".into(), "4".into(), "16".into()])
+        );
+        assert!(parse_sweep("spp").is_err());
+    }
+
+    #[test]
+    fn a_sheet_lays_out_labelled_tiles_in_rows_of_four() {
+        let scene = Scene::load("default").unwrap();
+        let base = Params {
+            spp: 1,
+            ..scene.params.clone()
+        };
+        let values: Vec<String> = ["1", "2", "3", "4", "5"].map(String::from).to_vec();
+        let sheet = contact_sheet(
+            &scene,
+            &scene.camera,
+            &base,
+            40,
+            30,
+            "max_depth",
+            &values,
+            &(),
+        )
+        .unwrap();
+        assert_eq!(sheet.width(), 4 * 40 + 5 * GAP);
+        assert_eq!(sheet.height(), 2 * (30 + LABEL) + 3 * GAP);
+        // The fifth tile is the image with max_depth 5, in the second row's first place.
+        let mut film = Film::new(40, 30);
+        let p = Params {
+            max_depth: 5,
+            ..base.clone()
+        };
+        render_pass(&scene, &scene.camera, &p, &mut film, 1, &()).unwrap();
+        let tile = film.to_srgb8(0.0);
+        let y0 = GAP + 30 + LABEL + GAP;
+        assert_eq!(sheet.get_pixel(GAP + 7, y0 + 11), tile.get_pixel(7, 11));
+        // Its label has white pixels.
+        let label_has_text = (0..40).any(|x| {
+            (0..LABEL).any(|y| sheet.get_pixel(GAP + x, y0 + 30 + y).0 == [255, 255, 255])
+        });
+        assert!(label_has_text);
+        // A bad value is an error before any rendering.
+        assert!(
+            contact_sheet(
+                &scene,
+                &scene.camera,
+                &base,
+                8,
+                8,
+                "spp",
+                &["0".into()],
+                &()
+            )
+            .is_err()
+        );
+        assert!(contact_sheet(&scene, &scene.camera, &base, 8, 8, "spp", &[], &()).is_err());
+    }
+}
