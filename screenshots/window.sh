@@ -68,6 +68,50 @@ sleep 6
 shot window-focus
 quit
 
+# The instruments. Menu entries, 23 pixels apart below "Instruments" at (824, 12):
+# Fresnel plot, Ray-tree inspector, Cost heat map, A/B compare, Contact sheet, Sample patterns.
+menu() { click 824 12; click "$1" "$2"; }
+launch glass
+sleep 3
+menu 840 39
+menu 880 62
+click 740 300
+sleep 2
+shot window-fresnel-inspector
+quit
+
+launch glazed
+sleep 1
+click 824 12
+click 828 108
+click 1052 154
+sleep 7
+shot window-ab-compare
+quit
+
+launch ray-tree
+sleep 4
+menu 848 85
+sleep 1
+shot window-cost-heat-map
+quit
+
+launch soft-shadows
+sleep 1
+menu 854 154
+sleep 1
+shot window-sample-patterns
+quit
+
+# A lecture slide: the Lecture menu at (904, 12), third entry.
+launch default
+sleep 1
+click 904 12
+click 960 85
+sleep 6
+shot window-lecture-tir
+quit
+
 # A scene file with an error: the window shows where, and keeps the previous scene.
 bad=$(mktemp --suffix=.toml)
 printf '[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[sphere]]\ncenter = [0, 1, 0]\nradius = -2\n' > "$bad"
@@ -80,3 +124,7 @@ sleep 1
 shot window-open
 quit
 rm -f "$bad"
+
+# Contact sheets, from the command line.
+./target/release/raylab sweep antialiasing --param spp=1,4,16,64 --set pattern=jittered -o screenshots/sheet-antialiasing-spp.png
+./target/release/raylab sweep glazed --param fresnel=constant,schlick_naive,schlick,exact -o screenshots/sheet-glazed-fresnel.png

@@ -520,7 +520,7 @@ impl<'a> Tracer<'a> {
         };
         match why {
             Some(end) => {
-                let id = w.rec.ray(TreeNode {
+                w.rec.ray(TreeNode {
                     parent: Some(parent),
                     kind,
                     ray: *ray,
@@ -532,7 +532,6 @@ impl<'a> Tracer<'a> {
                     end,
                     radiance: Color::ZERO,
                 });
-                let _ = id;
                 Color::ZERO
             }
             None => {

@@ -402,3 +402,30 @@ fn the_contact_sheet_button_saves_a_sheet() {
     // Three tiles of half the scene's 960×540.
     assert_eq!(img.width(), 3 * 480 + 4 * 8);
 }
+
+#[test]
+fn the_cost_heat_map_shows_rays_per_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("ray-tree", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.preview)
+    });
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Cost heat map").click();
+    h.run_steps(3);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    let frame = h.state().latest_frame().unwrap();
+    let max = frame.cost.iter().cloned().fold(0.0f32, f32::max);
+    assert!(
+        max > 4.0,
+        "glass spheres make deep trees: {max} rays per sample"
+    );
+    assert!(
+        h.query_all_by_label_contains("rays per sample")
+            .next()
+            .is_some(),
+        "the heat map's scale in the status bar"
+    );
+}
