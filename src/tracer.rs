@@ -590,7 +590,8 @@ impl<'a> Tracer<'a> {
                 time: ray.time,
             }
         };
-        match &self.materials[hit.material as usize] {
+        let material = &self.materials[hit.material as usize];
+        match material {
             Material::Emissive { radiance } => (*radiance, End::LightHit),
             Material::Diffuse {
                 albedo,
@@ -602,47 +603,23 @@ impl<'a> Tracer<'a> {
                 ),
                 End::Absorbed,
             ),
-            Material::Mirror { reflectance } => {
-                let weight = b.weight * reflectance.max_element();
-                let l = self.child(
-                    id,
-                    b,
-                    RayKind::Reflect,
-                    reflectance.max_element(),
-                    weight,
-                    &reflected(),
-                    media,
-                    w,
-                );
-                (*reflectance * l, End::Split)
-            }
-            Material::Glossy {
-                reflectance,
-                exponent,
-            } => {
-                // Jitter the mirror direction over the Phong lobe around it. Sampling the
-                // normalized lobe exactly, each jittered ray carries the reflectance.
-                let u = w.rng.next_2d();
+            Material::Mirror { reflectance } | Material::Glossy { reflectance, .. } => {
                 let mut child = reflected();
-                let mut dir = to_world(phong_lobe(u, *exponent), child.dir);
-                // Lobe directions below the surface are folded back above it (mirrored in
-                // the tangent plane): no energy lost, no black speckles at grazing angles.
-                let below = dir.dot(n_geom);
-                if below <= 0.0 {
-                    dir = (dir - 2.0 * below * n_geom).normalize();
+                if let Material::Glossy { exponent, .. } = material {
+                    // Jitter the mirror direction over the Phong lobe around it. Sampling
+                    // the normalized lobe exactly, each jittered ray carries the reflectance.
+                    let u = w.rng.next_2d();
+                    let mut dir = to_world(phong_lobe(u, *exponent), child.dir);
+                    // Lobe directions below the surface are folded back above it (mirrored
+                    // in the tangent plane): no energy lost, no black speckles at grazing.
+                    let below = dir.dot(n_geom);
+                    if below <= 0.0 {
+                        dir = (dir - 2.0 * below * n_geom).normalize();
+                    }
+                    child.dir = dir;
                 }
-                child.dir = dir;
-                let weight = b.weight * reflectance.max_element();
-                let l = self.child(
-                    id,
-                    b,
-                    RayKind::Reflect,
-                    reflectance.max_element(),
-                    weight,
-                    &child,
-                    media,
-                    w,
-                );
+                let k = reflectance.max_element();
+                let l = self.child(id, b, RayKind::Reflect, k, b.weight * k, &child, media, w);
                 (*reflectance * l, End::Split)
             }
             Material::Glazed { coat, base } => {

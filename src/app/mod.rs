@@ -488,20 +488,8 @@ impl RaylabApp {
             to_srgba8(&frame.pixels, self.params.exposure)
         };
         self.shown_cost = self.show_cost;
-        let image = egui::ColorImage::from_rgba_unmultiplied(
-            [frame.width as usize, frame.height as usize],
-            &rgba,
-        );
-        // Sharp pixels when zoomed in for pixel-peeping, smooth when fitted smaller.
-        let options = egui::TextureOptions {
-            magnification: egui::TextureFilter::Nearest,
-            minification: egui::TextureFilter::Linear,
-            ..Default::default()
-        };
-        match &mut self.texture {
-            Some(t) => t.set(image, options),
-            None => self.texture = Some(ctx.load_texture("raylab-image", image, options)),
-        }
+        let size = (frame.width, frame.height);
+        upload(ctx, &mut self.texture, "raylab-image", size, &rgba);
         self.shown_exposure = self.params.exposure;
         self.texture_stale = false;
     }
@@ -978,19 +966,13 @@ impl RaylabApp {
             && (c.stale || self.params.exposure != self.shown_exposure)
         {
             let rgba = to_srgba8(&f.pixels, self.params.exposure);
-            let image = egui::ColorImage::from_rgba_unmultiplied(
-                [f.width as usize, f.height as usize],
+            upload(
+                ctx,
+                &mut c.texture,
+                "raylab-image-b",
+                (f.width, f.height),
                 &rgba,
             );
-            let options = egui::TextureOptions {
-                magnification: egui::TextureFilter::Nearest,
-                minification: egui::TextureFilter::Linear,
-                ..Default::default()
-            };
-            match &mut c.texture {
-                Some(t) => t.set(image, options),
-                None => c.texture = Some(ctx.load_texture("raylab-image-b", image, options)),
-            }
             c.stale = false;
         }
     }
@@ -1278,6 +1260,27 @@ impl RaylabApp {
                 }
             });
         ctx.request_repaint_after(Duration::from_millis(250));
+    }
+}
+
+/// Puts an RGBA image into the texture in `slot`, creating it the first time. Sharp pixels
+/// when zoomed in for pixel-peeping, smooth when fitted smaller.
+fn upload(
+    ctx: &egui::Context,
+    slot: &mut Option<egui::TextureHandle>,
+    name: &str,
+    size: (u32, u32),
+    rgba: &[u8],
+) {
+    let image = egui::ColorImage::from_rgba_unmultiplied([size.0 as usize, size.1 as usize], rgba);
+    let options = egui::TextureOptions {
+        magnification: egui::TextureFilter::Nearest,
+        minification: egui::TextureFilter::Linear,
+        ..Default::default()
+    };
+    match slot {
+        Some(t) => t.set(image, options),
+        None => *slot = Some(ctx.load_texture(name, image, options)),
     }
 }
 
