@@ -310,9 +310,13 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     h.run_steps(3);
     h.get_by_label("Fresnel plot").click();
     h.run_steps(3);
+    // Both directions at once: into the glass, and out of it, where the critical angle
+    // for n = 2.0 is asin(1/2) = 30°.
     h.get_by_label("Air into material");
-    h.get_by_label("Material out to air").click();
-    h.run_steps(3);
+    h.get_by_label("Material out to air");
+    h.query_all_by_label_contains("critical 30.00°")
+        .next()
+        .expect("the critical angle for n = 2");
 }
 
 #[test]

@@ -3,35 +3,22 @@
 use crate::optics::{brewster_angle, critical_angle, fresnel_table};
 use egui_plot::{Legend, Line, Plot, PlotPoints, VLine};
 
-/// Which way the light crosses the interface in the Fresnel plot.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Direction {
-    /// From air into the material (n1 = 1, n2 = IOR).
-    #[default]
-    OutsideIn,
-    /// From the material out into air (n1 = IOR, n2 = 1): total internal reflection.
-    InsideOut,
+/// The Fresnel plots for `ior`, both ways across the interface: from air into the
+/// material, and from the material out into air (where total internal reflection sets in).
+/// `marker` is an inspected ray's angle of incidence (degrees), if any.
+pub fn fresnel_plot_ui(ui: &mut egui::Ui, ior: f32, marker: Option<f32>) {
+    for (title, n1, n2) in [
+        ("Air into material", 1.0, ior),
+        ("Material out to air", ior, 1.0),
+    ] {
+        ui.strong(title);
+        fresnel_curves_ui(ui, n1, n2, marker);
+    }
 }
 
-/// The Fresnel plot: R_s, R_p, exact R, Schlick and naive Schlick against the angle of
-/// incidence for `ior`, with Brewster's and the critical angle marked, the error of
-/// Schlick's approximation, and `marker` (an inspected ray's angle, degrees) if any.
-pub fn fresnel_plot_ui(
-    ui: &mut egui::Ui,
-    ior: f32,
-    direction: &mut Direction,
-    marker: Option<f32>,
-) {
-    ui.horizontal(|ui| {
-        ui.radio_value(direction, Direction::OutsideIn, "Air into material")
-            .on_hover_text("n1 = 1, n2 = IOR: R rises from R0 to 1 at grazing incidence.");
-        ui.radio_value(direction, Direction::InsideOut, "Material out to air")
-            .on_hover_text("n1 = IOR, n2 = 1: beyond the critical angle all light is reflected.");
-    });
-    let (n1, n2) = match direction {
-        Direction::OutsideIn => (1.0, ior),
-        Direction::InsideOut => (ior, 1.0),
-    };
+/// R_s, R_p, exact R, Schlick and naive Schlick against the angle of incidence from `n1`
+/// into `n2`, with Brewster's and the critical angle marked and the error of Schlick.
+fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
     let rows = fresnel_table(n1, n2, 0.25);
     let series = |f: &dyn Fn(&crate::optics::FresnelRow) -> f32| -> PlotPoints<'static> {
         rows.iter()
@@ -46,9 +33,9 @@ pub fn fresnel_plot_ui(
         rows[0].r_exact,
         critical.map_or(String::new(), |c| format!(", critical {c:.2}°"))
     ));
-    Plot::new("fresnel-plot")
+    Plot::new(("fresnel-plot", n1 > n2))
         .legend(Legend::default())
-        .height(300.0)
+        .height(230.0)
         .include_x(0.0)
         .include_x(90.0)
         .include_y(-0.1)

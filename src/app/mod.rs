@@ -13,8 +13,7 @@ mod view;
 pub use controls::{Controls, controls_ui};
 pub use files::{Choice, FileDialog, Purpose, snapshot_path, timestamp};
 pub use instruments::{
-    CompareKind, Direction, Inspection, LECTURE, Slide, fresnel_plot_ui, inspector_ui,
-    sample_pattern_ui,
+    CompareKind, Inspection, LECTURE, Slide, fresnel_plot_ui, inspector_ui, sample_pattern_ui,
 };
 pub use view::{ViewEvent, ViewState, image_ui};
 
@@ -132,7 +131,6 @@ pub struct RaylabApp {
     click_to_focus: bool,
     // Instruments.
     show_fresnel: bool,
-    fresnel_direction: Direction,
     inspect_mode: bool,
     inspection: Option<Inspection>,
     show_patterns: bool,
@@ -287,7 +285,6 @@ impl RaylabApp {
             last_poll: Instant::now(),
             close_at,
             show_fresnel: false,
-            fresnel_direction: Direction::OutsideIn,
             inspect_mode: false,
             inspection: None,
             show_patterns: false,
@@ -1173,7 +1170,7 @@ impl RaylabApp {
                 .open(&mut open)
                 .default_width(520.0)
                 .show(ctx, |ui| {
-                    fresnel_plot_ui(ui, ior.unwrap_or(1.5), &mut self.fresnel_direction, marker);
+                    fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker);
                 });
             self.show_fresnel = open;
         }
