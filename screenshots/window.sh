@@ -13,7 +13,8 @@ xvfb=$!
 XDG_DATA_HOME=$(mktemp -d)
 export XDG_DATA_HOME
 trap 'kill $xvfb 2>/dev/null; rm -rf "$XDG_DATA_HOME"' EXIT
-sleep 1
+# Wait until the display answers.
+for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.2; done
 
 app=
 launch() {

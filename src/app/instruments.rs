@@ -5,14 +5,16 @@ use egui_plot::{Legend, Line, Plot, PlotPoints, VLine};
 
 /// The Fresnel plots for `ior`, both ways across the interface: from air into the
 /// material, and from the material out into air (where total internal reflection sets in).
-/// `marker` is an inspected ray's angle of incidence (degrees), if any.
-pub fn fresnel_plot_ui(ui: &mut egui::Ui, ior: f32, marker: Option<f32>) {
-    for (title, n1, n2) in [
-        ("Air into material", 1.0, ior),
-        ("Material out to air", ior, 1.0),
+/// `marker` is an inspected ray's angle of incidence (degrees) and whether it was going
+/// into the denser medium: it is marked on that plot.
+pub fn fresnel_plot_ui(ui: &mut egui::Ui, ior: f32, marker: Option<(f32, bool)>) {
+    for (title, n1, n2, into) in [
+        ("Air into material", 1.0, ior, true),
+        ("Material out to air", ior, 1.0, false),
     ] {
         ui.strong(title);
-        fresnel_curves_ui(ui, n1, n2, marker);
+        let mark = marker.filter(|&(_, m)| m == into).map(|(a, _)| a);
+        fresnel_curves_ui(ui, n1, n2, mark);
     }
 }
 
@@ -44,6 +46,8 @@ fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
         .y_axis_label("reflectance")
         .allow_drag(false)
         .allow_scroll(false)
+        .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [5.0, 10.0, 30.0]))
+        .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [0.05, 0.1, 0.5]))
         .show(ui, |p| {
             p.line(Line::new("Rs = Fs²", series(&|r| r.f_s * r.f_s)));
             p.line(Line::new("Rp = Fp²", series(&|r| r.f_p * r.f_p)));

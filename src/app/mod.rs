@@ -1164,7 +1164,7 @@ impl RaylabApp {
                 .as_ref()
                 .and_then(|i| i.tree.nodes.first())
                 .and_then(|n| n.hit)
-                .map(|h| h.theta_i);
+                .map(|h| (h.theta_i, h.n1_n2.is_none_or(|(n1, n2)| n1 <= n2)));
             let mut open = true;
             egui::Window::new("Fresnel plot")
                 .open(&mut open)
