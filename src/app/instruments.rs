@@ -48,6 +48,7 @@ fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
         .allow_scroll(false)
         .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [5.0, 10.0, 30.0]))
         .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [0.05, 0.1, 0.5]))
+        .y_axis_formatter(|mark, _| format!("{:.1}", mark.value))
         .show(ui, |p| {
             p.line(Line::new("Rs = Fs²", series(&|r| r.f_s * r.f_s)));
             p.line(Line::new("Rp = Fp²", series(&|r| r.f_p * r.f_p)));
