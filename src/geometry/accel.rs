@@ -76,13 +76,6 @@ impl Accel {
         }
     }
 
-    /// The bounds of every primitive in the BVH (planes have none); `None` if empty.
-    pub fn bounds(&self) -> Option<(crate::math::Vec3, crate::math::Vec3)> {
-        self.bvh
-            .as_ref()
-            .map(|b| (b.total_aabb.min, b.total_aabb.max))
-    }
-
     /// Number of primitives in the BVH.
     pub fn primitive_count(&self) -> usize {
         self.prims.len()

@@ -14,7 +14,7 @@ use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
 use crate::light::{Background, Light};
 use crate::material::Material;
-use crate::math::{Color, Ray};
+use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
 
@@ -239,42 +239,61 @@ impl Scene {
     /// one light shines from the upper left.
     pub fn for_obj(path: &Path) -> Result<Scene, SceneError> {
         let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-        let file = toml::Value::String(full.display().to_string()).to_string();
         let label = path.display().to_string();
+        // The mesh goes through the scene format, so that its errors and .mtl materials are
+        // those of any scene; the rest is added around it.
+        let file = toml::Value::String(full.display().to_string()).to_string();
         let probe = format!(
             "[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[mesh]]\nfile = {file}\n"
         );
-        let mesh_only = Scene::from_toml_str(&probe, &label, Path::new("/"))?;
-        let (lo, hi) = mesh_only
-            .accel
-            .bounds()
+        let mut desc = file::parse(&probe, &label, &file::FsAssets(PathBuf::from("/")))?;
+        let (lo, hi) = desc
+            .objects
+            .iter()
+            .filter_map(|o| match &o.shape {
+                Shape::Mesh(m) => Some(m.positions()),
+                _ => None,
+            })
+            .flatten()
+            .fold(None, |b: Option<(Vec3, Vec3)>, &p| {
+                Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
+            })
             .ok_or_else(|| SceneError::new(Location::file(&label), "the OBJ file has no faces"))?;
         let c = 0.5 * (lo + hi);
         let r = (0.5 * (hi - lo).length()).max(1e-6);
-        let v = |x: f32, y: f32, z: f32| format!("[{x}, {y}, {z}]");
-        let text = format!(
-            "description = \"The mesh of {name}\"\nambient = [0.05, 0.05, 0.05]\n\
-             [image]\nwidth = 960\nheight = 540\n\
-             [camera]\nposition = {eye}\nlook_at = {at}\nfov = 35\n\
-             [material.floor]\ntype = \"diffuse\"\ncolor = [0.8, 0.8, 0.78]\n\
-             checker = {{ color = [0.15, 0.15, 0.17], scale = {scale} }}\n\
-             [[plane]]\nname = \"floor\"\npoint = {floor}\nnormal = [0, 1, 0]\nmaterial = \"floor\"\n\
-             [[mesh]]\nfile = {file}\n\
-             [[point_light]]\nposition = {light}\nintensity = {power}\n",
-            name = path
-                .file_name()
-                .map_or(label.clone(), |n| n.to_string_lossy().into_owned()),
-            eye = v(c.x, c.y + 0.6 * r, c.z + 3.2 * r),
-            at = v(c.x, c.y, c.z),
-            scale = 2.0 / r,
-            floor = v(c.x, lo.y - 1e-3 * r, c.z),
-            light = v(c.x - 2.0 * r, c.y + 4.0 * r, c.z + 3.0 * r),
-            power = 60.0 * r * r,
-        );
-        let mut desc = file::parse(&text, &label, &file::FsAssets(PathBuf::from("/")))?;
         desc.name = path
             .file_stem()
             .map_or(label.clone(), |s| s.to_string_lossy().into_owned());
+        desc.description = format!(
+            "The mesh of {}",
+            path.file_name()
+                .map_or(label.clone(), |n| n.to_string_lossy().into_owned())
+        );
+        (desc.width, desc.height) = (960, 540);
+        desc.ambient = Color::splat(0.05);
+        // From the front and a little above, on a checkered floor, lit from the upper left.
+        desc.camera = Camera::looking_at(c + Vec3::new(0.0, 0.6 * r, 3.2 * r), c, Vec3::Y, 35.0);
+        let floor = Material::Diffuse {
+            albedo: crate::material::Texture::Checker {
+                even: Color::new(0.8, 0.8, 0.78),
+                odd: Color::new(0.15, 0.15, 0.17),
+                scale: 2.0 / r,
+            },
+            specular: Color::ZERO,
+            exponent: 1.0,
+        };
+        desc.add(
+            "floor",
+            Shape::Plane(crate::geometry::Plane::new(
+                Vec3::new(c.x, lo.y - 1e-3 * r, c.z),
+                Vec3::Y,
+            )),
+            floor,
+        );
+        desc.lights.push(Light::point(
+            c + Vec3::new(-2.0 * r, 4.0 * r, 3.0 * r),
+            Color::splat(60.0 * r * r),
+        ));
         Ok(Scene::new(desc, SceneSource::File(full)))
     }
 
