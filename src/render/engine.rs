@@ -466,13 +466,6 @@ impl Controller {
         self.target().is_some_and(|t| self.film.spp() >= t)
     }
 
-    fn watch(&self) -> Watch<'_> {
-        Watch {
-            requested: &self.requested,
-            generation: self.generation,
-        }
-    }
-
     fn preview(&mut self, pool: &rayon::ThreadPool) {
         let (w, h) = (self.film.width(), self.film.height());
         let result = pool.install(|| {
@@ -483,7 +476,10 @@ impl Controller {
                 w,
                 h,
                 PREVIEW_BLOCK,
-                &self.watch(),
+                &Watch {
+                    requested: &self.requested,
+                    generation: self.generation,
+                },
             )
         });
         if let Ok((pixels, stats)) = result {

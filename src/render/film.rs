@@ -86,17 +86,40 @@ pub fn srgb_encode(linear: f32) -> f32 {
     }
 }
 
+/// 8-bit sRGB of a linear value, clamped to [0, 1] (NaN is black), exactly rounded.
+#[inline]
+pub fn srgb8_exact(linear: f32) -> u8 {
+    let v = if linear.is_finite() {
+        linear.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (srgb_encode(v) * 255.0 + 0.5) as u8
+}
+
+/// Linear radiance (`width` × `height`, row-major) scaled by 2^exposure, as 8-bit sRGB;
+/// `None` if the sizes disagree.
+pub fn srgb_image(
+    width: u32,
+    height: u32,
+    pixels: &[Color],
+    exposure: f32,
+) -> Option<image::RgbImage> {
+    let scale = exposure.exp2();
+    let bytes = pixels
+        .iter()
+        .flat_map(|c| (*c * scale).to_array().map(srgb8_exact))
+        .collect();
+    image::RgbImage::from_vec(width, height, bytes)
+}
+
 /// 8-bit sRGB of a linear value, clamped to [0, 1]: a 4096-entry table, exact to within
 /// one code value, for converting whole frames quickly on the display thread.
 #[inline]
 pub fn srgb8(linear: f32) -> u8 {
     static TABLE: std::sync::OnceLock<Vec<u8>> = std::sync::OnceLock::new();
     const N: usize = 4096;
-    let table = TABLE.get_or_init(|| {
-        (0..=N)
-            .map(|i| (srgb_encode(i as f32 / N as f32) * 255.0 + 0.5) as u8)
-            .collect()
-    });
+    let table = TABLE.get_or_init(|| (0..=N).map(|i| srgb8_exact(i as f32 / N as f32)).collect());
     let v = if linear.is_finite() {
         linear.clamp(0.0, 1.0)
     } else {
@@ -130,22 +153,9 @@ pub fn write_image(
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let written = match ext.as_deref() {
-        Some("png") => {
-            let scale = exposure.exp2();
-            let bytes = pixels.iter().flat_map(|c| {
-                (*c * scale).to_array().map(|v| {
-                    let v = if v.is_finite() {
-                        v.clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    (srgb_encode(v) * 255.0 + 0.5) as u8
-                })
-            });
-            let img = image::RgbImage::from_vec(width, height, bytes.collect())
-                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
-            img.save_with_format(path, image::ImageFormat::Png)
-        }
+        Some("png") => srgb_image(width, height, pixels, exposure)
+            .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?
+            .save_with_format(path, image::ImageFormat::Png),
         Some("exr") => {
             let floats = pixels.iter().flat_map(|c| c.to_array()).collect();
             let img = image::Rgb32FImage::from_vec(width, height, floats)
@@ -245,20 +255,9 @@ impl Film {
 
     /// The image for display: radiance scaled by 2^exposure, clamped, sRGB encoded.
     pub fn to_srgb8(&self, exposure: f32) -> image::RgbImage {
-        let scale = exposure.exp2();
-        let mut img = image::RgbImage::new(self.width, self.height);
-        for (px, c) in img.pixels_mut().zip(self.pixels()) {
-            let c = c * scale;
-            *px = image::Rgb(c.to_array().map(|v| {
-                let v = if v.is_finite() {
-                    v.clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (srgb_encode(v) * 255.0 + 0.5) as u8
-            }));
-        }
-        img
+        let pixels: Vec<Color> = self.pixels().collect();
+        let image = srgb_image(self.width, self.height, &pixels, exposure);
+        image.unwrap_or_else(|| image::RgbImage::new(self.width, self.height))
     }
 
     /// Writes the film: `.png` as 8-bit sRGB with `exposure`, `.exr` as linear radiance.
@@ -284,8 +283,7 @@ mod tests {
     fn the_srgb_table_matches_the_curve() {
         for i in 0..=1000 {
             let v = i as f32 / 1000.0;
-            let exact = (srgb_encode(v) * 255.0 + 0.5) as i32;
-            assert!((srgb8(v) as i32 - exact).abs() <= 1, "{v}");
+            assert!((srgb8(v) as i32 - srgb8_exact(v) as i32).abs() <= 1, "{v}");
         }
         assert_eq!((srgb8(-1.0), srgb8(2.0), srgb8(f32::NAN)), (0, 255, 0));
     }
