@@ -210,27 +210,40 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
         h.get_by_label(section).click();
         h.step();
     }
-    for slider in [
-        "IOR",
-        "Min weight",
-        "Samples per pixel",
-        "Focus distance",
-        "Aperture",
-        "Light size",
-        "Phong exponent",
-        "Shutter interval",
-        "Exposure (stops)",
-        "Absorption ×",
-        "Max depth",
+    // Each control's tooltip, found by a phrase of it, with its formula's glyphs.
+    let tooltip = |h: &mut Harness<'static, RaylabApp>, phrase: &str| {
+        h.run_steps(40);
+        assert!(
+            h.query_all_by_label_contains(phrase).next().is_some(),
+            "no tooltip saying `{phrase}`"
+        );
+    };
+    for (slider, phrase) in [
+        ("IOR", "n1 sin θi = n2 sin θt"),
+        ("Min weight", "Pruning by attenuation"),
+        ("Samples per pixel", "falls like 1/√n"),
+        ("Focus distance", "2a|z − s|/s"),
+        ("Aperture", "Thin lens"),
+        ("Light size", "similar triangles"),
+        ("Phong exponent", "cos^n α"),
+        ("Shutter interval", "freezes them"),
+        ("Exposure (stops)", "2^exposure"),
+        ("Absorption ×", "exp(−σ d)"),
+        ("Max depth", "Pruning by depth"),
     ] {
         h.get_by_role_and_label(Role::Slider, slider).hover();
-        h.run_steps(40);
+        tooltip(&mut h, phrase);
     }
     h.get_by_role_and_label(Role::ComboBox, "Fresnel").click();
     h.run_steps(3);
-    for mode in ["exact (Fs, Fp)", "Schlick", "naive Schlick", "constant k"] {
+    for (mode, phrase) in [
+        ("exact (Fs, Fp)", "R = (Fs² + Fp²)/2"),
+        ("Schlick", "(1 − R0)(1 − cos θ)^5"),
+        ("naive Schlick", "jumps to 1"),
+        ("constant k", "no brighter rim"),
+    ] {
         h.get_by_label(mode).hover();
-        h.run_steps(40);
+        tooltip(&mut h, phrase);
     }
     h.key_press(egui::Key::Escape);
     h.run_steps(3);
@@ -381,6 +394,38 @@ fn a_b_compare_renders_both_sides() {
         .set_value_accesskit(2.0);
     h.run_steps(3);
     assert_eq!(h.state().compare_side_b().unwrap().0.max_depth, 2);
+    // So do the resolution and the scene.
+    h.get_by_role_and_label(Role::ComboBox, "Resolution")
+        .click();
+    h.run_steps(3);
+    h.get_by_label("25%").click();
+    h.run_steps(3);
+    step_until(&mut h, "both sides at 25%", |a| {
+        let quarter = |f: &raylab::render::Frame| (f.width, f.height) == (240, 135);
+        a.latest_frame().is_some_and(quarter)
+            && a.compare_side_b()
+                .is_some_and(|(_, f)| f.is_some_and(quarter))
+    });
+    h.state_mut().open_scene("glass");
+    step_until(&mut h, "the new scene", |a| a.scene().name == "glass");
+    step_until(
+        &mut h,
+        "side B finished on it",
+        RaylabApp::compare_side_b_settled,
+    );
+    let (b, frame) = h.state().compare_side_b().unwrap();
+    let (b, frame) = (b.clone(), frame.unwrap().clone());
+    assert_eq!(b.fresnel, Some(FresnelMode::Exact));
+    let glass = raylab::scene::Scene::load("glass").unwrap();
+    let expected: Vec<_> = raylab::render::render(&glass, &b, 240, 135, &())
+        .unwrap()
+        .0
+        .pixels()
+        .collect();
+    assert!(
+        *frame.pixels == expected,
+        "side B renders the scene opened, with its parameters"
+    );
 }
 
 #[test]

@@ -87,6 +87,43 @@ struct Loaded {
     result: Result<Scene, SceneError>,
 }
 
+/// What an engine was last told, so that each frame sends it only what changed.
+struct Sent {
+    scene: Arc<Scene>,
+    camera: Camera,
+    size: (u32, u32),
+}
+
+impl Sent {
+    /// Tells `engine` about a new scene, camera, size or parameters. A new scene resets
+    /// the engine's camera to the scene's, so the camera is compared after it.
+    fn sync(
+        &mut self,
+        engine: &mut Engine,
+        scene: &Arc<Scene>,
+        camera: &Camera,
+        size: (u32, u32),
+        params: Params,
+    ) {
+        if !Arc::ptr_eq(&self.scene, scene) {
+            engine.set_scene(Arc::clone(scene));
+            self.scene = Arc::clone(scene);
+            self.camera = scene.camera.clone();
+        }
+        if params.validate().is_ok() && &params != engine.params() {
+            engine.set_params(params);
+        }
+        if *camera != self.camera {
+            engine.set_camera(camera.clone());
+            self.camera = camera.clone();
+        }
+        if size != self.size {
+            engine.resize(size.0, size.1);
+            self.size = size;
+        }
+    }
+}
+
 /// The A/B view: side B's own engine and image, and where the divider is.
 struct Compare {
     kind: CompareKind,
@@ -94,7 +131,9 @@ struct Compare {
     frame: Option<Frame>,
     texture: Option<egui::TextureHandle>,
     stale: bool,
-    sent_camera: Camera,
+    // The exposure its texture was made with.
+    shown_exposure: f32,
+    sent: Sent,
     // The divider's position across the image, 0 (all B) to 1 (all A).
     divider: f32,
 }
@@ -119,7 +158,8 @@ pub struct RaylabApp {
     scene: Arc<Scene>,
     params: Params,
     camera: Camera,
-    sent_camera: Camera,
+    // What the engine was last told.
+    sent: Sent,
     unlimited: bool,
     paused: bool,
     resolution: f32,
@@ -263,7 +303,11 @@ impl RaylabApp {
         let mut app = RaylabApp {
             options,
             engine,
-            sent_camera: camera.clone(),
+            sent: Sent {
+                scene: Arc::clone(&scene),
+                camera: camera.clone(),
+                size: (w, h),
+            },
             camera,
             params,
             unlimited,
@@ -342,6 +386,15 @@ impl RaylabApp {
             .map(|c| (c.engine.params(), c.frame.as_ref()))
     }
 
+    /// Whether side B's newest frame is finished and of its engine's newest generation.
+    pub fn compare_side_b_settled(&self) -> bool {
+        self.compare.as_ref().is_some_and(|c| {
+            c.frame
+                .as_ref()
+                .is_some_and(|f| f.generation == c.engine.generation() && f.progress.done())
+        })
+    }
+
     /// The caption of the lecture slide shown, if any.
     pub fn caption(&self) -> Option<&str> {
         self.caption
@@ -415,16 +468,13 @@ impl RaylabApp {
                     if !keep_camera {
                         self.camera = scene.camera.clone();
                     }
-                    self.sent_camera = scene.camera.clone();
                     let verb = if loaded.purpose == LoadPurpose::Open {
                         "Opened"
                     } else {
                         "Reloaded"
                     };
                     let text = format!("{verb} {}", scene.name);
-                    self.engine.set_scene(Arc::clone(&scene));
-                    let (w, h) = render_size(&scene, self.resolution);
-                    self.engine.resize(w, h);
+                    // sync_engine tells the engine at the end of the frame.
                     self.scene = scene;
                     self.inspection = None;
                     self.error = None;
@@ -493,28 +543,14 @@ impl RaylabApp {
 
     /// Sends what the controls changed to the engine.
     fn sync_engine(&mut self) {
-        if self.params.validate().is_err() {
-            return;
-        }
-        if &self.params != self.engine.params() {
-            self.engine.set_params(self.params.clone());
-        }
-        if self.camera != self.sent_camera {
-            self.engine.set_camera(self.camera.clone());
-            self.sent_camera = self.camera.clone();
-        }
         let size = render_size(&self.scene, self.resolution);
-        if self
-            .frame
-            .as_ref()
-            .is_some_and(|f| (f.width, f.height) != size)
-            && self
-                .frame
-                .as_ref()
-                .is_some_and(|f| f.generation == self.engine.generation())
-        {
-            self.engine.resize(size.0, size.1);
-        }
+        self.sent.sync(
+            &mut self.engine,
+            &self.scene,
+            &self.camera,
+            size,
+            self.params.clone(),
+        );
     }
 
     fn toggle_pause(&mut self) {
@@ -562,7 +598,7 @@ impl RaylabApp {
                 ..params.clone()
             },
             samples: (spp != params.spp).then_some(spp),
-            camera: (self.sent_camera != self.scene.camera).then(|| self.sent_camera.clone()),
+            camera: (self.sent.camera != self.scene.camera).then(|| self.sent.camera.clone()),
             image: path.file_name().map(|n| n.to_string_lossy().into_owned()),
             seconds: Some(frame.progress.elapsed.as_secs_f64()),
             stats: Some(frame.progress.stats),
@@ -928,15 +964,20 @@ impl RaylabApp {
             move || ctx.request_repaint(),
         ) {
             Ok(mut engine) => {
-                engine.set_camera(self.sent_camera.clone());
                 engine.set_unlimited(self.unlimited);
+                let sent = Sent {
+                    scene: Arc::clone(&self.scene),
+                    camera: self.scene.camera.clone(),
+                    size: (w, h),
+                };
                 self.compare = Some(Compare {
                     kind,
                     engine,
                     frame: None,
                     texture: None,
                     stale: false,
-                    sent_camera: self.sent_camera.clone(),
+                    shown_exposure: f32::NAN,
+                    sent,
                     divider: 0.5,
                 });
             }
@@ -944,23 +985,20 @@ impl RaylabApp {
         }
     }
 
-    /// Keeps side B in step with the controls, and takes its frames.
+    /// Keeps side B in step with the controls (scene, camera, size, and its side of the
+    /// parameters), and takes its frames.
     fn sync_compare(&mut self, ctx: &egui::Context) {
         let Some(c) = &mut self.compare else { return };
+        let size = render_size(&self.scene, self.resolution);
         let b = c.kind.side_b(&self.params);
-        if b.validate().is_ok() && &b != c.engine.params() {
-            c.engine.set_params(b);
-        }
-        if c.sent_camera != self.sent_camera {
-            c.engine.set_camera(self.sent_camera.clone());
-            c.sent_camera = self.sent_camera.clone();
-        }
+        c.sent
+            .sync(&mut c.engine, &self.scene, &self.sent.camera, size, b);
         if let Some(frame) = c.engine.frames().try_iter().last() {
             c.frame = Some(frame);
             c.stale = true;
         }
         if let Some(f) = &c.frame
-            && (c.stale || self.params.exposure != self.shown_exposure)
+            && (c.stale || self.params.exposure != c.shown_exposure)
         {
             let rgba = to_srgba8(&f.pixels, self.params.exposure);
             upload(
@@ -971,6 +1009,7 @@ impl RaylabApp {
                 &rgba,
             );
             c.stale = false;
+            c.shown_exposure = self.params.exposure;
         }
     }
 
