@@ -85,95 +85,46 @@ impl TryFrom<f64> for Num {
     }
 }
 
-/// A finite number > 0.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct Positive(f32);
+/// Declares a number type that deserializes only from a finite value meeting `$ok`,
+/// else fails with `$message`: `|v, f|` names the value read and its f32.
+macro_rules! checked_number {
+    ($(#[$doc:meta])* $name:ident, |$v:ident, $f:ident| $ok:expr, $($message:tt)+) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, Deserialize)]
+        #[serde(try_from = "f64")]
+        struct $name(f32);
 
-impl TryFrom<f64> for Positive {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let Num(f) = Num::try_from(v)?;
-        if f > 0.0 {
-            Ok(Positive(f))
-        } else {
-            Err(format!("must be greater than 0, got {v}"))
+        impl TryFrom<f64> for $name {
+            type Error = String;
+            fn try_from($v: f64) -> Result<Self, String> {
+                let Num($f) = Num::try_from($v)?;
+                if $ok { Ok($name($f)) } else { Err(format!($($message)+)) }
+            }
         }
-    }
+    };
 }
 
-/// A finite number ≥ 0.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct NonNegative(f32);
-
-impl TryFrom<f64> for NonNegative {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let Num(f) = Num::try_from(v)?;
-        if f >= 0.0 {
-            Ok(NonNegative(f))
-        } else {
-            Err(format!("must not be negative, got {v}"))
-        }
-    }
-}
-
-/// An index of refraction, 1 to 3.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct Ior(f32);
-
-impl TryFrom<f64> for Ior {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let Num(f) = Num::try_from(v)?;
-        if (1.0..=3.0).contains(&f) {
-            Ok(Ior(f))
-        } else {
-            Err(format!(
-                "an index of refraction must be between 1 and 3, got {v}"
-            ))
-        }
-    }
-}
-
-/// A Phong exponent, 1 to 100,000.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct Exponent(f32);
-
-impl TryFrom<f64> for Exponent {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let Num(f) = Num::try_from(v)?;
-        let max = crate::params::MAX_PHONG_EXPONENT;
-        if (1.0..=max).contains(&f) {
-            Ok(Exponent(f))
-        } else {
-            Err(format!(
-                "a Phong exponent must be between 1 and {max}, got {v}"
-            ))
-        }
-    }
-}
-
-/// A fraction, 0 to 1.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct Unit(f32);
-
-impl TryFrom<f64> for Unit {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let Num(f) = Num::try_from(v)?;
-        if (0.0..=1.0).contains(&f) {
-            Ok(Unit(f))
-        } else {
-            Err(format!("must be between 0 and 1, got {v}"))
-        }
-    }
-}
+checked_number!(
+    /// A finite number > 0.
+    Positive, |v, f| f > 0.0, "must be greater than 0, got {v}"
+);
+checked_number!(
+    /// A finite number ≥ 0.
+    NonNegative, |v, f| f >= 0.0, "must not be negative, got {v}"
+);
+checked_number!(
+    /// An index of refraction, 1 to 3.
+    Ior, |v, f| (1.0..=3.0).contains(&f), "an index of refraction must be between 1 and 3, got {v}"
+);
+checked_number!(
+    /// A Phong exponent, 1 to 100,000.
+    Exponent, |v, f| (1.0..=crate::params::MAX_PHONG_EXPONENT).contains(&f),
+    "a Phong exponent must be between 1 and {}, got {v}", crate::params::MAX_PHONG_EXPONENT
+);
+checked_number!(
+    /// A fraction, 0 to 1.
+    Unit, |v, f| (0.0..=1.0).contains(&f), "must be between 0 and 1, got {v}"
+);
 
 /// A vector of three finite numbers.
 #[derive(Clone, Copy, Debug, Deserialize)]
