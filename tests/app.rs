@@ -416,6 +416,11 @@ fn a_b_compare_renders_both_sides() {
     let (b, frame) = h.state().compare_side_b().unwrap();
     let (b, frame) = (b.clone(), frame.unwrap().clone());
     assert_eq!(b.fresnel, Some(FresnelMode::Exact));
+    assert_eq!(
+        h.state().params().fresnel,
+        Some(FresnelMode::Constant),
+        "side A keeps its side"
+    );
     let glass = raylab::scene::Scene::load("glass").unwrap();
     let expected: Vec<_> = raylab::render::render(&glass, &b, 240, 135, &())
         .unwrap()

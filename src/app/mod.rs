@@ -474,6 +474,7 @@ impl RaylabApp {
                         "Reloaded"
                     };
                     let text = format!("{verb} {}", scene.name);
+                    self.keep_side_a();
                     // sync_engine tells the engine at the end of the frame.
                     self.scene = scene;
                     self.inspection = None;
@@ -562,9 +563,18 @@ impl RaylabApp {
         self.paused = !self.paused;
     }
 
+    /// While comparing, side A keeps its side of the comparison when the parameters are
+    /// replaced (a scene opened, Reset).
+    fn keep_side_a(&mut self) {
+        if let Some(c) = &self.compare {
+            self.params = c.kind.side_a(&self.params);
+        }
+    }
+
     /// Parameters and camera back to the scene's.
     pub fn reset_to_defaults(&mut self) {
         self.params = self.scene.params.clone();
+        self.keep_side_a();
         self.camera = self.scene.camera.clone();
         self.view.fit();
     }
