@@ -7,7 +7,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Shape};
 use raylab::light::{Background, Light};
-use raylab::material::{Material, Texture};
+use raylab::material::{Diffuse, Material, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
 use raylab::render::render;
@@ -51,10 +51,12 @@ fn bumpy_sphere(segments: u32, rings: u32) -> Mesh {
 }
 
 fn mesh_scene(mesh: Mesh) -> SceneDesc {
-    let diffuse = |c: Color| Material::Diffuse {
-        albedo: Texture::Solid(c),
-        specular: Color::splat(0.2),
-        exponent: 40.0,
+    let diffuse = |c: Color| {
+        Material::Diffuse(Diffuse {
+            albedo: Texture::Solid(c),
+            specular: Color::splat(0.2),
+            exponent: 40.0,
+        })
     };
     SceneDesc {
         name: "million".into(),

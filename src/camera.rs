@@ -1,6 +1,6 @@
 //! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
 
-use crate::math::{Ray, Vec3, sampling::concentric_disk};
+use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk};
 use crate::params::Params;
 use glam::Vec2;
 
@@ -26,6 +26,29 @@ pub struct Exposure {
     pub focus_distance: f32,
     /// The shutter opens at this time and closes at the second; equal times freeze motion.
     pub shutter: (f32, f32),
+}
+
+/// The uniform numbers of one camera sample, drawn first from every sample's stream and
+/// always in this order: the position in the pixel, the point on the lens, the time in the
+/// shutter. The tracer and the sample-pattern view both draw them here.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSample {
+    /// Position in the pixel, unit square.
+    pub pixel: Vec2,
+    /// Lens sample, unit square (mapped onto the lens disk by the frame).
+    pub lens: Vec2,
+    /// Time sample, unit interval (mapped onto the shutter by the frame).
+    pub time: f32,
+}
+
+impl CameraSample {
+    /// Draws the camera's dimensions from `u`.
+    pub fn draw(u: &mut impl Uniform) -> CameraSample {
+        let pixel = u.next_2d();
+        let lens = u.next_2d();
+        let time = u.next_1d();
+        CameraSample { pixel, lens, time }
+    }
 }
 
 /// The camera's frame, computed once per render.

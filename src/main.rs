@@ -38,6 +38,13 @@ enum Command {
     Render(RenderArgs),
     /// List the built-in scenes and the scene files in ./scenes.
     Scenes,
+    /// Print the parameter table: every name `--set` takes, its default, its valid values
+    /// and what it does.
+    Params {
+        /// As a Markdown table (README's).
+        #[arg(long)]
+        markdown: bool,
+    },
     /// Print the Fresnel reflectance against the angle of incidence as CSV: exact (F_s,
     /// F_p, R) and Schlick's approximations. theta_t is empty under total internal
     /// reflection.
@@ -191,6 +198,17 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Scenes) => scenes_command(),
+        Some(Command::Params { markdown }) => {
+            print!(
+                "{}",
+                if markdown {
+                    raylab::params::markdown_table()
+                } else {
+                    raylab::params::text_table()
+                }
+            );
+            Ok(())
+        }
         Some(Command::Fresnel(args)) => fresnel_command(&args),
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
@@ -451,7 +469,10 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         wait_for(&engine, engine.generation())?;
         latencies.push(start.elapsed().as_secs_f64() * 1e3);
     }
+    // Shutdown in the middle of a pass: the workers stop at their next pixel.
+    let start = Instant::now();
     engine.shutdown();
+    let shutdown_ms = start.elapsed().as_secs_f64() * 1e3;
     latencies.sort_by(f64::total_cmp);
     let at = |q: f64| latencies[((latencies.len() - 1) as f64 * q).round() as usize];
     println!(
@@ -461,6 +482,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         at(1.0),
         latencies.len()
     );
+    println!("shutdown mid-pass: {shutdown_ms:.1} ms");
 
     // A full-resolution pass of one sample per pixel, on the same number of threads.
     let pool = rayon::ThreadPoolBuilder::new()

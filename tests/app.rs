@@ -94,7 +94,7 @@ fn save_writes_the_png_and_a_sidecar_with_the_right_parameters() {
     let mut h = app("default", dir.path());
     h.get_by_role_and_label(Role::Slider, "Max depth")
         .set_value_accesskit(3.0);
-    h.step();
+    h.run_steps(2);
     let generation = h.state().engine().generation();
     step_until(&mut h, "the finished image", |a| {
         a.latest_frame()
@@ -303,8 +303,8 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
         modifiers: egui::Modifiers::NONE,
     });
     h.run_steps(3);
-    let inspection = h.state().inspection().expect("a tree");
-    let root = &inspection.tree.nodes[0];
+    let tree = h.state().inspected_tree().expect("a tree");
+    let root = &tree.nodes[0];
     let hit = root.hit.expect("the camera ray hits something");
     assert_eq!(
         h.state().scene().object_names[hit.object as usize],
@@ -316,7 +316,7 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     h.get_by_role_and_label(Role::Slider, "IOR")
         .set_value_accesskit(2.0);
     h.run_steps(3);
-    let hit = h.state().inspection().unwrap().tree.nodes[0].hit.unwrap();
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
     assert_eq!(hit.n1_n2, Some((1.0, 2.0)));
     // The Fresnel plot opens from the same menu.
     h.get_by_label("Instruments").click();

@@ -5,7 +5,7 @@
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Shape, Sphere};
 use raylab::light::Background;
-use raylab::material::{Dielectric, Material};
+use raylab::material::{Dielectric, Emissive, Material};
 use raylab::math::{Color, Ray, SampleStream, Vec3};
 use raylab::optics::FresnelMode;
 use raylab::params::{MAX_DEPTH, Params, TreeMode};
@@ -116,9 +116,9 @@ fn a_slab_transmits_beer_lambert_with_fresnel_losses_at_both_faces() {
                 (Shape::Mesh(slab), glass(1.5, sigma)),
                 (
                     Shape::Mesh(emitter),
-                    Material::Emissive {
+                    Material::Emissive(Emissive {
                         radiance: Color::ONE,
-                    },
+                    }),
                 ),
             ],
             camera,

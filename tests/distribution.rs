@@ -5,7 +5,7 @@
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Quad, Shape, Sphere};
 use raylab::light::{Light, LightShape};
-use raylab::material::{Material, Texture};
+use raylab::material::{Diffuse, Emissive, Material, Texture};
 use raylab::math::{Color, Pattern, Ray, SampleStream, Vec3};
 use raylab::params::Params;
 use raylab::render::{Film, render};
@@ -22,17 +22,17 @@ fn scene(objects: Vec<(Shape, Material)>, lights: Vec<Light>, camera: Camera) ->
 }
 
 fn glow() -> Material {
-    Material::Emissive {
+    Material::Emissive(Emissive {
         radiance: Color::ONE,
-    }
+    })
 }
 
 fn white() -> Material {
-    Material::Diffuse {
+    Material::Diffuse(Diffuse {
         albedo: Texture::Solid(Color::ONE),
         specular: Color::ZERO,
         exponent: 1.0,
-    }
+    })
 }
 
 fn rmse(a: &Film, b: &Film) -> f64 {

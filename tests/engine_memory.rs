@@ -1,5 +1,6 @@
 //! Memory does not grow with restarts (its own test binary, so that no other test's
-//! allocations disturb the measurement).
+//! allocations disturb the measurement). Linux only: resident memory is read from /proc.
+#![cfg(target_os = "linux")]
 
 use raylab::params::Params;
 use raylab::render::{Engine, EngineConfig};

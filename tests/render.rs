@@ -3,7 +3,7 @@
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Shape};
 use raylab::light::{Background, Light};
-use raylab::material::{Material, Texture};
+use raylab::material::{Diffuse, Emissive, Material, Mirror, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
 use raylab::render::{Film, render, render_pass};
@@ -67,11 +67,11 @@ fn same_image_for_any_split_into_passes() {
 }
 
 fn grey(albedo: f32) -> Material {
-    Material::Diffuse {
+    Material::Diffuse(Diffuse {
         albedo: Texture::Solid(Color::splat(albedo)),
         specular: Color::ZERO,
         exponent: 1.0,
-    }
+    })
 }
 
 /// A camera at height `height` looking straight down at the plane y = 0.
@@ -150,9 +150,9 @@ fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
 fn a_mirror_reflects_its_reflectance_times_the_background() {
     let k = 0.7f32;
     let sky = Color::new(0.2, 0.5, 1.0);
-    let mirror = Material::Mirror {
+    let mirror = Material::Mirror(Mirror {
         reflectance: Color::splat(k),
-    };
+    });
     let scene = top_down(mirror, vec![], 2.0, 40.0, sky);
     let run = |max_depth, min_weight| {
         let params = Params {
@@ -224,9 +224,9 @@ fn facing_mirrors_prune_at_the_depth_limit_with_geometric_weights() {
 #[test]
 fn non_finite_samples_are_dropped_and_counted_never_written() {
     // An object emitting infinite radiance (only possible from code; files refuse it).
-    let glow = Material::Emissive {
+    let glow = Material::Emissive(Emissive {
         radiance: Color::new(f32::INFINITY, 1.0, f32::NAN),
-    };
+    });
     let scene = top_down(glow, vec![], 2.0, 40.0, Color::ONE);
     let (film, stats) = render(
         &scene,
@@ -254,9 +254,9 @@ fn non_finite_samples_are_dropped_and_counted_never_written() {
 #[test]
 fn the_cost_of_a_pixel_is_the_rays_its_samples_traced() {
     let mirror = top_down(
-        Material::Mirror {
+        Material::Mirror(Mirror {
             reflectance: Color::splat(0.7),
-        },
+        }),
         vec![],
         2.0,
         40.0,

@@ -5,12 +5,12 @@ use crate::camera::Camera;
 use crate::material::Material;
 use crate::math::Pattern;
 use crate::optics::{FresnelMode, brewster_angle, critical_angle};
-use crate::params::{Params, TreeMode};
+use crate::params::{Params, SliderRange, TreeMode, spec};
 use crate::scene::Scene;
 use egui::{CollapsingHeader, ComboBox, DragValue, Slider, Ui};
 
 /// What the side panel edits.
-pub struct Controls<'a> {
+pub(crate) struct Controls<'a> {
     /// The parameter model.
     pub params: &'a mut Params,
     /// The camera (field of view).
@@ -34,10 +34,7 @@ fn scene_ior(scene: &Scene) -> Option<f32> {
 }
 
 fn scene_exponent(scene: &Scene) -> Option<f32> {
-    scene.materials.iter().find_map(|m| match m {
-        Material::Glossy { exponent, .. } => Some(*exponent),
-        _ => None,
-    })
+    scene.materials.iter().find_map(Material::phong_exponent)
 }
 
 fn fresnel_label(mode: Option<FresnelMode>) -> &'static str {
@@ -67,18 +64,38 @@ fn pattern_tip(p: Pattern) -> &'static str {
     }
 }
 
+/// A slider for parameter `name`, with the table's label and range.
+fn param_slider<'a, N: egui::emath::Numeric>(value: &'a mut N, name: &str) -> Slider<'a> {
+    let spec = spec(name);
+    let range = spec.and_then(|s| s.slider).unwrap_or(SliderRange {
+        min: 0.0,
+        max: 1.0,
+        log: false,
+    });
+    let slider = Slider::new(value, N::from_f64(range.min)..=N::from_f64(range.max))
+        .text(spec.map_or(name, |s| s.label))
+        .logarithmic(range.log);
+    if range.log && range.min == 0.0 {
+        slider.smallest_positive(1e-5)
+    } else {
+        slider
+    }
+}
+
+/// The table's tooltip for parameter `name`.
+fn tip(name: &str) -> String {
+    spec(name).map_or_else(String::new, |s| s.tooltip())
+}
+
 /// Draws the side panel's sections.
-pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
+pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
     let p = &mut *c.params;
     CollapsingHeader::new("Dielectrics and Fresnel").default_open(true).show(ui, |ui| {
         let own = scene_ior(c.scene);
         let mut ior = p.ior.or(own).unwrap_or(1.5);
         let slider = ui
-            .add(Slider::new(&mut ior, 1.0..=2.5).text("IOR").fixed_decimals(3))
-            .on_hover_text(
-                "Index of refraction n of the glass, water or glaze. Snell's law bends the refracted ray: \
-                 n1 sin θi = n2 sin θt. Higher n bends more and reflects more (R0 = ((n−1)/(n+1))²).",
-            );
+            .add(param_slider(&mut ior, "ior").fixed_decimals(3))
+            .on_hover_text(tip("ior"));
         if slider.changed() {
             p.ior = Some(ior);
         }
@@ -117,29 +134,24 @@ pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 }
             })
             .response
-            .on_hover_text("How the reflectance R of dielectrics and glazes depends on the angle.");
+            .on_hover_text(tip("fresnel"));
         let mut k = p.constant_reflectance.unwrap_or(0.04);
         if ui
-            .add(Slider::new(&mut k, 0.0..=1.0).text("k (constant)"))
-            .on_hover_text("The reflectance of the constant model, at every angle (1 under total internal reflection).")
+            .add(param_slider(&mut k, "constant_reflectance"))
+            .on_hover_text(tip("constant_reflectance"))
             .changed()
         {
             p.constant_reflectance = Some(k);
         }
-        ui.add(Slider::new(&mut p.absorption_scale, 0.0..=5.0).text("Absorption ×"))
-            .on_hover_text("Scales every dielectric's absorption σ. Beer–Lambert: light travelling a distance d inside keeps exp(−σ d).");
+        ui.add(param_slider(&mut p.absorption_scale, "absorption_scale"))
+            .on_hover_text(tip("absorption_scale"));
     });
 
     CollapsingHeader::new("Ray tree").default_open(true).show(ui, |ui| {
-        ui.add(Slider::new(&mut p.max_depth, 0..=32).text("Max depth"))
-            .on_hover_text("Pruning by depth: camera rays are level 0, each reflection or refraction one level deeper. Branches below this level are not traced (black).");
-        ui.add(
-            Slider::new(&mut p.min_weight, 0.0..=1.0)
-                .logarithmic(true)
-                .smallest_positive(1e-5)
-                .text("Min weight"),
-        )
-        .on_hover_text("Pruning by attenuation: a branch whose path weight (the product of the reflectances R or 1 − R above it) falls below this is not traced.");
+        ui.add(param_slider(&mut p.max_depth, "max_depth"))
+            .on_hover_text(tip("max_depth"));
+        ui.add(param_slider(&mut p.min_weight, "min_weight"))
+            .on_hover_text(tip("min_weight"));
         ui.horizontal(|ui| {
             ui.radio_value(&mut p.tree, TreeMode::Split, "Split")
                 .on_hover_text("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.");
@@ -148,58 +160,70 @@ pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         });
     });
 
-    CollapsingHeader::new("Sampling and antialiasing").default_open(true).show(ui, |ui| {
-        ui.add(Slider::new(&mut p.spp, 1..=4096).logarithmic(true).text("Samples per pixel"))
-            .on_hover_text("Supersampling: each pixel averages this many samples (a box filter). More samples, less aliasing and noise; the error falls like 1/√n for random samples.");
-        ui.checkbox(c.unlimited, "Keep refining")
-            .on_hover_text("Run on past the target, until paused.");
-        ComboBox::from_label("Pattern")
-            .selected_text(p.pattern.name())
-            .show_ui(ui, |ui| {
-                for pattern in Pattern::ALL {
-                    ui.selectable_value(&mut p.pattern, pattern, pattern.name()).on_hover_text(pattern_tip(pattern));
-                }
-            })
-            .response
-            .on_hover_text(pattern_tip(p.pattern));
-        ui.horizontal(|ui| {
-            ui.add(DragValue::new(&mut p.seed)).on_hover_text("The seed of every random number: same seed, same image, bit for bit.");
-            ui.label("Seed");
+    CollapsingHeader::new("Sampling and antialiasing")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.add(param_slider(&mut p.spp, "spp"))
+                .on_hover_text(tip("spp"));
+            ui.checkbox(c.unlimited, "Keep refining")
+                .on_hover_text("Run on past the target, until paused.");
+            ComboBox::from_label("Pattern")
+                .selected_text(p.pattern.name())
+                .show_ui(ui, |ui| {
+                    for pattern in Pattern::ALL {
+                        ui.selectable_value(&mut p.pattern, pattern, pattern.name())
+                            .on_hover_text(pattern_tip(pattern));
+                    }
+                })
+                .response
+                .on_hover_text(pattern_tip(p.pattern));
+            ui.horizontal(|ui| {
+                ui.add(DragValue::new(&mut p.seed))
+                    .on_hover_text(tip("seed"));
+                ui.label("Seed");
+            });
         });
-    });
 
-    CollapsingHeader::new("Soft shadows").default_open(false).show(ui, |ui| {
-        ui.add(Slider::new(&mut p.light_size, 0.0..=4.0).text("Light size"))
-            .on_hover_text("Scales every area light, keeping its power. Each sample sends its shadow ray to a different point of the light, so shadows get a penumbra as wide as similar triangles predict. 0: point lights, hard shadows.");
-    });
+    CollapsingHeader::new("Soft shadows")
+        .default_open(false)
+        .show(ui, |ui| {
+            ui.add(param_slider(&mut p.light_size, "light_size"))
+                .on_hover_text(tip("light_size"));
+        });
 
-    CollapsingHeader::new("Glossy reflection").default_open(false).show(ui, |ui| {
-        let own = scene_exponent(c.scene);
-        let mut n = p.phong_exponent.or(own).unwrap_or(100.0);
-        if ui
-            .add(Slider::new(&mut n, 1.0..=100_000.0).logarithmic(true).text("Phong exponent"))
-            .on_hover_text("Glossy reflection by jittering the reflected ray over the Phong lobe cos^n α around the mirror direction. Higher n: a tighter lobe, sharper reflections.")
-            .changed()
-        {
-            p.phong_exponent = Some(n);
-        }
-        if ui.add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene n")).on_hover_text("Each glossy material's own exponent.").clicked() {
-            p.phong_exponent = None;
-        }
-    });
+    CollapsingHeader::new("Glossy reflection")
+        .default_open(false)
+        .show(ui, |ui| {
+            let own = scene_exponent(c.scene);
+            let mut n = p.phong_exponent.or(own).unwrap_or(100.0);
+            if ui
+                .add(param_slider(&mut n, "phong_exponent"))
+                .on_hover_text(tip("phong_exponent"))
+                .changed()
+            {
+                p.phong_exponent = Some(n);
+            }
+            if ui
+                .add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene n"))
+                .on_hover_text("Each glossy material's own exponent.")
+                .clicked()
+            {
+                p.phong_exponent = None;
+            }
+        });
 
     CollapsingHeader::new("Camera and depth of field").default_open(true).show(ui, |ui| {
         ui.add(Slider::new(&mut c.camera.fov_deg, 5.0..=120.0).text("Field of view °"))
             .on_hover_text("The vertical angle the image spans.");
-        ui.add(Slider::new(&mut p.aperture, 0.0..=0.5).text("Aperture"))
-            .on_hover_text("Thin lens: eye rays start at random points on a lens of this radius (scene units) and pass through the plane of focus. 0 is a pinhole: everything sharp.");
+        ui.add(param_slider(&mut p.aperture, "aperture"))
+            .on_hover_text(tip("aperture"));
         let f = c.camera.f_number(p.aperture).map_or("pinhole".to_string(), |n| format!("f/{n:.1}"));
         ui.label(format!("{f} (35 mm equivalent, 1 unit = 1 m)"));
         let own = c.camera.look_distance();
         let mut d = p.focus_distance.unwrap_or(own);
         if ui
-            .add(Slider::new(&mut d, 0.05..=100.0).logarithmic(true).text("Focus distance"))
-            .on_hover_text("Distance to the plane in focus, along the view direction. Points off it blur into a circle of confusion of diameter 2a|z − s|/s at their depth.")
+            .add(param_slider(&mut d, "focus_distance"))
+            .on_hover_text(tip("focus_distance"))
             .changed()
         {
             p.focus_distance = Some(d);
@@ -214,18 +238,22 @@ pub fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         ui.label("Orbit: right-drag. Dolly: Ctrl + wheel.");
     });
 
-    CollapsingHeader::new("Motion blur").default_open(false).show(ui, |ui| {
-        ui.add(Slider::new(&mut p.shutter_open, 0.0..=1.0).text("Shutter opens"))
-            .on_hover_text("When the shutter opens, in frame time (objects move over the frame, time 0 to 1).");
-        p.shutter = p.shutter.min(1.0 - p.shutter_open);
-        let max = 1.0 - p.shutter_open;
-        ui.add(Slider::new(&mut p.shutter, 0.0..=max).text("Shutter interval"))
-            .on_hover_text("How long the shutter stays open. Each sample's rays get a time in the interval, so moving objects smear over their travel. 0 freezes them.");
-    });
+    CollapsingHeader::new("Motion blur")
+        .default_open(false)
+        .show(ui, |ui| {
+            ui.add(param_slider(&mut p.shutter_open, "shutter_open"))
+                .on_hover_text(tip("shutter_open"));
+            p.shutter = p.shutter.min(1.0 - p.shutter_open);
+            let max = 1.0 - p.shutter_open;
+            // The interval ends within the frame: the slider stops at 1 − opening.
+            let label = spec("shutter").map_or("shutter", |s| s.label);
+            ui.add(Slider::new(&mut p.shutter, 0.0..=max).text(label))
+                .on_hover_text(tip("shutter"));
+        });
 
     CollapsingHeader::new("Display").default_open(true).show(ui, |ui| {
-        ui.add(Slider::new(&mut p.exposure, -5.0..=5.0).text("Exposure (stops)"))
-            .on_hover_text("Displayed brightness: pixels are radiance × 2^exposure, then sRGB. Changes the display only, not the render.");
+        ui.add(param_slider(&mut p.exposure, "exposure"))
+            .on_hover_text(tip("exposure"));
         ComboBox::from_label("Resolution")
             .selected_text(format!("{:.0}%", *c.resolution * 100.0))
             .show_ui(ui, |ui| {

@@ -10,7 +10,7 @@ use std::time::{SystemTime, UNIX_EPOCH};
 
 /// What the dialog is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Purpose {
+pub(crate) enum Purpose {
     /// Open a scene (.toml) or a mesh (.obj).
     Open,
     /// Save the image as PNG or EXR.
@@ -19,7 +19,7 @@ pub enum Purpose {
 
 /// What the user chose.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Choice {
+pub(crate) enum Choice {
     /// Still choosing.
     Pending,
     /// Closed without a choice.
@@ -29,7 +29,7 @@ pub enum Choice {
 }
 
 /// The state of an open file dialog.
-pub struct FileDialog {
+pub(crate) struct FileDialog {
     /// What it is for.
     pub purpose: Purpose,
     dir: PathBuf,
@@ -204,7 +204,7 @@ impl FileDialog {
 }
 
 /// `YYYYMMDD-HHMMSS` in UTC for a time since the epoch.
-pub fn timestamp(t: SystemTime) -> String {
+pub(crate) fn timestamp(t: SystemTime) -> String {
     let secs = t.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs()) as i64;
     let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
     // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
@@ -226,7 +226,7 @@ pub fn timestamp(t: SystemTime) -> String {
 }
 
 /// `dir/<scene>-<timestamp>.png`, with `-2`, `-3`, ... if that file exists already.
-pub fn snapshot_path(dir: &Path, scene: &str, t: SystemTime) -> PathBuf {
+pub(crate) fn snapshot_path(dir: &Path, scene: &str, t: SystemTime) -> PathBuf {
     let safe: String = scene
         .chars()
         .map(|c| {

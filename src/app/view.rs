@@ -2,11 +2,15 @@
 //! and panned by dragging for pixel-peeping; right-drag orbits and Ctrl + wheel dollies
 //! the camera; a click reports the image position.
 
+use super::{RaylabApp, instruments, lecture, render_size};
+use crate::camera::Camera;
+use crate::tracer::pick;
+use egui::RichText;
 use egui::{Color32, Pos2, Rect, Sense, Ui, Vec2, pos2, vec2};
 
 /// How the image sits in the view.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ViewState {
+pub(crate) struct ViewState {
     /// Screen points per image pixel; `None` fits the image to the view.
     pub zoom: Option<f32>,
     /// The image point (in pixels) at the view's centre; `None` is the image's centre.
@@ -27,7 +31,7 @@ impl ViewState {
 
 /// What the user did to the image.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ViewEvent {
+pub(crate) enum ViewEvent {
     /// A click at this image position, (0, 0) top left to (1, 1) bottom right.
     Click(Vec2),
     /// A right-drag by this many points: orbit the camera.
@@ -38,7 +42,7 @@ pub enum ViewEvent {
 
 /// Draws the image (`size` pixels); returns what the user did to it, and where on the
 /// screen the image is (for overlays).
-pub fn image_ui(
+pub(crate) fn image_ui(
     ui: &mut Ui,
     view: &mut ViewState,
     texture: Option<&egui::TextureHandle>,
@@ -118,4 +122,122 @@ pub fn image_ui(
         }
     }
     (events, rect)
+}
+
+impl RaylabApp {
+    /// The central area: the scene's error if any, the image with its overlays (side B,
+    /// the inspected rays, the slide's caption), and what clicks and drags on it do.
+    pub(super) fn image_panel_ui(&mut self, ui: &mut egui::Ui) {
+        if let Some(e) = self.error.clone() {
+            egui::Frame::new()
+                .fill(Color32::from_rgb(110, 24, 24))
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    ui.horizontal(|ui| {
+                        ui.label(RichText::new("Error:").color(Color32::WHITE).strong());
+                        ui.label(RichText::new(&e).color(Color32::WHITE).monospace());
+                        if ui.small_button("Dismiss").clicked() {
+                            self.error = None;
+                        }
+                    });
+                });
+        }
+        let size = self
+            .main
+            .frame()
+            .map_or(render_size(&self.scene, self.settings.resolution), |f| {
+                (f.width, f.height)
+            });
+        let aspect = size.0 as f32 / size.1 as f32;
+        let (events, image_rect) = image_ui(ui, &mut self.view, self.main.texture(), size);
+        self.compare_overlay_ui(ui, image_rect);
+        if let Some(i) = &self.instruments.inspection {
+            let painter = ui.painter_at(ui.min_rect());
+            instruments::draw_tree_overlay(
+                &painter,
+                image_rect,
+                &i.camera.pinhole(aspect),
+                &i.tree,
+            );
+        }
+        if let Some(caption) = self.lecture.caption() {
+            lecture::caption_ui(ui, ui.min_rect(), caption);
+        }
+        for event in events {
+            match event {
+                ViewEvent::Click(film) if self.instruments.click_to_focus => {
+                    self.focus_on(glam::Vec2::new(film.x, film.y), aspect);
+                    self.instruments.click_to_focus = false;
+                }
+                ViewEvent::Click(film) if self.instruments.inspect_mode => {
+                    let x = ((film.x * size.0 as f32) as u32).min(size.0 - 1);
+                    let y = ((film.y * size.1 as f32) as u32).min(size.1 - 1);
+                    self.inspect((x, y), size);
+                }
+                ViewEvent::Click(_) => {}
+                ViewEvent::Orbit(delta) => orbit(&mut self.settings.camera, delta),
+                ViewEvent::Dolly(amount) => dolly(&mut self.settings.camera, amount),
+            }
+        }
+    }
+
+    /// Click to focus: the focus distance becomes the depth of the point at `film`.
+    fn focus_on(&mut self, film: glam::Vec2, aspect: f32) {
+        match pick(&self.scene, &self.settings.camera, aspect, film) {
+            Some(hit) => {
+                self.settings.params.focus_distance = Some(hit.depth.max(0.01));
+                let name = &self.scene.object_names[hit.object as usize];
+                self.toasts
+                    .info(format!("Focused on {name} at {:.2}", hit.depth));
+            }
+            None => self.toasts.error("Nothing there to focus on"),
+        }
+    }
+}
+
+/// Turns the camera about its target: horizontal drag about the up axis, vertical about
+/// the camera's right axis (stopping short of the poles).
+pub(crate) fn orbit(camera: &mut Camera, delta: egui::Vec2) {
+    let offset = camera.position - camera.look_at;
+    let up = camera.up.normalize();
+    let yaw = glam::Quat::from_axis_angle(up.into(), -delta.x * 0.005);
+    let mut offset: crate::math::Vec3 = yaw * offset;
+    let right = offset.cross(up).normalize_or_zero();
+    let pitched: crate::math::Vec3 =
+        glam::Quat::from_axis_angle(right.into(), delta.y * 0.005) * offset;
+    if pitched.normalize().dot(up).abs() < 0.995 {
+        offset = pitched;
+    }
+    camera.position = camera.look_at + offset;
+}
+
+/// Moves the camera towards its target (positive) or away, by a factor per wheel step.
+pub(crate) fn dolly(camera: &mut Camera, amount: f32) {
+    let offset = camera.position - camera.look_at;
+    let scale = (-amount * 0.002).exp().clamp(0.5, 2.0);
+    let new = offset * scale;
+    if new.length() > 1e-3 {
+        camera.position = camera.look_at + new;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orbit_keeps_the_distance_and_dolly_changes_it() {
+        let mut c = Camera::looking_at(
+            crate::math::Vec3::new(0.0, 1.0, 5.0),
+            crate::math::Vec3::ZERO,
+            crate::math::Vec3::Y,
+            40.0,
+        );
+        let d = c.look_distance();
+        orbit(&mut c, egui::vec2(120.0, -40.0));
+        assert!((c.look_distance() - d).abs() < 1e-4);
+        assert!(c.position.x.abs() > 0.1);
+        dolly(&mut c, 100.0);
+        assert!(c.look_distance() < d);
+    }
 }

@@ -6,7 +6,7 @@
 pub mod rng;
 pub mod sampling;
 
-pub use rng::{Pattern, SampleStream};
+pub use rng::{Pattern, SampleStream, Uniform};
 
 /// A point or direction in world space.
 pub type Vec3 = glam::Vec3A;

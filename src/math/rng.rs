@@ -271,6 +271,26 @@ impl SampleStream {
     }
 }
 
+/// A source of uniform numbers in [0, 1): a sample's [`SampleStream`], or fixed numbers
+/// in a test. Materials draw the numbers they need from it, in the caller's order.
+pub trait Uniform {
+    /// The next dimension.
+    fn next_1d(&mut self) -> f32;
+    /// The next two dimensions, jointly stratified where the source can.
+    fn next_2d(&mut self) -> Vec2;
+}
+
+impl Uniform for SampleStream {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        SampleStream::next_1d(self)
+    }
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        SampleStream::next_2d(self)
+    }
+}
+
 /// The largest f32 below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 

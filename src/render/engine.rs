@@ -178,6 +178,7 @@ impl Engine {
             finished: None,
             pass_time: Duration::ZERO,
             passes: 0,
+            pass_rays: 0,
             stats: Stats::default(),
             requested: Arc::clone(&requested),
             outbox: Outbox {
@@ -350,9 +351,11 @@ struct Controller {
     started: Instant,
     // How long the generation took to reach its target, once it has.
     finished: Option<Duration>,
-    // Time and count of the full passes of this generation.
+    // Time, count and rays of the full passes of this generation (not the preview's).
     pass_time: Duration,
     passes: u32,
+    pass_rays: u64,
+    // Everything traced in this generation, the preview included.
     stats: Stats,
     requested: Arc<AtomicU64>,
     outbox: Outbox,
@@ -453,6 +456,7 @@ impl Controller {
             self.finished = None;
             self.pass_time = Duration::ZERO;
             self.passes = 0;
+            self.pass_rays = 0;
             self.stats = Stats::default();
         }
         true
@@ -531,6 +535,7 @@ impl Controller {
         if let Ok(stats) = result {
             self.pass_time += start.elapsed();
             self.passes += 1;
+            self.pass_rays += stats.total_rays();
             self.stats += stats;
             if self.target_reached() {
                 self.finished = Some(self.started.elapsed());
@@ -549,13 +554,12 @@ impl Controller {
             )),
             _ => None,
         };
-        let pass_rays = self.stats.total_rays();
         Progress {
             spp,
             target,
             elapsed: self.finished.unwrap_or_else(|| self.started.elapsed()),
             rays_per_second: if secs > 0.0 {
-                pass_rays as f64 / secs
+                self.pass_rays as f64 / secs
             } else {
                 0.0
             },

@@ -12,7 +12,8 @@ use rayon::prelude::*;
 /// Rows per band: the unit of parallel work, progress and cancellation.
 pub const BAND_ROWS: u32 = 4;
 
-/// Watches a pass: asked before each band whether to go on, told after each band is done.
+/// Watches a pass: asked before every pixel whether to go on, told after each band of rows
+/// is done.
 pub trait PassObserver: Sync {
     /// False stops the pass (bands already started finish).
     fn keep_going(&self) -> bool {

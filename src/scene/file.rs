@@ -3,17 +3,17 @@
 //! Numbers are checked as they are read (finite, in range), so that serde's error carries
 //! the span of the offending value and the message can name its line and column.
 
+use super::materials::{MaterialDef, MaterialTable, default_material, material};
 use super::obj::load_obj;
+use super::values::{Dir, Ior, NonNegative, Pixels, Positive, Rgb, V3};
 use super::{Location, Object, Scene, SceneDesc, SceneError, SceneSource};
 use crate::camera::Camera;
 use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
 use crate::light::{Background, Light, LightShape};
-use crate::material::{Dielectric, Material, Texture};
 use crate::math::{Color, Vec3};
-use crate::optics::FresnelMode;
 use crate::params::{ParamError, Params};
 use serde::Deserialize;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -64,155 +64,6 @@ pub fn describe(text: &str) -> Option<String> {
         description: Option<String>,
     }
     toml::from_str::<Head>(text).ok()?.description
-}
-
-// ---- Checked values ----
-
-/// A finite number.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "f64")]
-struct Num(f32);
-
-impl TryFrom<f64> for Num {
-    type Error = String;
-    fn try_from(v: f64) -> Result<Self, String> {
-        let f = v as f32;
-        if f.is_finite() {
-            Ok(Num(f))
-        } else {
-            Err(format!("{v} is not a finite number"))
-        }
-    }
-}
-
-/// Declares a number type that deserializes only from a finite value meeting `$ok`,
-/// else fails with `$message`: `|v, f|` names the value read and its f32.
-macro_rules! checked_number {
-    ($(#[$doc:meta])* $name:ident, |$v:ident, $f:ident| $ok:expr, $($message:tt)+) => {
-        $(#[$doc])*
-        #[derive(Clone, Copy, Debug, Deserialize)]
-        #[serde(try_from = "f64")]
-        struct $name(f32);
-
-        impl TryFrom<f64> for $name {
-            type Error = String;
-            fn try_from($v: f64) -> Result<Self, String> {
-                let Num($f) = Num::try_from($v)?;
-                if $ok { Ok($name($f)) } else { Err(format!($($message)+)) }
-            }
-        }
-    };
-}
-
-checked_number!(
-    /// A finite number > 0.
-    Positive, |v, f| f > 0.0, "must be greater than 0, got {v}"
-);
-checked_number!(
-    /// A finite number ≥ 0.
-    NonNegative, |v, f| f >= 0.0, "must not be negative, got {v}"
-);
-checked_number!(
-    /// An index of refraction, 1 to 3.
-    Ior, |v, f| (1.0..=3.0).contains(&f), "an index of refraction must be between 1 and 3, got {v}"
-);
-checked_number!(
-    /// A Phong exponent, 1 to 100,000.
-    Exponent, |v, f| (1.0..=crate::params::MAX_PHONG_EXPONENT).contains(&f),
-    "a Phong exponent must be between 1 and {}, got {v}", crate::params::MAX_PHONG_EXPONENT
-);
-checked_number!(
-    /// A fraction, 0 to 1.
-    Unit, |v, f| (0.0..=1.0).contains(&f), "must be between 0 and 1, got {v}"
-);
-
-/// A vector of three finite numbers.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "[f64; 3]")]
-struct V3(Vec3);
-
-impl TryFrom<[f64; 3]> for V3 {
-    type Error = String;
-    fn try_from(v: [f64; 3]) -> Result<Self, String> {
-        let f = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
-        if f.is_finite() {
-            Ok(V3(f))
-        } else {
-            Err(format!("{v:?} has a non-finite component"))
-        }
-    }
-}
-
-/// A non-zero direction.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "[f64; 3]")]
-struct Dir(Vec3);
-
-impl TryFrom<[f64; 3]> for Dir {
-    type Error = String;
-    fn try_from(v: [f64; 3]) -> Result<Self, String> {
-        let V3(f) = V3::try_from(v)?;
-        if f.length_squared() > 0.0 {
-            Ok(Dir(f.normalize()))
-        } else {
-            Err("a direction must not be [0, 0, 0]".into())
-        }
-    }
-}
-
-/// A colour of radiance or intensity: three finite numbers ≥ 0.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "[f64; 3]")]
-struct Rgb(Color);
-
-impl TryFrom<[f64; 3]> for Rgb {
-    type Error = String;
-    fn try_from(v: [f64; 3]) -> Result<Self, String> {
-        let V3(f) = V3::try_from(v)?;
-        if f.min_element() >= 0.0 {
-            Ok(Rgb(f))
-        } else {
-            Err(format!("colour {v:?} has a negative component"))
-        }
-    }
-}
-
-/// A reflectance: three numbers in [0, 1] (more would create energy).
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "[f64; 3]")]
-struct Reflectance(Color);
-
-impl TryFrom<[f64; 3]> for Reflectance {
-    type Error = String;
-    fn try_from(v: [f64; 3]) -> Result<Self, String> {
-        let Rgb(f) = Rgb::try_from(v)?;
-        if f.max_element() <= 1.0 {
-            Ok(Reflectance(f))
-        } else {
-            Err(format!("reflectance {v:?} must be between 0 and 1"))
-        }
-    }
-}
-
-/// An image dimension in pixels.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(try_from = "i64")]
-struct Pixels(u32);
-
-/// The largest image side accepted.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-
-impl TryFrom<i64> for Pixels {
-    type Error = String;
-    fn try_from(v: i64) -> Result<Self, String> {
-        if (1..=MAX_IMAGE_SIDE as i64).contains(&v) {
-            Ok(Pixels(v as u32))
-        } else {
-            Err(format!(
-                "must be between 1 and {MAX_IMAGE_SIDE} pixels, got {v}"
-            ))
-        }
-    }
 }
 
 // ---- The file's shape ----
@@ -273,52 +124,6 @@ struct BackgroundDef {
     color: Option<Rgb>,
     horizon: Option<Rgb>,
     zenith: Option<Rgb>,
-}
-
-#[derive(Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-enum MaterialDef {
-    Diffuse {
-        color: Reflectance,
-        checker: Option<CheckerDef>,
-        specular: Option<Reflectance>,
-        exponent: Option<Positive>,
-    },
-    Mirror {
-        reflectance: Reflectance,
-    },
-    Glossy {
-        reflectance: Reflectance,
-        exponent: Exponent,
-    },
-    Emissive {
-        color: Rgb,
-        strength: Option<NonNegative>,
-    },
-    Dielectric {
-        ior: Ior,
-        #[serde(default)]
-        ior_fixed: bool,
-        fresnel: Option<FresnelMode>,
-        constant_reflectance: Option<Unit>,
-        absorption: Option<Rgb>,
-    },
-    Glazed {
-        color: Reflectance,
-        checker: Option<CheckerDef>,
-        ior: Option<Ior>,
-        #[serde(default)]
-        ior_fixed: bool,
-        fresnel: Option<FresnelMode>,
-        constant_reflectance: Option<Unit>,
-    },
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CheckerDef {
-    color: Reflectance,
-    scale: Positive,
 }
 
 #[derive(Deserialize)]
@@ -687,115 +492,4 @@ fn rotation(rotate: Option<V3>) -> glam::Quat {
         let r = r.0 * (std::f32::consts::PI / 180.0);
         glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x)
     })
-}
-
-/// Materials by name, in the order they were added.
-#[derive(Default)]
-struct MaterialTable {
-    list: Vec<(String, Material)>,
-    index: HashMap<String, u32>,
-}
-
-impl MaterialTable {
-    /// The index of `name`, adding `material` under it if it is new.
-    fn add(&mut self, name: String, material: Material) -> u32 {
-        if let Some(&i) = self.index.get(&name) {
-            return i;
-        }
-        self.list.push((name.clone(), material));
-        let i = self.list.len() as u32 - 1;
-        self.index.insert(name, i);
-        i
-    }
-
-    fn get(&self, name: &str) -> Option<u32> {
-        self.index.get(name).copied()
-    }
-
-    /// The defined names, sorted, comma separated.
-    fn names(&self) -> String {
-        let mut names: Vec<_> = self.list.iter().map(|(n, _)| n.as_str()).collect();
-        names.sort();
-        names.join(", ")
-    }
-}
-
-fn default_material() -> Material {
-    Material::Diffuse {
-        albedo: Texture::Solid(Color::splat(0.6)),
-        specular: Color::ZERO,
-        exponent: 1.0,
-    }
-}
-
-fn material(def: MaterialDef) -> Material {
-    match def {
-        MaterialDef::Diffuse {
-            color,
-            checker,
-            specular,
-            exponent,
-        } => Material::Diffuse {
-            albedo: texture(color, checker),
-            specular: specular.map_or(Color::ZERO, |s| s.0),
-            exponent: exponent.map_or(20.0, |e| e.0),
-        },
-        MaterialDef::Mirror { reflectance } => Material::Mirror {
-            reflectance: reflectance.0,
-        },
-        MaterialDef::Glossy {
-            reflectance,
-            exponent,
-        } => Material::Glossy {
-            reflectance: reflectance.0,
-            exponent: exponent.0,
-        },
-        MaterialDef::Emissive { color, strength } => Material::Emissive {
-            radiance: color.0 * strength.map_or(1.0, |s| s.0),
-        },
-        MaterialDef::Dielectric {
-            ior,
-            ior_fixed,
-            fresnel,
-            constant_reflectance,
-            absorption,
-        } => Material::Dielectric(Dielectric {
-            ior: ior.0,
-            ior_fixed,
-            fresnel: fresnel.unwrap_or(FresnelMode::Exact),
-            constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
-            absorption: absorption.map_or(Color::ZERO, |a| a.0),
-        }),
-        MaterialDef::Glazed {
-            color,
-            checker,
-            ior,
-            ior_fixed,
-            fresnel,
-            constant_reflectance,
-        } => Material::Glazed {
-            coat: Dielectric {
-                ior: ior.map_or(1.5, |i| i.0),
-                ior_fixed,
-                fresnel: fresnel.unwrap_or(FresnelMode::Exact),
-                constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
-                absorption: Color::ZERO,
-            },
-            base: texture(color, checker),
-        },
-    }
-}
-
-/// The default constant reflectance k: glass's reflectance at normal incidence.
-const DEFAULT_K: f32 = 0.04;
-
-fn texture(color: Reflectance, checker: Option<CheckerDef>) -> Texture {
-    match checker {
-        None => Texture::Solid(color.0),
-        Some(c) => Texture::Checker {
-            even: color.0,
-            odd: c.color.0,
-            scale: c.scale.0,
-        },
-    }
 }

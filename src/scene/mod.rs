@@ -3,7 +3,9 @@
 mod builtin;
 mod error;
 mod file;
+mod materials;
 mod obj;
+mod values;
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
 pub use error::{Location, SceneError, line_col};
@@ -13,7 +15,7 @@ pub use obj::{ObjPart, load_obj};
 use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
 use crate::light::{Background, Light};
-use crate::material::Material;
+use crate::material::{Diffuse, Material};
 use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
@@ -273,7 +275,7 @@ impl Scene {
         desc.ambient = Color::splat(0.05);
         // From the front and a little above, on a checkered floor, lit from the upper left.
         desc.camera = Camera::looking_at(c + Vec3::new(0.0, 0.6 * r, 3.2 * r), c, Vec3::Y, 35.0);
-        let floor = Material::Diffuse {
+        let floor = Material::Diffuse(Diffuse {
             albedo: crate::material::Texture::Checker {
                 even: Color::new(0.8, 0.8, 0.78),
                 odd: Color::new(0.15, 0.15, 0.17),
@@ -281,7 +283,7 @@ impl Scene {
             },
             specular: Color::ZERO,
             exponent: 1.0,
-        };
+        });
         desc.add(
             "floor",
             Shape::Plane(crate::geometry::Plane::new(

@@ -2,7 +2,7 @@
 
 use super::{Location, SceneError};
 use crate::geometry::Mesh;
-use crate::material::{Material, Texture};
+use crate::material::{Diffuse, Emissive, Material, Mirror, Texture};
 use crate::math::{Color, Vec3};
 use glam::Vec2;
 use std::cell::RefCell;
@@ -128,20 +128,20 @@ fn map_material(m: &tobj::Material) -> Material {
     };
     let emissive = rgb(m.emissive, 0.0);
     if emissive.max_element() > 0.0 {
-        return Material::Emissive { radiance: emissive };
+        return Material::Emissive(Emissive { radiance: emissive });
     }
     match m.illumination_model {
-        Some(3) | Some(5) => Material::Mirror {
+        Some(3) | Some(5) => Material::Mirror(Mirror {
             reflectance: rgb(m.specular, 0.9),
-        },
-        _ => Material::Diffuse {
+        }),
+        _ => Material::Diffuse(Diffuse {
             albedo: Texture::Solid(rgb(m.diffuse, 0.7)),
             specular: rgb(m.specular, 0.0),
             exponent: m
                 .shininess
                 .filter(|s| s.is_finite() && *s > 0.0)
                 .unwrap_or(1.0),
-        },
+        }),
     }
 }
 
@@ -297,7 +297,7 @@ mod tests {
         let parts = load_obj(obj, "m.obj", &mtl).unwrap();
         let (name, m) = parts[0].material.clone().unwrap();
         assert_eq!(name, "shiny");
-        assert!(matches!(m, Material::Mirror { .. }));
+        assert!(matches!(m, Material::Mirror(_)));
     }
 
     #[test]

@@ -1,9 +1,15 @@
 //! The one parameter model: every knob of the renderer, under the names the CLI's
-//! `--set name=value`, scene files' `[params]` and snapshot sidecars all use.
+//! `--set name=value`, scene files' `[params]` and snapshot sidecars all use. Each
+//! parameter's range, unit and documentation are in [`table`].
+
+mod table;
 
 pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
+pub use table::{
+    IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec, TABLE, spec,
+};
 
 /// How the ray tree branches at a dielectric.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -112,22 +118,10 @@ pub enum ParamError {
     Syntax(String),
 }
 
-/// The largest samples per pixel accepted.
-pub const MAX_SPP: u32 = 1 << 20;
-/// The deepest ray tree accepted.
-pub const MAX_DEPTH: u32 = 64;
-/// The largest light size accepted.
-pub const MAX_LIGHT_SIZE: f32 = 10.0;
-/// The largest Phong exponent accepted.
-pub const MAX_PHONG_EXPONENT: f32 = 100_000.0;
-
 impl Params {
-    /// The names of all parameters, in declaration order.
+    /// The names of all parameters, in the table's order.
     pub fn names() -> Vec<String> {
-        match serde_json::to_value(Params::default()) {
-            Ok(serde_json::Value::Object(map)) => map.keys().cloned().collect(),
-            _ => Vec::new(),
-        }
+        TABLE.iter().map(|s| s.name.to_string()).collect()
     }
 
     /// Sets parameter `name` from the text `value`, as typed after `--set name=`.
@@ -189,106 +183,89 @@ impl Params {
         display_only(self) == display_only(other)
     }
 
-    /// Checks every range; the first violation is the error.
+    /// Checks every value against the table, and that the shutter closes within the
+    /// frame; the first violation is the error.
     pub fn validate(&self) -> Result<(), ParamError> {
-        let check = |ok: bool, name: &str, message: String| {
-            if ok {
-                Ok(())
-            } else {
-                Err(ParamError::Invalid {
-                    name: name.to_string(),
-                    message,
-                })
-            }
-        };
-        check(
-            (1..=MAX_SPP).contains(&self.spp),
-            "spp",
-            format!("must be between 1 and {MAX_SPP}, got {}", self.spp),
-        )?;
-        check(
-            self.ior.is_none_or(|ior| (1.0..=3.0).contains(&ior)),
-            "ior",
-            format!("must be between 1 and 3, got {:?}", self.ior),
-        )?;
-        check(
-            self.constant_reflectance
-                .is_none_or(|k| (0.0..=1.0).contains(&k)),
-            "constant_reflectance",
-            format!(
-                "must be between 0 and 1, got {:?}",
-                self.constant_reflectance
-            ),
-        )?;
-        check(
-            (0.0..=100.0).contains(&self.absorption_scale),
-            "absorption_scale",
-            format!("must be between 0 and 100, got {}", self.absorption_scale),
-        )?;
-        check(
-            self.max_depth <= MAX_DEPTH,
-            "max_depth",
-            format!("must be at most {MAX_DEPTH}, got {}", self.max_depth),
-        )?;
-        check(
-            (0.0..=1.0).contains(&self.min_weight),
-            "min_weight",
-            format!("must be between 0 and 1, got {}", self.min_weight),
-        )?;
-        check(
-            (0.0..=MAX_LIGHT_SIZE).contains(&self.light_size),
-            "light_size",
-            format!(
-                "must be between 0 and {MAX_LIGHT_SIZE}, got {}",
-                self.light_size
-            ),
-        )?;
-        check(
-            self.phong_exponent
-                .is_none_or(|n| (1.0..=MAX_PHONG_EXPONENT).contains(&n)),
-            "phong_exponent",
-            format!(
-                "must be between 1 and {MAX_PHONG_EXPONENT}, got {:?}",
-                self.phong_exponent
-            ),
-        )?;
-        check(
-            (0.0..=100.0).contains(&self.aperture),
-            "aperture",
-            format!(
-                "must be between 0 and 100 scene units, got {}",
-                self.aperture
-            ),
-        )?;
-        check(
-            self.focus_distance.is_none_or(|d| d > 0.0 && d.is_finite()),
-            "focus_distance",
-            format!("must be greater than 0, got {:?}", self.focus_distance),
-        )?;
-        check(
-            (0.0..=1.0).contains(&self.shutter_open),
-            "shutter_open",
-            format!(
-                "must be between 0 and 1 (frame time), got {}",
-                self.shutter_open
-            ),
-        )?;
-        check(
-            (0.0..=1.0).contains(&self.shutter) && self.shutter_open + self.shutter <= 1.0 + 1e-6,
-            "shutter",
-            format!(
-                "must be between 0 and 1 − shutter_open = {} (frame time), got {}",
-                1.0 - self.shutter_open,
-                self.shutter
-            ),
-        )?;
-        check(
-            self.exposure.is_finite() && self.exposure.abs() <= 20.0,
-            "exposure",
-            format!("must be between -20 and 20 stops, got {}", self.exposure),
-        )?;
+        let map = self.to_map();
+        for spec in TABLE {
+            let value = map.get(spec.name).unwrap_or(&serde_json::Value::Null);
+            spec.check(value).map_err(|message| ParamError::Invalid {
+                name: spec.name.to_string(),
+                message,
+            })?;
+        }
+        if self.shutter_open + self.shutter > 1.0 + 1e-6 {
+            return Err(ParamError::Invalid {
+                name: "shutter".into(),
+                message: format!(
+                    "must be at most 1 − shutter_open = {} (frame time), got {}",
+                    1.0 - self.shutter_open,
+                    self.shutter
+                ),
+            });
+        }
         Ok(())
     }
+
+    /// Every parameter by name, as JSON values (null: left to the scene).
+    fn to_map(&self) -> serde_json::Map<String, serde_json::Value> {
+        match serde_json::to_value(self) {
+            Ok(serde_json::Value::Object(map)) => map,
+            _ => serde_json::Map::new(),
+        }
+    }
+
+    /// Parameter `name`'s value as `--set` would take it (`scene` for an override left to
+    /// the scene).
+    pub fn value_text(&self, name: &str) -> Option<String> {
+        self.to_map().get(name).map(|v| match v {
+            serde_json::Value::Null => "scene".to_string(),
+            serde_json::Value::String(s) => s.clone(),
+            serde_json::Value::Number(n) if n.is_f64() => {
+                // Real parameters are f32: their shortest form, not the widened f64's.
+                n.as_f64()
+                    .map_or_else(|| n.to_string(), |x| (x as f32).to_string())
+            }
+            other => other.to_string(),
+        })
+    }
+}
+
+/// The table as Markdown, as README shows it: name, default, valid values, meaning.
+pub fn markdown_table() -> String {
+    let defaults = Params::default();
+    let mut out = String::from("| name | default | values | meaning |\n|---|---|---|---|\n");
+    for s in TABLE {
+        let default = defaults.value_text(s.name).unwrap_or_default();
+        out += &format!(
+            "| `{}` | `{default}` | {} | {} |\n",
+            s.name,
+            s.range_text(),
+            s.doc
+        );
+    }
+    out
+}
+
+/// The table as aligned plain text, for `raylab params`.
+pub fn text_table() -> String {
+    let defaults = Params::default();
+    let rows: Vec<[String; 4]> =
+        std::iter::once(["name", "default", "values", "meaning"].map(String::from))
+            .chain(TABLE.iter().map(|s| {
+                [
+                    s.name.to_string(),
+                    defaults.value_text(s.name).unwrap_or_default(),
+                    s.range_text(),
+                    s.doc.to_string(),
+                ]
+            }))
+            .collect();
+    let width = |k: usize| rows.iter().map(|r| r[k].chars().count()).max().unwrap_or(0);
+    let (w0, w1, w2) = (width(0), width(1), width(2));
+    rows.iter()
+        .map(|[a, b, c, d]| format!("{a:w0$}  {b:w1$}  {c:w2$}  {d}\n"))
+        .collect()
 }
 
 #[cfg(test)]
@@ -328,7 +305,14 @@ mod tests {
     }
 
     #[test]
-    fn names_cover_every_field() {
+    fn the_table_names_every_field_in_order() {
+        let fields: Vec<String> = Params::default().to_map().keys().cloned().collect();
+        let mut sorted = Params::names();
+        sorted.sort();
+        assert_eq!(
+            fields, sorted,
+            "the table and the struct name the same parameters"
+        );
         let names = Params::names();
         for n in [
             "spp",

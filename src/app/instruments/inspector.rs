@@ -1,0 +1,172 @@
+//! The ray-tree inspector: the whole tree of one sample, as nested sections with the
+//! lecture's quantities at each hit, and drawn over the image.
+
+/// The ray tree of one pixel, as the inspector shows it.
+pub(crate) struct Inspection {
+    /// The pixel.
+    pub pixel: (u32, u32),
+    /// The image size it belongs to.
+    pub size: (u32, u32),
+    /// The parameters it was traced with.
+    pub params: crate::params::Params,
+    /// The camera it was traced through.
+    pub camera: crate::camera::Camera,
+    /// Its tree for sample 0.
+    pub tree: crate::tracer::RayTree,
+    /// The radiance the sample returned.
+    pub radiance: crate::math::Color,
+}
+
+fn kind_color(kind: crate::tracer::RayKind) -> egui::Color32 {
+    use crate::tracer::RayKind::*;
+    match kind {
+        Camera => egui::Color32::WHITE,
+        Reflect => egui::Color32::from_rgb(90, 200, 255),
+        Refract => egui::Color32::from_rgb(255, 170, 60),
+        Shadow => egui::Color32::from_rgb(240, 230, 90),
+    }
+}
+
+fn end_text(end: crate::tracer::End) -> &'static str {
+    use crate::tracer::End::*;
+    match end {
+        Miss => "left the scene (background)",
+        LightHit => "reached a light",
+        Absorbed => "diffuse surface: shaded by shadow rays, absorbed",
+        Split => "split into child rays",
+        DepthLimit => "pruned: depth limit",
+        WeightLimit => "pruned: weight below the minimum",
+        TotalInternalReflection => "no refracted ray: total internal reflection",
+        Lit => "reached its light",
+        Occluded => "blocked: in shadow",
+    }
+}
+
+/// Draws the recorded rays over the image: each segment projected through the camera.
+pub(crate) fn draw_tree_overlay(
+    painter: &egui::Painter,
+    image: egui::Rect,
+    frame: &crate::camera::CameraFrame,
+    tree: &crate::tracer::RayTree,
+) {
+    let to_screen = |p: crate::math::Vec3| {
+        frame
+            .project(p)
+            .map(|f| image.min + egui::vec2(f.x * image.width(), f.y * image.height()))
+    };
+    for n in &tree.nodes {
+        // A segment behind the camera cannot be drawn; pruned branches have no length.
+        let (Some(a), Some(b)) = (to_screen(n.ray.origin), to_screen(n.end_point)) else {
+            continue;
+        };
+        let width = if n.kind == crate::tracer::RayKind::Shadow {
+            1.0
+        } else {
+            2.0
+        };
+        painter.line_segment([a, b], egui::Stroke::new(width, kind_color(n.kind)));
+        if n.hit.is_some() {
+            painter.circle_filled(b, 3.0, kind_color(n.kind));
+        }
+    }
+}
+
+/// The inspector: the tree as nested sections, each ray with the lecture's quantities.
+pub(crate) fn inspector_ui(
+    ui: &mut egui::Ui,
+    inspection: &Inspection,
+    names: &[String],
+    materials: &[String],
+) {
+    let c = inspection.radiance;
+    ui.label(format!(
+        "Pixel ({}, {}), sample 0: radiance ({:.3}, {:.3}, {:.3}), {} rays",
+        inspection.pixel.0,
+        inspection.pixel.1,
+        c.x,
+        c.y,
+        c.z,
+        inspection.tree.nodes.len()
+    ));
+    ui.label("White: camera ray. Blue: reflected. Orange: refracted. Yellow: shadow rays.");
+    egui::ScrollArea::vertical()
+        .max_height(460.0)
+        .show(ui, |ui| {
+            node_ui(ui, inspection, 0, names, materials);
+        });
+}
+
+fn node_ui(
+    ui: &mut egui::Ui,
+    inspection: &Inspection,
+    id: usize,
+    names: &[String],
+    materials: &[String],
+) {
+    let tree = &inspection.tree;
+    let Some(n) = tree.nodes.get(id) else { return };
+    let target = n.hit.map_or("nothing".to_string(), |h| {
+        format!(
+            "{} ({})",
+            names.get(h.object as usize).map_or("?", |s| s.as_str()),
+            materials
+                .get(h.material as usize)
+                .map_or("?", |s| s.as_str())
+        )
+    });
+    let title = format!(
+        "{:?} ray, level {}: {} — {}",
+        n.kind,
+        n.depth,
+        target,
+        end_text(n.end)
+    );
+    egui::CollapsingHeader::new(egui::RichText::new(title).color(kind_color(n.kind)))
+        .id_salt(("ray-node", id))
+        .default_open(n.depth < 3)
+        .show(ui, |ui| {
+            egui::Grid::new(("ray-grid", id))
+                .num_columns(2)
+                .show(ui, |ui| {
+                    let mut row = |k: &str, v: String| {
+                        ui.label(k);
+                        ui.label(v);
+                        ui.end_row();
+                    };
+                    if let Some(h) = n.hit {
+                        row("θi", format!("{:.2}°", h.theta_i));
+                        if let Some((n1, n2)) = h.n1_n2 {
+                            row("n1 -> n2", format!("{n1:.3} -> {n2:.3}"));
+                            row(
+                                "θt",
+                                h.theta_t
+                                    .map_or("none (total internal reflection)".into(), |t| {
+                                        format!("{t:.2}°")
+                                    }),
+                            );
+                        }
+                        if let Some((f_s, f_p)) = h.f_s_f_p {
+                            row("Fs, Fp", format!("{f_s:.4}, {f_p:.4}"));
+                        }
+                        if let Some((exact, schlick)) = h.r_exact_schlick {
+                            row("R exact, Schlick", format!("{exact:.4}, {schlick:.4}"));
+                        }
+                        if let Some(r) = h.r {
+                            row("R used", format!("{r:.4}"));
+                        }
+                    }
+                    row("branch weight", format!("{:.4}", n.branch_weight));
+                    row("path weight", format!("{:.4}", n.path_weight));
+                    row(
+                        "radiance",
+                        format!(
+                            "({:.3}, {:.3}, {:.3})",
+                            n.radiance.x, n.radiance.y, n.radiance.z
+                        ),
+                    );
+                });
+            for (child, _) in tree.children(id) {
+                node_ui(ui, inspection, child, names, materials);
+            }
+        });
+}

@@ -1,0 +1,145 @@
+//! Teaching instruments: windows and overlays that explain what the image shows. The
+//! Instruments menu switches them on.
+
+mod fresnel;
+mod heat;
+mod inspector;
+mod patterns;
+
+pub(crate) use heat::{cost_range, heat_map_rgba};
+pub(crate) use inspector::draw_tree_overlay;
+
+use super::RaylabApp;
+use crate::tracer::{RayTree, Tracer};
+use inspector::Inspection;
+
+/// Which instruments are on, and the inspected tree.
+#[derive(Default)]
+pub(crate) struct Instruments {
+    pub(crate) show_fresnel: bool,
+    /// A click on the image inspects a pixel.
+    pub(crate) inspect_mode: bool,
+    pub(crate) inspection: Option<Inspection>,
+    pub(crate) show_patterns: bool,
+    pub(crate) show_cost: bool,
+    /// The next click on the image sets the focus distance.
+    pub(crate) click_to_focus: bool,
+}
+
+impl Instruments {
+    /// The inspected ray tree, if any.
+    pub(crate) fn tree(&self) -> Option<&RayTree> {
+        self.inspection.as_ref().map(|i| &i.tree)
+    }
+}
+
+impl RaylabApp {
+    /// The Instruments menu.
+    pub(super) fn instruments_menu_ui(&mut self, ui: &mut egui::Ui) {
+        let i = &mut self.instruments;
+        ui.checkbox(&mut i.show_fresnel, "Fresnel plot").on_hover_text(
+            "R_s, R_p, exact R, Schlick and naive Schlick against the angle, for the current IOR.",
+        );
+        ui.checkbox(&mut i.inspect_mode, "Ray-tree inspector: click a pixel")
+            .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
+        ui.checkbox(&mut i.show_cost, "Cost heat map")
+            .on_hover_text("Rays traced per sample in each pixel, black (few) to yellow (many): where the ray tree is deep. Compare pruning by depth and by weight.");
+        ui.menu_button("A/B compare", |ui| self.compare_menu_ui(ui));
+        if ui
+            .button("Contact sheet…")
+            .on_hover_text(
+                "One labelled image per value of a parameter, side by side, saved as a PNG.",
+            )
+            .clicked()
+        {
+            self.open_sheet_form();
+            ui.close();
+        }
+        ui.checkbox(&mut self.instruments.show_patterns, "Sample patterns")
+            .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
+    }
+
+    /// Records the ray tree of `pixel`'s first sample with the current parameters and camera.
+    pub(super) fn inspect(&mut self, pixel: (u32, u32), size: (u32, u32)) {
+        let s = &self.settings;
+        let tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
+        let (tree, radiance) = tracer.inspect(pixel.0, pixel.1, 0);
+        self.instruments.inspection = Some(Inspection {
+            pixel,
+            size,
+            params: s.params.clone(),
+            camera: s.camera.clone(),
+            tree,
+            radiance,
+        });
+    }
+
+    /// Traces the inspected pixel again when the controls changed what it shows.
+    pub(super) fn refresh_inspection(&mut self) {
+        let s = &self.settings;
+        if let Some(i) = &self.instruments.inspection
+            && (i.params != s.params || i.camera != s.camera)
+            && s.params.validate().is_ok()
+        {
+            let (pixel, size) = (i.pixel, i.size);
+            self.inspect(pixel, size);
+        }
+    }
+
+    /// The instruments' windows.
+    pub(super) fn instruments_ui(&mut self, ctx: &egui::Context) {
+        let params = &self.settings.params;
+        let i = &mut self.instruments;
+        if i.show_fresnel {
+            // The IOR the `ior` parameter sets, or the scene's first that it would replace.
+            let ior = params.ior.or_else(|| {
+                self.scene
+                    .materials
+                    .iter()
+                    .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
+            });
+            let marker = i
+                .tree()
+                .and_then(|t| t.nodes.first())
+                .and_then(|n| n.hit)
+                .map(|h| (h.theta_i, h.n1_n2.is_none_or(|(n1, n2)| n1 <= n2)));
+            egui::Window::new("Fresnel plot")
+                .open(&mut i.show_fresnel)
+                .default_width(520.0)
+                .show(ctx, |ui| {
+                    fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker)
+                });
+        }
+        if i.inspect_mode || i.inspection.is_some() {
+            let mut open = true;
+            egui::Window::new("Ray-tree inspector")
+                .open(&mut open)
+                .default_width(460.0)
+                .show(ctx, |ui| {
+                    ui.checkbox(&mut i.inspect_mode, "Clicking the image inspects a pixel");
+                    match &i.inspection {
+                        Some(inspection) => inspector::inspector_ui(
+                            ui,
+                            inspection,
+                            &self.scene.object_names,
+                            &self.scene.material_names,
+                        ),
+                        None => {
+                            ui.label("Click a pixel of the image.");
+                        }
+                    }
+                });
+            if !open {
+                i.inspect_mode = false;
+                i.inspection = None;
+            }
+        }
+        if i.show_patterns {
+            egui::Window::new("Sample patterns")
+                .open(&mut i.show_patterns)
+                .show(ctx, |ui| {
+                    patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
+                });
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! The Lecture menu: one entry per slide, each loading its scene and parameters and showing
+//! a caption that says what to look at.
+
+use super::RaylabApp;
+use crate::params::{ParamError, Params};
+use crate::scene::Scene;
+use egui::Color32;
+
+/// One slide of the lecture: a scene, parameters, and what to look at.
+pub(crate) struct Slide {
+    /// Menu entry.
+    pub title: &'static str,
+    /// The built-in scene.
+    pub scene: &'static str,
+    /// Parameters set on top of the scene's, as `--set` would.
+    pub params: &'static [(&'static str, &'static str)],
+    /// The caption shown over the image.
+    pub caption: &'static str,
+}
+
+/// The lecture, slide by slide.
+pub(crate) const LECTURE: &[Slide] = &[
+    Slide {
+        title: "Fresnel reflection on the black glazed sphere",
+        scene: "glazed",
+        params: &[],
+        caption: "Left: constant reflectance, 10% at every angle. Right: Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed.",
+    },
+    Slide {
+        title: "Snell's law",
+        scene: "glass",
+        params: &[],
+        caption: "n1 sin θi = n2 sin θt: the refracted rays bend towards the normal going in and away coming out, so the sphere is a lens and shows the floor upside down. Drag the IOR.",
+    },
+    Slide {
+        title: "Total internal reflection",
+        scene: "tir",
+        params: &[],
+        caption: "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.",
+    },
+    Slide {
+        title: "Pruning the ray tree",
+        scene: "ray-tree",
+        params: &[("max_depth", "2")],
+        caption: "Every hit on glass spawns a reflected and a refracted ray. Cut at depth 2, the far spheres go dark; raise Max depth, or prune by weight instead.",
+    },
+    Slide {
+        title: "Antialiasing: 1 against 4 samples",
+        scene: "antialiasing",
+        params: &[("spp", "4"), ("pattern", "jittered")],
+        caption: "Four jittered samples per pixel, averaged (a box filter). Set Samples per pixel to 1 and Pattern to regular to see the aliasing they remove.",
+    },
+    Slide {
+        title: "Soft shadows",
+        scene: "soft-shadows",
+        params: &[],
+        caption: "Each sample's shadow ray goes to a different point of the area light: the penumbra. Drag Light size; at 0 the light is a point and shadows are hard.",
+    },
+    Slide {
+        title: "Glossy reflection",
+        scene: "glossy",
+        params: &[],
+        caption: "Reflected rays jittered over a Phong lobe cos^n around the mirror direction: n = 10 to 10,000 from left to right.",
+    },
+    Slide {
+        title: "Depth of field",
+        scene: "depth-of-field",
+        params: &[],
+        caption: "Eye rays from random points on the lens meet on the plane of focus: the blue sphere is sharp, the others blur by their circle of confusion. Try Click to focus.",
+    },
+    Slide {
+        title: "Motion blur",
+        scene: "motion-blur",
+        params: &[],
+        caption: "Each sample has a time in the shutter interval; moving spheres smear over their travel. Set the shutter interval to 0 to freeze them.",
+    },
+];
+
+impl Slide {
+    /// The built-in scene's reference.
+    fn reference(&self) -> String {
+        format!("builtin:{}", self.scene)
+    }
+
+    /// `base` with the slide's parameters set on top, through the checked path: a name or
+    /// value that `--set` would refuse is an error here too.
+    pub(crate) fn apply(&self, base: &Params) -> Result<Params, ParamError> {
+        let mut p = base.clone();
+        for (name, value) in self.params {
+            p.set(name, value)?;
+        }
+        Ok(p)
+    }
+}
+
+/// The slide asked for and the caption shown.
+#[derive(Default)]
+pub(crate) struct Lecture {
+    // Its parameters wait for its scene to load.
+    pending: Option<&'static Slide>,
+    caption: Option<&'static str>,
+}
+
+impl Lecture {
+    /// A scene arrived: the pending slide, if it is that slide's scene (its caption is
+    /// shown from now on); any other scene takes the caption down.
+    pub(crate) fn arrived(&mut self, scene: &Scene) -> Option<&'static Slide> {
+        let slide = self
+            .pending
+            .take()
+            .filter(|s| scene.source.reference() == s.reference());
+        self.caption = slide.map(|s| s.caption);
+        slide
+    }
+
+    /// The caption shown, if any.
+    pub(crate) fn caption(&self) -> Option<&'static str> {
+        self.caption
+    }
+}
+
+impl RaylabApp {
+    /// The Lecture menu's entries.
+    pub(super) fn lecture_menu_ui(&mut self, ui: &mut egui::Ui) {
+        for slide in LECTURE {
+            if ui.button(slide.title).clicked() {
+                self.lecture.pending = Some(slide);
+                self.open_scene(&slide.reference());
+                ui.close();
+            }
+        }
+    }
+}
+
+/// The caption, on a dark plate along the bottom of `area`.
+pub(crate) fn caption_ui(ui: &egui::Ui, area: egui::Rect, caption: &str) {
+    let galley = ui.painter().layout(
+        caption.to_string(),
+        egui::FontId::proportional(16.0),
+        Color32::WHITE,
+        area.width() - 40.0,
+    );
+    let pos = egui::pos2(area.min.x + 20.0, area.max.y - galley.size().y - 20.0);
+    let back = egui::Rect::from_min_size(pos, galley.size()).expand(8.0);
+    ui.painter()
+        .rect_filled(back, 4.0, Color32::from_black_alpha(180));
+    ui.painter().galley(pos, galley, Color32::WHITE);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_slide_loads_its_scene_and_applies_its_parameters() {
+        for slide in LECTURE {
+            let scene = Scene::load(&slide.reference())
+                .unwrap_or_else(|e| panic!("slide `{}`: {e}", slide.title));
+            let p = slide
+                .apply(&scene.params)
+                .unwrap_or_else(|e| panic!("slide `{}`: {e}", slide.title));
+            for (name, value) in slide.params {
+                assert_eq!(p.value_text(name).as_deref(), Some(*value), "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_misspelt_parameter_is_an_error_not_ignored() {
+        let slide = Slide {
+            title: "typo",
+            scene: "default",
+            params: &[("max_dpeth", "2")],
+            caption: "",
+        };
+        assert!(matches!(
+            slide.apply(&Params::default()),
+            Err(ParamError::Unknown { .. })
+        ));
+    }
+}

@@ -1,0 +1,215 @@
+//! Loading scenes off the UI thread, and watching the scene file: saved in an editor, it
+//! reloads; a file that failed to open opens once it is fixed.
+
+use super::RaylabApp;
+use crate::params::Params;
+use crate::scene::{Scene, SceneError, SceneSource};
+use crossbeam_channel::{Receiver, Sender};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant, SystemTime};
+
+/// Why a scene is being loaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Purpose {
+    /// Opened by the user: the scene's defaults replace the parameters.
+    Open,
+    /// Its file changed on disk: parameters the user changed are kept.
+    Reload,
+}
+
+/// A finished load.
+pub(crate) struct Loaded {
+    purpose: Purpose,
+    result: Result<Scene, SceneError>,
+}
+
+/// Scenes loading on threads of their own, and the file watched for changes.
+pub(crate) struct Loader {
+    tx: Sender<Loaded>,
+    rx: Receiver<Loaded>,
+    loading: usize,
+    // The file to load when it changes, when it was last seen to change, and whether it
+    // is the scene shown (reload) or one that failed to open (open again).
+    watched: Option<(PathBuf, Option<SystemTime>, Purpose)>,
+    // The file of the last Open, to watch if it fails.
+    opening: Option<PathBuf>,
+    last_poll: Instant,
+}
+
+/// How often the watched file's time stamp is read.
+const POLL: Duration = Duration::from_millis(500);
+
+impl Loader {
+    pub(crate) fn new() -> Loader {
+        let (tx, rx) = crossbeam_channel::unbounded();
+        Loader {
+            tx,
+            rx,
+            loading: 0,
+            watched: None,
+            opening: None,
+            last_poll: Instant::now(),
+        }
+    }
+
+    /// Loads a scene file, built-in name or OBJ file on a thread of its own.
+    pub(crate) fn load(&mut self, reference: String, purpose: Purpose) {
+        if purpose == Purpose::Open {
+            self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
+        }
+        let tx = self.tx.clone();
+        self.loading += 1;
+        std::thread::spawn(move || {
+            let result = Scene::load(&reference);
+            let _ = tx.send(Loaded { purpose, result });
+        });
+    }
+
+    /// Whether a scene is loading.
+    pub(crate) fn is_loading(&self) -> bool {
+        self.loading > 0
+    }
+
+    /// Watches `scene`'s file, if it has one, to reload it when it changes.
+    pub(crate) fn watch(&mut self, scene: &Scene) {
+        self.watched = match &scene.source {
+            SceneSource::File(path) => Some((path.clone(), modified(path), Purpose::Reload)),
+            _ => None,
+        };
+    }
+
+    /// Starts a load if the watched file changed since it was last seen.
+    pub(crate) fn poll(&mut self) {
+        if self.last_poll.elapsed() < POLL {
+            return;
+        }
+        self.last_poll = Instant::now();
+        if let Some((path, seen, purpose)) = &mut self.watched {
+            let now = modified(path);
+            if now != *seen {
+                *seen = now;
+                let (reference, purpose) = (path.display().to_string(), *purpose);
+                self.load(reference, purpose);
+            }
+        }
+    }
+
+    /// The next finished load. A file that failed to open is watched from now on.
+    fn receive(&mut self) -> Option<Loaded> {
+        let loaded = self.rx.try_recv().ok()?;
+        self.loading = self.loading.saturating_sub(1);
+        if loaded.purpose == Purpose::Open
+            && loaded.result.is_err()
+            && let Some(path) = self.opening.take()
+        {
+            self.watched = Some((path.clone(), modified(&path), Purpose::Open));
+        }
+        Some(loaded)
+    }
+}
+
+impl RaylabApp {
+    /// Loads a scene file, built-in name or OBJ file; it replaces the scene when loaded.
+    pub fn open_scene(&mut self, reference: &str) {
+        self.loader.load(reference.to_string(), Purpose::Open);
+    }
+
+    /// Takes the scenes that finished loading: a good one replaces the scene shown, a bad
+    /// one leaves it and shows what is wrong and where.
+    pub(super) fn receive_scenes(&mut self) {
+        while let Some(loaded) = self.loader.receive() {
+            let scene = match loaded.result {
+                Ok(scene) => Arc::new(scene),
+                Err(e) => {
+                    self.error = Some(e.to_string());
+                    self.toasts
+                        .error("The scene has an error: see above the image");
+                    continue;
+                }
+            };
+            let s = &mut self.settings;
+            match loaded.purpose {
+                Purpose::Open => {
+                    s.params = scene.params.clone();
+                    s.camera = scene.camera.clone();
+                    let slide = self.lecture.arrived(&scene);
+                    if let Some(slide) = slide {
+                        match slide.apply(&scene.params) {
+                            Ok(p) => s.params = p,
+                            Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
+                        }
+                    }
+                }
+                Purpose::Reload => {
+                    s.params = merge_defaults(&s.params, &self.scene.params, &scene.params);
+                    // A camera the user moved stays.
+                    if s.camera == self.scene.camera {
+                        s.camera = scene.camera.clone();
+                    }
+                }
+            }
+            let verb = match loaded.purpose {
+                Purpose::Open => "Opened",
+                Purpose::Reload => "Reloaded",
+            };
+            self.toasts.info(format!("{verb} {}", scene.name));
+            self.keep_side_a();
+            self.instruments.inspection = None;
+            self.error = None;
+            self.view.fit();
+            self.loader.watch(&scene);
+            self.scene = scene;
+        }
+    }
+}
+
+/// The parameters after the scene's defaults change from `old` to `new`: a parameter the
+/// user left at the old default takes the new one; one the user changed stays.
+fn merge_defaults(current: &Params, old: &Params, new: &Params) -> Params {
+    let json = |p: &Params| {
+        serde_json::to_value(p)
+            .ok()
+            .and_then(|v| v.as_object().cloned())
+            .unwrap_or_default()
+    };
+    let (cur, old, new) = (json(current), json(old), json(new));
+    let merged: serde_json::Map<String, serde_json::Value> = cur
+        .iter()
+        .map(|(k, v)| {
+            let v = if old.get(k) == Some(v) {
+                new.get(k).unwrap_or(v)
+            } else {
+                v
+            };
+            (k.clone(), v.clone())
+        })
+        .collect();
+    serde_json::from_value(serde_json::Value::Object(merged)).unwrap_or_else(|_| current.clone())
+}
+
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reload_keeps_what_the_user_changed_and_takes_new_defaults() {
+        let old = Params::default();
+        let new = Params {
+            spp: 64,
+            max_depth: 3,
+            ..Params::default()
+        };
+        let current = Params {
+            max_depth: 12,
+            ..Params::default()
+        };
+        let merged = merge_defaults(&current, &old, &new);
+        assert_eq!(merged.spp, 64, "left at the old default: takes the new one");
+        assert_eq!(merged.max_depth, 12, "changed by the user: kept");
+    }
+}

@@ -1,0 +1,179 @@
+//! One side of the view: an engine, what it was last told, its newest frame and the
+//! texture that shows it. The main view is one side; the A/B view's side B is another.
+
+use super::instruments::{cost_range, heat_map_rgba};
+use crate::camera::Camera;
+use crate::params::Params;
+use crate::render::{Engine, EngineConfig, EngineError, Frame, to_srgba8};
+use crate::scene::Scene;
+use std::sync::Arc;
+
+/// What a side's engine renders: the scene, camera, image size and whether it refines
+/// without end. The parameters are compared with the engine's own.
+#[derive(Clone)]
+pub(crate) struct Told {
+    pub(crate) scene: Arc<Scene>,
+    pub(crate) camera: Camera,
+    pub(crate) size: (u32, u32),
+    pub(crate) unlimited: bool,
+}
+
+/// One engine and its image.
+pub(crate) struct Side {
+    engine: Engine,
+    // What the engine was last told, so that each frame sends only what changed.
+    told: Told,
+    frame: Option<Frame>,
+    texture: Option<egui::TextureHandle>,
+    // The texture's name, and what it shows: exposure and whether the cost map; `None`
+    // after a new frame arrived.
+    name: &'static str,
+    shown: Option<(f32, bool)>,
+    paused: bool,
+}
+
+impl Side {
+    /// Starts an engine on `told` with `params`; frames ask `ctx` to repaint.
+    pub(crate) fn new(
+        ctx: &egui::Context,
+        name: &'static str,
+        told: Told,
+        params: Params,
+        config: EngineConfig,
+    ) -> Result<Side, EngineError> {
+        let repaint = ctx.clone();
+        let (w, h) = told.size;
+        let mut engine = Engine::new(Arc::clone(&told.scene), params, w, h, config, move || {
+            repaint.request_repaint()
+        })?;
+        if told.camera != told.scene.camera {
+            engine.set_camera(told.camera.clone());
+        }
+        if told.unlimited {
+            engine.set_unlimited(true);
+        }
+        Ok(Side {
+            engine,
+            told,
+            frame: None,
+            texture: None,
+            name,
+            shown: None,
+            paused: false,
+        })
+    }
+
+    /// Tells the engine what changed since it was last told. A new scene resets the
+    /// engine's camera to the scene's, so the camera is compared after it. Parameters out
+    /// of range are not sent (the controls never make them; a sidecar could).
+    pub(crate) fn sync(&mut self, to: &Told, params: &Params) {
+        let engine = &mut self.engine;
+        if !Arc::ptr_eq(&self.told.scene, &to.scene) {
+            engine.set_scene(Arc::clone(&to.scene));
+            self.told.scene = Arc::clone(&to.scene);
+            self.told.camera = to.scene.camera.clone();
+        }
+        if params != engine.params() && params.validate().is_ok() {
+            engine.set_params(params.clone());
+        }
+        if to.camera != self.told.camera {
+            engine.set_camera(to.camera.clone());
+            self.told.camera = to.camera.clone();
+        }
+        if to.size != self.told.size {
+            engine.resize(to.size.0, to.size.1);
+            self.told.size = to.size;
+        }
+        if to.unlimited != self.told.unlimited {
+            engine.set_unlimited(to.unlimited);
+            self.told.unlimited = to.unlimited;
+        }
+    }
+
+    /// Takes the newest frame the engine sent, dropping older ones.
+    pub(crate) fn receive(&mut self) {
+        if let Some(frame) = self.engine.frames().try_iter().last() {
+            self.paused = frame.progress.paused;
+            self.frame = Some(frame);
+            self.shown = None;
+        }
+    }
+
+    /// Brings the texture up to date with the newest frame, shown at `exposure`, or as the
+    /// cost heat map.
+    pub(crate) fn upload(&mut self, ctx: &egui::Context, exposure: f32, cost: bool) {
+        let Some(frame) = &self.frame else { return };
+        let cost = cost && !frame.cost.is_empty();
+        if self.shown == Some((exposure, cost)) {
+            return;
+        }
+        let rgba = if cost {
+            let (lo, hi) = cost_range(&frame.cost);
+            heat_map_rgba(&frame.cost, lo, hi)
+        } else {
+            to_srgba8(&frame.pixels, exposure)
+        };
+        let image = egui::ColorImage::from_rgba_unmultiplied(
+            [frame.width as usize, frame.height as usize],
+            &rgba,
+        );
+        // Sharp pixels when zoomed in for pixel-peeping, smooth when fitted smaller.
+        let options = egui::TextureOptions {
+            magnification: egui::TextureFilter::Nearest,
+            minification: egui::TextureFilter::Linear,
+            ..Default::default()
+        };
+        match &mut self.texture {
+            Some(t) => t.set(image, options),
+            None => self.texture = Some(ctx.load_texture(self.name, image, options)),
+        }
+        self.shown = Some((exposure, cost));
+    }
+
+    /// Pauses a running engine or resumes a paused one.
+    pub(crate) fn toggle_pause(&mut self) {
+        if self.paused {
+            self.engine.resume();
+        } else {
+            self.engine.pause();
+        }
+        self.paused = !self.paused;
+    }
+
+    /// Starts refining again from the first sample.
+    pub(crate) fn restart(&mut self) {
+        self.engine.restart_now();
+    }
+
+    /// Whether the engine is paused (as far as the window knows).
+    pub(crate) fn paused(&self) -> bool {
+        self.paused
+    }
+
+    /// The engine.
+    pub(crate) fn engine(&self) -> &Engine {
+        &self.engine
+    }
+
+    /// The camera the engine renders through.
+    pub(crate) fn camera(&self) -> &Camera {
+        &self.told.camera
+    }
+
+    /// The newest frame received.
+    pub(crate) fn frame(&self) -> Option<&Frame> {
+        self.frame.as_ref()
+    }
+
+    /// The texture showing it.
+    pub(crate) fn texture(&self) -> Option<&egui::TextureHandle> {
+        self.texture.as_ref()
+    }
+
+    /// Whether the newest frame is finished and of the engine's newest generation.
+    pub(crate) fn settled(&self) -> bool {
+        self.frame
+            .as_ref()
+            .is_some_and(|f| f.generation == self.engine.generation() && f.progress.done())
+    }
+}

@@ -1,0 +1,68 @@
+//! Snapshots: the newest full frame written as PNG or EXR with its JSON sidecar, which
+//! `raylab render --params` turns back into the same image.
+
+use super::RaylabApp;
+use super::files::snapshot_path;
+use crate::params::Params;
+use crate::render::{Sidecar, sidecar_path, write_image};
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+impl RaylabApp {
+    /// Writes the newest full frame to `path` (PNG or EXR) with its sidecar.
+    pub(super) fn save_to(&mut self, path: &Path) -> Result<PathBuf, String> {
+        let Some(frame) = self.main.frame().filter(|f| !f.preview) else {
+            return Err("Nothing to save yet: wait for the first pass".into());
+        };
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        // The frame's own parameters: those the engine rendered it with.
+        let params = self.main.engine().params().clone();
+        let exposure = self.settings.params.exposure;
+        write_image(path, frame.width, frame.height, &frame.pixels, exposure)
+            .map_err(|e| e.to_string())?;
+        let spp = frame.progress.spp;
+        let camera = self.main.camera();
+        let sidecar = Sidecar {
+            raylab_version: crate::VERSION.to_string(),
+            scene: self.scene.source.reference(),
+            width: frame.width,
+            height: frame.height,
+            params: Params {
+                exposure,
+                ..params.clone()
+            },
+            samples: (spp != params.spp).then_some(spp),
+            camera: (*camera != self.scene.camera).then(|| camera.clone()),
+            image: path.file_name().map(|n| n.to_string_lossy().into_owned()),
+            seconds: Some(frame.progress.elapsed.as_secs_f64()),
+            stats: Some(frame.progress.stats),
+        };
+        sidecar
+            .write(&sidecar_path(path))
+            .map_err(|e| e.to_string())?;
+        Ok(path.to_path_buf())
+    }
+
+    /// Ctrl+S: `screenshots/<scene>-<timestamp>.png` and its sidecar.
+    pub(super) fn save_snapshot(&mut self) {
+        let path = snapshot_path(
+            &self.options.snapshot_dir,
+            &self.scene.name,
+            SystemTime::now(),
+        );
+        self.report_save(&path);
+    }
+
+    /// Saves to `path` and says how it went.
+    pub(super) fn report_save(&mut self, path: &Path) {
+        match self.save_to(path) {
+            Ok(p) => {
+                let text = format!("Saved {} and {}", p.display(), sidecar_path(&p).display());
+                self.toasts.info(text);
+            }
+            Err(e) => self.toasts.error(format!("Not saved: {e}")),
+        }
+    }
+}

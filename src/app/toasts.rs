@@ -1,0 +1,70 @@
+//! Short messages at the bottom right: what was saved or opened, and what went wrong.
+
+use egui::{Color32, RichText};
+use std::time::{Duration, Instant};
+
+struct Toast {
+    text: String,
+    error: bool,
+    until: Instant,
+}
+
+/// The messages shown.
+#[derive(Default)]
+pub(crate) struct Toasts(Vec<Toast>);
+
+impl Toasts {
+    fn push(&mut self, text: String, error: bool, seconds: u64) {
+        self.0.push(Toast {
+            text,
+            error,
+            until: Instant::now() + Duration::from_secs(seconds),
+        });
+    }
+
+    /// News, shown for a few seconds.
+    pub(crate) fn info(&mut self, text: impl Into<String>) {
+        self.push(text.into(), false, 4);
+    }
+
+    /// A failure, shown longer.
+    pub(crate) fn error(&mut self, text: impl Into<String>) {
+        self.push(text.into(), true, 8);
+    }
+
+    /// The texts shown.
+    pub(crate) fn texts(&self) -> Vec<String> {
+        self.0.iter().map(|t| t.text.clone()).collect()
+    }
+
+    /// Drops the expired ones and draws the rest.
+    pub(crate) fn ui(&mut self, ctx: &egui::Context) {
+        let now = Instant::now();
+        self.0.retain(|t| t.until > now);
+        if self.0.is_empty() {
+            return;
+        }
+        egui::Area::new(egui::Id::unique("raylab-toasts"))
+            .anchor(egui::Align2::RIGHT_BOTTOM, [-12.0, -36.0])
+            .order(egui::Order::Foreground)
+            .interactable(false)
+            .show(ctx, |ui| {
+                for t in &self.0 {
+                    let fill = if t.error {
+                        Color32::from_rgb(130, 30, 30)
+                    } else {
+                        Color32::from_rgb(30, 70, 40)
+                    };
+                    egui::Frame::new()
+                        .fill(fill)
+                        .corner_radius(4.0)
+                        .inner_margin(8.0)
+                        .show(ui, |ui| {
+                            ui.label(RichText::new(&t.text).color(Color32::WHITE));
+                        });
+                }
+            });
+        // Expire them even while nothing else happens.
+        ctx.request_repaint_after(Duration::from_millis(250));
+    }
+}

@@ -1,0 +1,273 @@
+//! The toolbar (scene picker, refining, snapshots, view, menus), the status bar, the
+//! keyboard shortcuts, and the file dialogs and dropped files they lead to.
+
+use super::RaylabApp;
+use super::files::{Choice, FileDialog, Purpose, snapshot_path};
+use crate::scene::BUILTIN_SCENES;
+use egui::{Key, KeyboardShortcut, Modifiers, RichText};
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+impl RaylabApp {
+    pub(super) fn toolbar_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            self.scene_picker_ui(ui);
+            if self.loader.is_loading() {
+                ui.spinner();
+            }
+            ui.separator();
+            let pause = if self.main.paused() {
+                "Resume"
+            } else {
+                "Pause"
+            };
+            if ui
+                .button(pause)
+                .on_hover_text("Pause or resume refining (Space).")
+                .clicked()
+            {
+                self.main.toggle_pause();
+            }
+            if ui
+                .button("Restart")
+                .on_hover_text("Start refining again from the first sample (R).")
+                .clicked()
+            {
+                self.main.restart();
+            }
+            if ui
+                .button("Reset")
+                .on_hover_text("Every parameter and the camera back to the scene's defaults.")
+                .clicked()
+            {
+                self.reset_to_defaults();
+            }
+            ui.separator();
+            if ui
+                .button("Save snapshot")
+                .on_hover_text("Save the image and its parameters to screenshots/ (Ctrl+S).")
+                .clicked()
+            {
+                self.save_snapshot();
+            }
+            if ui
+                .button("Save as…")
+                .on_hover_text("Choose where, and PNG or EXR.")
+                .clicked()
+            {
+                self.save_as_dialog();
+            }
+            ui.separator();
+            if ui
+                .button("Fit")
+                .on_hover_text("Fit the image to the window (F).")
+                .clicked()
+            {
+                self.view.fit();
+            }
+            if ui
+                .button("1:1")
+                .on_hover_text("One image pixel per screen pixel (1).")
+                .clicked()
+            {
+                self.view.one_to_one(ui.ctx().pixels_per_point());
+            }
+            ui.separator();
+            ui.menu_button("Instruments", |ui| self.instruments_menu_ui(ui));
+            ui.menu_button("Lecture", |ui| self.lecture_menu_ui(ui));
+        });
+    }
+
+    fn scene_picker_ui(&mut self, ui: &mut egui::Ui) {
+        let current = self.scene.source.reference();
+        let mut chosen = None;
+        egui::ComboBox::from_label("Scene")
+            .selected_text(self.scene.name.as_str())
+            .width(220.0)
+            .height(560.0)
+            .show_ui(ui, |ui| {
+                for b in BUILTIN_SCENES {
+                    let reference = format!("builtin:{}", b.name);
+                    let item = ui.selectable_label(current == reference, b.name);
+                    if item.on_hover_text(b.description()).clicked() {
+                        chosen = Some(reference);
+                    }
+                }
+                ui.separator();
+                for path in scene_files(&self.options.scenes_dir) {
+                    let label = path.display().to_string();
+                    if ui.selectable_label(false, &label).clicked() {
+                        chosen = Some(label);
+                    }
+                }
+                ui.separator();
+                if ui.selectable_label(false, "Open…").clicked() {
+                    chosen = Some(String::new());
+                }
+            })
+            .response
+            .on_hover_text("Built-in scenes, the files in scenes/, or Open… (Ctrl+O). You can also drop a .toml or .obj file on the window.");
+        match chosen {
+            Some(r) if r.is_empty() => self.open_dialog(),
+            Some(r) => self.open_scene(&r),
+            None => {}
+        }
+    }
+
+    pub(super) fn status_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            let Some(f) = self.main.frame() else {
+                ui.label("starting…");
+                return;
+            };
+            let p = &f.progress;
+            let (fraction, text) = match p.target {
+                Some(t) => (p.spp as f32 / t.max(1) as f32, format!("{} / {} spp", p.spp, t)),
+                None => (1.0, format!("{} spp (no limit)", p.spp)),
+            };
+            ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(text).desired_width(220.0))
+                .on_hover_text("Samples per pixel done, of the target.");
+            ui.separator();
+            ui.label(format!("{:.2} M rays/s", p.rays_per_second / 1e6));
+            ui.separator();
+            ui.label(format!("{:.1} s", p.elapsed.as_secs_f32())).on_hover_text("Time since the image started.");
+            if let Some(eta) = p.eta.filter(|_| !p.done()) {
+                ui.separator();
+                ui.label(format!("{:.1} s left", eta.as_secs_f32()));
+            }
+            if let Some(noise) = p.noise {
+                ui.separator();
+                let converged = if noise < 0.005 { " (converged)" } else { "" };
+                ui.label(format!("noise {:.2}%{converged}", noise * 100.0))
+                    .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of the even and odd samples' means.");
+            }
+            if self.main.paused() {
+                ui.separator();
+                ui.label(RichText::new("paused").strong());
+            }
+            if self.instruments.show_cost && !f.cost.is_empty() {
+                let (lo, hi) = super::instruments::cost_range(&f.cost);
+                ui.separator();
+                ui.label(format!("cost: {lo:.1} (black) to {hi:.1} (yellow) rays per sample"));
+            }
+            ui.separator();
+            ui.label(format!("{}×{}", f.width, f.height));
+        });
+    }
+
+    /// Ctrl+S, Ctrl+O, and the plain keys (while no text field has the keyboard).
+    pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
+        let (save, open) = ctx.input_mut(|i| {
+            (
+                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::S)),
+                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::O)),
+            )
+        });
+        if save {
+            self.save_snapshot();
+        }
+        if open {
+            self.open_dialog();
+        }
+        if ctx.egui_wants_keyboard_input() || self.dialog.is_some() {
+            return;
+        }
+        let (space, r, f, one) = ctx.input(|i| {
+            let plain = i.modifiers.is_none();
+            (
+                plain && i.key_pressed(Key::Space),
+                plain && i.key_pressed(Key::R),
+                plain && i.key_pressed(Key::F),
+                plain && i.key_pressed(Key::Num1),
+            )
+        });
+        if space {
+            self.main.toggle_pause();
+        }
+        if r {
+            self.main.restart();
+        }
+        if f {
+            self.view.fit();
+        }
+        if one {
+            self.view.one_to_one(ctx.pixels_per_point());
+        }
+    }
+
+    fn open_dialog(&mut self) {
+        let cwd = std::env::current_dir().unwrap_or_default();
+        let dir = cwd.join(&self.options.scenes_dir);
+        let dir = if dir.is_dir() { dir } else { cwd };
+        self.dialog = Some(FileDialog::new(Purpose::Open, dir, String::new()));
+    }
+
+    fn save_as_dialog(&mut self) {
+        let dir = &self.options.snapshot_dir;
+        let dir = if dir.is_dir() {
+            dir.clone()
+        } else {
+            std::env::current_dir().unwrap_or_default()
+        };
+        let name = snapshot_path(&dir, &self.scene.name, SystemTime::now())
+            .file_name()
+            .map_or("image.png".into(), |n| n.to_string_lossy().into_owned());
+        self.dialog = Some(FileDialog::new(Purpose::SaveAs, dir, name));
+    }
+
+    pub(super) fn dialog_ui(&mut self, ctx: &egui::Context) {
+        let Some(dialog) = &mut self.dialog else {
+            return;
+        };
+        let purpose = dialog.purpose;
+        match dialog.ui(ctx) {
+            Choice::Pending => {}
+            Choice::Cancelled => self.dialog = None,
+            Choice::File(path) => {
+                self.dialog = None;
+                match purpose {
+                    Purpose::Open => self.open_scene(&path.display().to_string()),
+                    Purpose::SaveAs => self.report_save(&path),
+                }
+            }
+        }
+    }
+
+    /// Scene and OBJ files dropped on the window open; anything else is refused.
+    pub(super) fn dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> = ctx.input(|i| {
+            i.raw
+                .dropped_files
+                .iter()
+                .map(|f| f.path().to_path_buf())
+                .collect()
+        });
+        for path in dropped {
+            let ext = path
+                .extension()
+                .map(|e| e.to_string_lossy().to_ascii_lowercase());
+            if matches!(ext.as_deref(), Some("toml") | Some("obj")) {
+                self.open_scene(&path.display().to_string());
+            } else {
+                self.toasts.error(format!(
+                    "{}: drop a scene (.toml) or mesh (.obj) file",
+                    path.display()
+                ));
+            }
+        }
+    }
+}
+
+/// The scene files in `dir`, sorted.
+fn scene_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|d| {
+            d.flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+}

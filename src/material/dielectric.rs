@@ -1,0 +1,208 @@
+//! Dielectrics: glass, water, an air bubble, and the lecture's glazed surface (a clear coat
+//! over a diffuse base). The formulas are in [`crate::optics`].
+
+use super::{Brdf, Direct, Interaction, Interface, Lobe, Scatter, Side, Texture};
+use crate::math::Color;
+use crate::optics::{FresnelMode, refract};
+use crate::params::Params;
+
+/// A clear or coloured dielectric (glass, water, an air bubble): every hit splits into a
+/// reflected ray of weight R and a refracted ray of weight 1 − R, R from the Fresnel mode;
+/// under total internal reflection only the reflected ray, of weight 1. Light travelling
+/// inside is attenuated by Beer–Lambert, exp(−σ d).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dielectric {
+    /// Index of refraction of the material.
+    pub ior: f32,
+    /// True keeps `ior` when the `ior` parameter is set (for air bubbles and the like).
+    pub ior_fixed: bool,
+    /// How the reflectance is computed.
+    pub fresnel: FresnelMode,
+    /// The reflectance k in [`FresnelMode::Constant`].
+    pub constant_reflectance: f32,
+    /// Absorption coefficient σ per unit length, per channel (0: clear).
+    pub absorption: Color,
+}
+
+/// The lecture's glazed surface: a clear coat over a base colour. The coat reflects R
+/// (Fresnel or constant); the transmitted ray is not traced: the base's diffuse shading
+/// takes the remaining 1 − R.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Glazed {
+    /// The coat's interface.
+    pub coat: Dielectric,
+    /// Diffuse colour of the base (black for the black glazed sphere).
+    pub base: Texture,
+}
+
+impl Dielectric {
+    /// This interface with the parameters' overrides: `ior` (unless fixed), `fresnel`,
+    /// `constant_reflectance`, and σ times `absorption_scale`.
+    pub(super) fn with_params(&self, params: &Params) -> Dielectric {
+        Dielectric {
+            ior: match params.ior {
+                Some(ior) if !self.ior_fixed => ior,
+                _ => self.ior,
+            },
+            ior_fixed: self.ior_fixed,
+            fresnel: params.fresnel.unwrap_or(self.fresnel),
+            constant_reflectance: params
+                .constant_reflectance
+                .unwrap_or(self.constant_reflectance),
+            absorption: self.absorption * params.absorption_scale,
+        }
+    }
+
+    /// The reflectance R from `n1` into `n2` at cos θi, by this interface's Fresnel mode.
+    fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
+        self.fresnel
+            .reflectance(cos_i, n1, n2, self.constant_reflectance)
+    }
+
+    pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
+        let (n1, n2) = if hit.entering {
+            (hit.outside_ior, self.ior)
+        } else {
+            (self.ior, hit.outside_ior)
+        };
+        let cos_i = hit.cos_i();
+        // Snell's law; the refracted ray must cross the geometric surface.
+        let refracted = refract(hit.dir, hit.n_shade, n1, n2)
+            .filter(|t| t.dot(hit.n_geom) < 0.0)
+            .or_else(|| refract(hit.dir, hit.n_geom, n1, n2));
+        let r = match refracted {
+            Some(_) => self.reflectance(cos_i, n1, n2),
+            None => 1.0,
+        };
+        Scatter {
+            lobes: [
+                Some(Lobe {
+                    side: Side::Reflect,
+                    dir: hit.mirror_dir(),
+                    weight: Color::splat(r),
+                }),
+                refracted.map(|dir| Lobe {
+                    side: Side::Transmit,
+                    dir,
+                    weight: Color::splat(1.0 - r),
+                }),
+            ],
+            interface: Some(Interface { cos_i, n1, n2, r }),
+            total_internal_reflection: refracted.is_none(),
+            ..Scatter::default()
+        }
+    }
+}
+
+impl Glazed {
+    pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
+        // The coat is seen from the medium the ray travels in; nothing enters it.
+        let (n1, n2) = (hit.outside_ior, self.coat.ior);
+        let cos_i = hit.cos_i();
+        let r = self.coat.reflectance(cos_i, n1, n2);
+        Scatter {
+            direct: Some(Direct {
+                brdf: Brdf {
+                    albedo: self.base.eval(hit.uv),
+                    specular: Color::ZERO,
+                    exponent: 1.0,
+                },
+                scale: 1.0 - r,
+            }),
+            lobes: [
+                Some(Lobe {
+                    side: Side::Reflect,
+                    dir: hit.mirror_dir(),
+                    weight: Color::splat(r),
+                }),
+                None,
+            ],
+            interface: Some(Interface { cos_i, n1, n2, r }),
+            ..Scatter::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::test_util::hit_at;
+    use crate::math::Vec3;
+
+    fn glass(fresnel: FresnelMode) -> Dielectric {
+        Dielectric {
+            ior: 1.5,
+            ior_fixed: false,
+            fresnel,
+            constant_reflectance: 0.1,
+            absorption: Color::new(0.0, 0.5, 1.0),
+        }
+    }
+
+    #[test]
+    fn head_on_glass_reflects_four_percent_and_transmits_the_rest() {
+        let s = glass(FresnelMode::Exact).scatter(&hit_at(0.0));
+        let lobes: Vec<_> = s.lobes().collect();
+        assert_eq!(lobes.len(), 2);
+        // R0 = ((n − 1)/(n + 1))² = 0.04.
+        assert!((lobes[0].weight.x - 0.04).abs() < 1e-6);
+        assert_eq!(lobes[0].weight.x + lobes[1].weight.x, 1.0);
+        assert_eq!(lobes[1].side, Side::Transmit);
+        assert!((lobes[1].dir - -Vec3::Y).length() < 1e-6);
+        assert!(!s.total_internal_reflection);
+    }
+
+    #[test]
+    fn refraction_obeys_snell_and_leaving_beyond_the_critical_angle_is_total() {
+        let d = glass(FresnelMode::Exact);
+        let s = d.scatter(&hit_at(40.0));
+        let t = s.lobes().nth(1).unwrap().dir;
+        // n1 sin θi = n2 sin θt.
+        let sin_t = (1.0 - t.y * t.y).sqrt();
+        assert!((40f32.to_radians().sin() - 1.5 * sin_t).abs() < 1e-5);
+        // From inside, beyond asin(1/1.5) = 41.8°: one reflected ray of weight 1.
+        let inside = Interaction {
+            entering: false,
+            ..hit_at(45.0)
+        };
+        let s = d.scatter(&inside);
+        assert!(s.total_internal_reflection);
+        let lobes: Vec<_> = s.lobes().collect();
+        assert_eq!(lobes.len(), 1);
+        assert_eq!(lobes[0].weight, Color::ONE);
+        assert_eq!(s.interface.unwrap().n1, 1.5);
+    }
+
+    #[test]
+    fn the_glaze_splits_between_its_coat_and_its_base() {
+        let g = Glazed {
+            coat: glass(FresnelMode::Constant),
+            base: Texture::Solid(Color::splat(0.2)),
+        };
+        let s = g.scatter(&hit_at(60.0));
+        let direct = s.direct.unwrap();
+        assert_eq!(direct.scale, 0.9);
+        assert_eq!(direct.brdf.albedo, Color::splat(0.2));
+        assert_eq!(s.lobes().next().unwrap().weight, Color::splat(0.1));
+        assert_eq!(s.lobes().count(), 1, "the transmitted ray is not traced");
+    }
+
+    #[test]
+    fn parameters_override_the_interface_and_scale_absorption() {
+        let params = Params {
+            ior: Some(2.0),
+            fresnel: Some(FresnelMode::Schlick),
+            absorption_scale: 2.0,
+            ..Params::default()
+        };
+        let d = glass(FresnelMode::Exact).with_params(&params);
+        assert_eq!(d.ior, 2.0);
+        assert_eq!(d.fresnel, FresnelMode::Schlick);
+        assert_eq!(d.absorption, Color::new(0.0, 1.0, 2.0));
+        let fixed = Dielectric {
+            ior_fixed: true,
+            ..glass(FresnelMode::Exact)
+        };
+        assert_eq!(fixed.with_params(&params).ior, 1.5);
+    }
+}

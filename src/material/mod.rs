@@ -1,0 +1,247 @@
+//! Materials: each kind's data and how it scatters light, in the spirit of pbrt's BxDFs.
+//!
+//! At a hit the tracer asks the material one question, [`Material::scatter`], and gets a
+//! [`Scatter`]: what the surface emits, which BRDF the lights are seen through (shadow
+//! rays), and which child rays it spawns with which weights (reflected, refracted, a
+//! jittered lobe). The tracer walks the tree, prunes, counts and records; it knows no
+//! material kinds. A new kind is its data and its `scatter` in a file of its own, a variant
+//! here, and its scene key: nothing in the tracer.
+
+mod dielectric;
+mod diffuse;
+mod specular;
+mod texture;
+
+pub use dielectric::{Dielectric, Glazed};
+pub use diffuse::{Brdf, Diffuse};
+pub use specular::{Glossy, Mirror};
+pub use texture::Texture;
+
+use crate::math::{Color, Uniform, Vec3};
+use crate::optics::reflect;
+use crate::params::Params;
+use glam::Vec2;
+
+/// How a surface scatters light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Material {
+    /// Lambert plus an optional Phong highlight, lit by shadow rays: the basic shading.
+    Diffuse(Diffuse),
+    /// An ideal mirror or polished metal: a constant reflectance at every angle.
+    Mirror(Mirror),
+    /// A glossy metal: the mirror direction jittered over a Phong lobe.
+    Glossy(Glossy),
+    /// A surface that emits light (and reflects none).
+    Emissive(Emissive),
+    /// A clear or coloured dielectric: reflected and refracted rays weighted by Fresnel.
+    Dielectric(Dielectric),
+    /// The lecture's glazed surface: a dielectric coat over a diffuse base.
+    Glazed(Glazed),
+}
+
+/// A surface that emits light (and reflects none).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Emissive {
+    /// Emitted radiance.
+    pub radiance: Color,
+}
+
+/// A hit as a material sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct Interaction {
+    /// The incoming ray's unit direction (towards the surface).
+    pub dir: Vec3,
+    /// Surface coordinates, for textures.
+    pub uv: Vec2,
+    /// The geometric normal, facing the side the ray arrived from.
+    pub n_geom: Vec3,
+    /// The shading normal, facing the side the ray arrived from.
+    pub n_shade: Vec3,
+    /// Whether the ray arrived from the surface's outside (against its own normal).
+    pub entering: bool,
+    /// The index of refraction on the surface's outer side: the medium an entering ray
+    /// travels in, or the one a leaving ray goes out to.
+    pub outside_ior: f32,
+}
+
+impl Interaction {
+    /// cos θi, the cosine between the reversed ray and the shading normal.
+    #[inline]
+    pub fn cos_i(&self) -> f32 {
+        (-self.dir).dot(self.n_shade).clamp(0.0, 1.0)
+    }
+
+    /// The mirror direction about the shading normal, or about the geometric one where the
+    /// shading normal would tilt it below the surface.
+    #[inline]
+    pub fn mirror_dir(&self) -> Vec3 {
+        let dir = reflect(self.dir, self.n_shade);
+        if dir.dot(self.n_geom) > 0.0 {
+            dir
+        } else {
+            reflect(self.dir, self.n_geom)
+        }
+    }
+}
+
+/// Which side of the surface a child ray leaves on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// Back into the medium the ray came from: a reflected ray.
+    Reflect,
+    /// Through the surface into the medium beyond: a refracted ray.
+    Transmit,
+}
+
+/// One child ray of a hit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lobe {
+    /// Reflected or refracted.
+    pub side: Side,
+    /// Its unit direction.
+    pub dir: Vec3,
+    /// What its radiance is multiplied by (R, 1 − R, a reflectance). The largest channel
+    /// is its branch weight in the tree, and, in stochastic mode, the probability of
+    /// following it: the lobes of one hit partition the light, their branch weights
+    /// summing to at most 1.
+    pub weight: Color,
+}
+
+/// The quantities of the lecture at a dielectric interface, for the inspector.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interface {
+    /// cos θi.
+    pub cos_i: f32,
+    /// Index of refraction on the side the ray comes from.
+    pub n1: f32,
+    /// Index of refraction on the other side.
+    pub n2: f32,
+    /// The reflectance the material used.
+    pub r: f32,
+}
+
+/// Lights seen through a BRDF, the sum scaled by `scale` (1 − R under a glaze).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Direct {
+    /// The BRDF at the hit.
+    pub brdf: Brdf,
+    /// The factor on the sum of ambient and lights.
+    pub scale: f32,
+}
+
+/// What a material does with a ray that hits it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Scatter {
+    /// Radiance emitted towards the ray; `Some` ends the ray at a light.
+    pub emitted: Option<Color>,
+    /// Shading by the lights (one shadow ray each) and the ambient term.
+    pub direct: Option<Direct>,
+    /// Child rays, at most two.
+    pub lobes: [Option<Lobe>; 2],
+    /// The interface's quantities, where the surface is a dielectric interface.
+    pub interface: Option<Interface>,
+    /// The refracted ray does not exist: total internal reflection.
+    pub total_internal_reflection: bool,
+}
+
+impl Scatter {
+    /// The child rays.
+    pub fn lobes(&self) -> impl Iterator<Item = &Lobe> {
+        self.lobes.iter().flatten()
+    }
+}
+
+impl Material {
+    /// A short name of the material's kind, for listings and the inspector.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Material::Diffuse(_) => "diffuse",
+            Material::Mirror(_) => "mirror",
+            Material::Glossy(_) => "glossy",
+            Material::Emissive(_) => "emissive",
+            Material::Dielectric(_) => "dielectric",
+            Material::Glazed(_) => "glazed",
+        }
+    }
+
+    /// What this material does at `hit`, drawing the uniform numbers it needs from `u`.
+    #[inline]
+    pub fn scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {
+        match self {
+            Material::Diffuse(m) => m.scatter(hit),
+            Material::Mirror(m) => m.scatter(hit),
+            Material::Glossy(m) => m.scatter(hit, u),
+            Material::Emissive(m) => Scatter {
+                emitted: Some(m.radiance),
+                ..Scatter::default()
+            },
+            Material::Dielectric(m) => m.scatter(hit),
+            Material::Glazed(m) => m.scatter(hit),
+        }
+    }
+
+    /// This material with the parameters' overrides applied: `ior` (unless the material
+    /// fixes its own), `fresnel`, `constant_reflectance`, `absorption_scale` and
+    /// `phong_exponent`.
+    pub fn with_params(&self, params: &Params) -> Material {
+        match self {
+            Material::Dielectric(d) => Material::Dielectric(d.with_params(params)),
+            Material::Glazed(g) => Material::Glazed(Glazed {
+                coat: g.coat.with_params(params),
+                base: g.base.clone(),
+            }),
+            Material::Glossy(g) => Material::Glossy(Glossy {
+                reflectance: g.reflectance,
+                exponent: params.phong_exponent.unwrap_or(g.exponent),
+            }),
+            other => other.clone(),
+        }
+    }
+
+    /// The dielectric interface of this material, if it has one: its index of refraction
+    /// and, for a body light enters, its absorption.
+    pub fn dielectric(&self) -> Option<&Dielectric> {
+        match self {
+            Material::Dielectric(d) | Material::Glazed(Glazed { coat: d, .. }) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// The Phong exponent the `phong_exponent` parameter replaces, if this is glossy.
+    pub fn phong_exponent(&self) -> Option<f32> {
+        match self {
+            Material::Glossy(g) => Some(g.exponent),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod test_util {
+    use super::*;
+
+    /// Fixed uniform numbers, handed out in order.
+    pub struct Fixed(pub Vec<f32>);
+
+    impl Uniform for Fixed {
+        fn next_1d(&mut self) -> f32 {
+            self.0.remove(0)
+        }
+        fn next_2d(&mut self) -> Vec2 {
+            Vec2::new(self.0.remove(0), self.0.remove(0))
+        }
+    }
+
+    /// A ray arriving from the outside at `theta` degrees from the normal +Y, in air.
+    pub fn hit_at(theta_deg: f32) -> Interaction {
+        let t = theta_deg.to_radians();
+        Interaction {
+            dir: Vec3::new(t.sin(), -t.cos(), 0.0),
+            uv: Vec2::ZERO,
+            n_geom: Vec3::Y,
+            n_shade: Vec3::Y,
+            entering: true,
+            outside_ior: 1.0,
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
+
+use super::values::{Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit};
+use crate::material::{Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture};
+use crate::math::Color;
+use crate::optics::FresnelMode;
+use serde::Deserialize;
+use std::collections::HashMap;
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub(super) enum MaterialDef {
+    Diffuse {
+        color: Reflectance,
+        checker: Option<CheckerDef>,
+        specular: Option<Reflectance>,
+        exponent: Option<Positive>,
+    },
+    Mirror {
+        reflectance: Reflectance,
+    },
+    Glossy {
+        reflectance: Reflectance,
+        exponent: Exponent,
+    },
+    Emissive {
+        color: Rgb,
+        strength: Option<NonNegative>,
+    },
+    Dielectric {
+        ior: Ior,
+        #[serde(default)]
+        ior_fixed: bool,
+        fresnel: Option<FresnelMode>,
+        constant_reflectance: Option<Unit>,
+        absorption: Option<Rgb>,
+    },
+    Glazed {
+        color: Reflectance,
+        checker: Option<CheckerDef>,
+        ior: Option<Ior>,
+        #[serde(default)]
+        ior_fixed: bool,
+        fresnel: Option<FresnelMode>,
+        constant_reflectance: Option<Unit>,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CheckerDef {
+    color: Reflectance,
+    scale: Positive,
+}
+
+/// Materials by name, in the order they were added.
+#[derive(Default)]
+pub(super) struct MaterialTable {
+    pub(super) list: Vec<(String, Material)>,
+    index: HashMap<String, u32>,
+}
+
+impl MaterialTable {
+    /// The index of `name`, adding `material` under it if it is new.
+    pub(super) fn add(&mut self, name: String, material: Material) -> u32 {
+        if let Some(&i) = self.index.get(&name) {
+            return i;
+        }
+        self.list.push((name.clone(), material));
+        let i = self.list.len() as u32 - 1;
+        self.index.insert(name, i);
+        i
+    }
+
+    pub(super) fn get(&self, name: &str) -> Option<u32> {
+        self.index.get(name).copied()
+    }
+
+    /// The defined names, sorted, comma separated.
+    pub(super) fn names(&self) -> String {
+        let mut names: Vec<_> = self.list.iter().map(|(n, _)| n.as_str()).collect();
+        names.sort();
+        names.join(", ")
+    }
+}
+
+pub(super) fn default_material() -> Material {
+    Material::Diffuse(Diffuse::solid(Color::splat(0.6)))
+}
+
+pub(super) fn material(def: MaterialDef) -> Material {
+    match def {
+        MaterialDef::Diffuse {
+            color,
+            checker,
+            specular,
+            exponent,
+        } => Material::Diffuse(Diffuse {
+            albedo: texture(color, checker),
+            specular: specular.map_or(Color::ZERO, |s| s.0),
+            exponent: exponent.map_or(20.0, |e| e.0),
+        }),
+        MaterialDef::Mirror { reflectance } => Material::Mirror(Mirror {
+            reflectance: reflectance.0,
+        }),
+        MaterialDef::Glossy {
+            reflectance,
+            exponent,
+        } => Material::Glossy(Glossy {
+            reflectance: reflectance.0,
+            exponent: exponent.0,
+        }),
+        MaterialDef::Emissive { color, strength } => Material::Emissive(Emissive {
+            radiance: color.0 * strength.map_or(1.0, |s| s.0),
+        }),
+        MaterialDef::Dielectric {
+            ior,
+            ior_fixed,
+            fresnel,
+            constant_reflectance,
+            absorption,
+        } => Material::Dielectric(Dielectric {
+            ior: ior.0,
+            ior_fixed,
+            fresnel: fresnel.unwrap_or(FresnelMode::Exact),
+            constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
+            absorption: absorption.map_or(Color::ZERO, |a| a.0),
+        }),
+        MaterialDef::Glazed {
+            color,
+            checker,
+            ior,
+            ior_fixed,
+            fresnel,
+            constant_reflectance,
+        } => Material::Glazed(Glazed {
+            coat: Dielectric {
+                ior: ior.map_or(1.5, |i| i.0),
+                ior_fixed,
+                fresnel: fresnel.unwrap_or(FresnelMode::Exact),
+                constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
+                absorption: Color::ZERO,
+            },
+            base: texture(color, checker),
+        }),
+    }
+}
+
+/// The default constant reflectance k: glass's reflectance at normal incidence.
+pub(super) const DEFAULT_K: f32 = 0.04;
+
+fn texture(color: Reflectance, checker: Option<CheckerDef>) -> Texture {
+    match checker {
+        None => Texture::Solid(color.0),
+        Some(c) => Texture::Checker {
+            even: color.0,
+            odd: c.color.0,
+            scale: c.scale.0,
+        },
+    }
+}

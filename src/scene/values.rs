@@ -1,0 +1,154 @@
+//! The checked values of the scene format: numbers, vectors and colours that deserialize
+//! only when finite and in range, so that serde's error carries the offending value's span.
+
+use crate::math::{Color, Vec3};
+use crate::params::IOR_RANGE;
+use serde::Deserialize;
+
+/// A finite number.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "f64")]
+pub(super) struct Num(pub(super) f32);
+
+impl TryFrom<f64> for Num {
+    type Error = String;
+    fn try_from(v: f64) -> Result<Self, String> {
+        let f = v as f32;
+        if f.is_finite() {
+            Ok(Num(f))
+        } else {
+            Err(format!("{v} is not a finite number"))
+        }
+    }
+}
+
+/// Declares a number type that deserializes only from a finite value meeting `$ok`,
+/// else fails with `$message`: `|v, f|` names the value read and its f32.
+macro_rules! checked_number {
+    ($(#[$doc:meta])* $name:ident, |$v:ident, $f:ident| $ok:expr, $($message:tt)+) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, Deserialize)]
+        #[serde(try_from = "f64")]
+        pub(super) struct $name(pub(super) f32);
+
+        impl TryFrom<f64> for $name {
+            type Error = String;
+            fn try_from($v: f64) -> Result<Self, String> {
+                let Num($f) = Num::try_from($v)?;
+                if $ok { Ok($name($f)) } else { Err(format!($($message)+)) }
+            }
+        }
+    };
+}
+
+checked_number!(
+    /// A finite number > 0.
+    Positive, |v, f| f > 0.0, "must be greater than 0, got {v}"
+);
+checked_number!(
+    /// A finite number ≥ 0.
+    NonNegative, |v, f| f >= 0.0, "must not be negative, got {v}"
+);
+checked_number!(
+    /// An index of refraction, 1 to 3.
+    Ior, |v, f| (IOR_RANGE.0..=IOR_RANGE.1).contains(&f),
+    "an index of refraction must be between {} and {}, got {v}", IOR_RANGE.0, IOR_RANGE.1
+);
+checked_number!(
+    /// A Phong exponent, 1 to 100,000.
+    Exponent, |v, f| (1.0..=crate::params::MAX_PHONG_EXPONENT).contains(&f),
+    "a Phong exponent must be between 1 and {}, got {v}", crate::params::MAX_PHONG_EXPONENT
+);
+checked_number!(
+    /// A fraction, 0 to 1.
+    Unit, |v, f| (0.0..=1.0).contains(&f), "must be between 0 and 1, got {v}"
+);
+
+/// A vector of three finite numbers.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+pub(super) struct V3(pub(super) Vec3);
+
+impl TryFrom<[f64; 3]> for V3 {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let f = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
+        if f.is_finite() {
+            Ok(V3(f))
+        } else {
+            Err(format!("{v:?} has a non-finite component"))
+        }
+    }
+}
+
+/// A non-zero direction.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+pub(super) struct Dir(pub(super) Vec3);
+
+impl TryFrom<[f64; 3]> for Dir {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let V3(f) = V3::try_from(v)?;
+        if f.length_squared() > 0.0 {
+            Ok(Dir(f.normalize()))
+        } else {
+            Err("a direction must not be [0, 0, 0]".into())
+        }
+    }
+}
+
+/// A colour of radiance or intensity: three finite numbers ≥ 0.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+pub(super) struct Rgb(pub(super) Color);
+
+impl TryFrom<[f64; 3]> for Rgb {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let V3(f) = V3::try_from(v)?;
+        if f.min_element() >= 0.0 {
+            Ok(Rgb(f))
+        } else {
+            Err(format!("colour {v:?} has a negative component"))
+        }
+    }
+}
+
+/// A reflectance: three numbers in [0, 1] (more would create energy).
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "[f64; 3]")]
+pub(super) struct Reflectance(pub(super) Color);
+
+impl TryFrom<[f64; 3]> for Reflectance {
+    type Error = String;
+    fn try_from(v: [f64; 3]) -> Result<Self, String> {
+        let Rgb(f) = Rgb::try_from(v)?;
+        if f.max_element() <= 1.0 {
+            Ok(Reflectance(f))
+        } else {
+            Err(format!("reflectance {v:?} must be between 0 and 1"))
+        }
+    }
+}
+
+/// An image dimension in pixels.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(try_from = "i64")]
+pub(super) struct Pixels(pub(super) u32);
+
+/// The largest image side accepted.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+impl TryFrom<i64> for Pixels {
+    type Error = String;
+    fn try_from(v: i64) -> Result<Self, String> {
+        if (1..=MAX_IMAGE_SIDE as i64).contains(&v) {
+            Ok(Pixels(v as u32))
+        } else {
+            Err(format!(
+                "must be between 1 and {MAX_IMAGE_SIDE} pixels, got {v}"
+            ))
+        }
+    }
+}

@@ -1,0 +1,88 @@
+//! The media a ray travels through: the stack of dielectric objects it has entered, and
+//! Beer–Lambert attenuation along a segment.
+
+use crate::math::Color;
+
+/// How deeply dielectrics may nest (glass in water in glass ...); deeper entries are ignored.
+pub const MAX_NESTING: usize = 8;
+
+/// The dielectric objects a ray is inside, innermost last. Empty: the ray is in the
+/// scene's surrounding medium.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Media {
+    len: u8,
+    // (object, material) of each medium entered.
+    items: [(u32, u32); MAX_NESTING],
+}
+
+impl PartialEq for Media {
+    fn eq(&self, other: &Media) -> bool {
+        self.active() == other.active()
+    }
+}
+
+impl Eq for Media {}
+
+impl Media {
+    fn active(&self) -> &[(u32, u32)] {
+        &self.items[..self.len as usize]
+    }
+
+    /// The innermost medium's material.
+    pub(super) fn innermost(&self) -> Option<u32> {
+        self.len.checked_sub(1).map(|i| self.items[i as usize].1)
+    }
+
+    /// After entering `object` made of `material`.
+    pub(super) fn entered(mut self, object: u32, material: u32) -> Media {
+        if (self.len as usize) < MAX_NESTING {
+            self.items[self.len as usize] = (object, material);
+            self.len += 1;
+        }
+        self
+    }
+
+    /// After leaving `object` (the innermost one, unless geometry overlaps).
+    pub(super) fn left(mut self, object: u32) -> Media {
+        if let Some(i) = self.active().iter().rposition(|&(o, _)| o == object) {
+            self.items.copy_within(i + 1..self.len as usize, i);
+            self.len -= 1;
+        }
+        self
+    }
+}
+
+/// exp(−σ t) per channel; exactly 1 where σ = 0 (even for t = ∞).
+#[inline]
+pub(super) fn transmittance(sigma: Color, t: f32) -> Color {
+    Color::select(sigma.cmpeq(Color::ZERO), Color::ONE, (-sigma * t).exp())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn media_enter_and_leave_in_any_order() {
+        let m = Media::default().entered(3, 10).entered(5, 11);
+        assert_eq!(m.innermost(), Some(11));
+        assert_eq!(m.left(5).innermost(), Some(10));
+        // Leaving the outer one first (overlapping geometry) keeps the inner.
+        assert_eq!(m.left(3).innermost(), Some(11));
+        assert_eq!(m.left(3).left(5), Media::default());
+        // Leaving what was never entered changes nothing.
+        assert_eq!(m.left(9), m);
+    }
+
+    #[test]
+    fn transmittance_is_beer_lambert_and_one_without_absorption() {
+        let t = transmittance(Color::new(0.0, 1.0, 2.0), 0.5);
+        assert_eq!(t.x, 1.0);
+        assert!((t.y - (-0.5f32).exp()).abs() < 1e-7);
+        assert!((t.z - (-1.0f32).exp()).abs() < 1e-7);
+        assert_eq!(
+            transmittance(Color::new(0.0, 1.0, 0.0), f32::INFINITY),
+            Color::new(1.0, 0.0, 1.0)
+        );
+    }
+}

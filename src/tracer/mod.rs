@@ -1,0 +1,553 @@
+//! The ray tree: from each camera ray, shadow rays to the lights and reflected and refracted
+//! child rays, pruned by depth and by attenuation (the path weight).
+//!
+//! Radiance is not scaled by (n2/n1)² when a ray refracts. Every path that reaches the
+//! camera starts and ends in the scene's surrounding medium (lights and background live
+//! there too), so the factors of entering and leaving a medium cancel; leaving them out
+//! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
+
+mod media;
+mod record;
+
+pub use media::{MAX_NESTING, Media};
+pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
+
+use crate::camera::{Camera, CameraFrame, CameraSample};
+use crate::light::Light;
+use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
+use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
+use crate::params::{Params, TreeMode};
+use crate::scene::{Hit, Scene};
+use glam::Vec2;
+use media::transmittance;
+use record::record_interface;
+use std::ops::AddAssign;
+
+/// What the tracer did: rays by kind and branches pruned.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Stats {
+    /// Camera samples taken.
+    pub samples: u64,
+    /// Eye rays.
+    pub camera_rays: u64,
+    /// Rays towards lights.
+    pub shadow_rays: u64,
+    /// Reflected rays.
+    pub reflection_rays: u64,
+    /// Refracted rays.
+    pub refraction_rays: u64,
+    /// Hits where the refracted ray does not exist: total internal reflection.
+    pub tir_events: u64,
+    /// Branches not traced because they would exceed `max_depth`.
+    pub pruned_by_depth: u64,
+    /// Branches not traced because their path weight fell below `min_weight`.
+    pub pruned_by_weight: u64,
+    /// Samples dropped because they were NaN or infinite.
+    pub non_finite: u64,
+}
+
+impl Stats {
+    /// All rays traced, of every kind.
+    pub fn total_rays(&self) -> u64 {
+        self.camera_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays
+    }
+}
+
+impl AddAssign for Stats {
+    fn add_assign(&mut self, o: Stats) {
+        self.samples += o.samples;
+        self.camera_rays += o.camera_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.reflection_rays += o.reflection_rays;
+        self.refraction_rays += o.refraction_rays;
+        self.tir_events += o.tir_events;
+        self.pruned_by_depth += o.pruned_by_depth;
+        self.pruned_by_weight += o.pruned_by_weight;
+        self.non_finite += o.non_finite;
+    }
+}
+
+/// What the pinhole ray through a point of the image meets first.
+#[derive(Clone, Copy, Debug)]
+pub struct Pick {
+    /// The object hit.
+    pub object: u32,
+    /// Where.
+    pub point: Vec3,
+    /// Its distance from the eye along the view direction: the focus distance that makes
+    /// it sharp.
+    pub depth: f32,
+}
+
+/// The first surface on the pinhole ray through `film` (0..1 across and down the image)
+/// of an image with aspect ratio `aspect`, seen through `camera`.
+pub fn pick(scene: &Scene, camera: &Camera, aspect: f32, film: Vec2) -> Option<Pick> {
+    let frame = camera.pinhole(aspect);
+    let ray = frame.ray(film, Vec2::ZERO, 0.0);
+    let hit = scene.intersect(&ray, f32::INFINITY)?;
+    Some(Pick {
+        object: hit.object,
+        point: hit.surface.p,
+        depth: (hit.surface.p - camera.position).dot(frame.forward()),
+    })
+}
+
+/// What travels down the tree with every ray: the sample's random numbers, the counters,
+/// and the recorder.
+struct Walk<'w, R: Recorder> {
+    rng: &'w mut SampleStream,
+    stats: &'w mut Stats,
+    rec: &'w mut R,
+}
+
+/// Where a ray sits in the tree.
+#[derive(Clone, Copy)]
+struct Branch {
+    depth: u32,
+    weight: f32,
+    kind: RayKind,
+    parent: Option<usize>,
+    factor: f32,
+}
+
+impl Branch {
+    /// The record of `ray` at this place in the tree, ending at `end_point` for `end`
+    /// (amended once its hit and radiance are known).
+    fn node(&self, ray: &Ray, end_point: Vec3, end: End) -> TreeNode {
+        TreeNode {
+            parent: self.parent,
+            kind: self.kind,
+            ray: *ray,
+            depth: self.depth,
+            branch_weight: self.factor,
+            path_weight: self.weight,
+            hit: None,
+            end_point,
+            end,
+            radiance: Color::ZERO,
+        }
+    }
+}
+
+/// Traces the samples of one image of one scene under one set of parameters.
+pub struct Tracer<'a> {
+    scene: &'a Scene,
+    params: &'a Params,
+    // The scene's materials with the parameters' overrides (ior, fresnel, ...) applied.
+    materials: Vec<Material>,
+    // The scene's lights at the parameters' light size.
+    lights: Vec<Light>,
+    frame: CameraFrame,
+    width: u32,
+    height: u32,
+}
+
+impl<'a> Tracer<'a> {
+    /// A tracer for a `width` × `height` image through the scene's own camera.
+    pub fn new(scene: &'a Scene, params: &'a Params, width: u32, height: u32) -> Self {
+        Self::with_camera(scene, &scene.camera, params, width, height)
+    }
+
+    /// A tracer for a `width` × `height` image through `camera`.
+    pub fn with_camera(
+        scene: &'a Scene,
+        camera: &Camera,
+        params: &'a Params,
+        width: u32,
+        height: u32,
+    ) -> Self {
+        Tracer {
+            scene,
+            params,
+            materials: scene
+                .materials
+                .iter()
+                .map(|m| m.with_params(params))
+                .collect(),
+            lights: scene
+                .lights
+                .iter()
+                .map(|l| l.scaled(params.light_size))
+                .collect(),
+            frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
+            width,
+            height,
+        }
+    }
+
+    /// Radiance of sample number `sample` of pixel (x, y). Its random numbers depend only
+    /// on (seed, pixel, sample), so the result does too.
+    pub fn sample(&self, x: u32, y: u32, sample: u32, stats: &mut Stats) -> Color {
+        self.sample_recorded(x, y, sample, stats, &mut NoRecorder)
+    }
+
+    /// The whole ray tree of sample `sample` of pixel (x, y), with the radiance it gives:
+    /// exactly what [`Tracer::sample`] computes, recorded.
+    pub fn inspect(&self, x: u32, y: u32, sample: u32) -> (RayTree, Color) {
+        let mut tree = RayTree::default();
+        let c = self.sample_recorded(x, y, sample, &mut Stats::default(), &mut tree);
+        (tree, c)
+    }
+
+    fn sample_recorded<R: Recorder>(
+        &self,
+        x: u32,
+        y: u32,
+        sample: u32,
+        stats: &mut Stats,
+        rec: &mut R,
+    ) -> Color {
+        let p = self.params;
+        let mut rng =
+            SampleStream::with_pattern(p.pattern, p.spp, p.seed, y * self.width + x, sample);
+        // The camera's dimensions first, then the tree's own.
+        let cs = CameraSample::draw(&mut rng);
+        let film = Vec2::new(
+            (x as f32 + cs.pixel.x) / self.width as f32,
+            (y as f32 + cs.pixel.y) / self.height as f32,
+        );
+        let ray = self.frame.ray(film, cs.lens, cs.time);
+        stats.samples += 1;
+        stats.camera_rays += 1;
+        let mut walk = Walk {
+            rng: &mut rng,
+            stats,
+            rec,
+        };
+        let root = Branch {
+            depth: 0,
+            weight: 1.0,
+            kind: RayKind::Camera,
+            parent: None,
+            factor: 1.0,
+        };
+        self.trace_in(&ray, root, &Media::default(), &mut walk)
+    }
+
+    /// The index of refraction of the medium a ray in `media` travels through.
+    fn ior_of(&self, media: &Media) -> f32 {
+        media
+            .innermost()
+            .and_then(|m| self.materials[m as usize].dielectric())
+            .map_or(self.scene.medium_ior, |d| d.ior)
+    }
+
+    /// Radiance arriving along `ray` at tree level `depth`, reached with path weight
+    /// `weight` (largest channel of the product of the reflectances and transmittances
+    /// above it), travelling through `media`.
+    pub fn trace(
+        &self,
+        ray: &Ray,
+        depth: u32,
+        weight: f32,
+        media: &Media,
+        rng: &mut SampleStream,
+        stats: &mut Stats,
+    ) -> Color {
+        let branch = Branch {
+            depth,
+            weight,
+            kind: RayKind::Camera,
+            parent: None,
+            factor: 1.0,
+        };
+        self.trace_in(
+            ray,
+            branch,
+            media,
+            &mut Walk {
+                rng,
+                stats,
+                rec: &mut NoRecorder,
+            },
+        )
+    }
+
+    fn trace_in<R: Recorder>(&self, ray: &Ray, b: Branch, media: &Media, w: &mut Walk<R>) -> Color {
+        let id = w.rec.ray(b.node(ray, ray.at(100.0), End::Miss));
+        let sigma = media
+            .innermost()
+            .and_then(|m| self.materials[m as usize].dielectric())
+            .map_or(Color::ZERO, |d| d.absorption);
+        let hit = self.scene.intersect(ray, f32::INFINITY);
+        // Area lights are seen where nothing is in front of them.
+        let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
+        let mut emitted = None;
+        for light in &self.lights {
+            if let Some((t, radiance)) = light.hit(ray, nearest) {
+                nearest = t;
+                emitted = Some(radiance);
+            }
+        }
+        let (radiance, end) = if let Some(radiance) = emitted {
+            (transmittance(sigma, nearest) * radiance, End::LightHit)
+        } else if let Some(hit) = hit {
+            // Beer–Lambert along the segment just travelled.
+            let tr = transmittance(sigma, hit.surface.t);
+            let b = Branch {
+                weight: b.weight * tr.max_element(),
+                ..b
+            };
+            let (l, end) = self.shade(ray, &hit, b, id, media, w);
+            (tr * l, end)
+        } else {
+            let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
+            (l, End::Miss)
+        };
+        if w.rec.on() {
+            let end_point = if nearest.is_finite() {
+                ray.at(nearest)
+            } else {
+                ray.at(100.0)
+            };
+            w.rec.finish(id, &|n| {
+                n.end = end;
+                n.radiance = radiance;
+                n.end_point = end_point;
+            });
+        }
+        radiance
+    }
+
+    /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
+    /// by the lights, and its child rays, walked as the tree mode says.
+    fn shade<R: Recorder>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        b: Branch,
+        id: usize,
+        media: &Media,
+        w: &mut Walk<R>,
+    ) -> (Color, End) {
+        let s = &hit.surface;
+        let entering = ray.dir.dot(s.n_geom) < 0.0;
+        // Normals facing the side the ray arrived from.
+        let (n_geom, n_shade) = if entering {
+            (s.n_geom, s.n_shade)
+        } else {
+            (-s.n_geom, -s.n_shade)
+        };
+        // The media beyond the surface, should a ray cross it.
+        let beyond = if entering {
+            media.entered(hit.object, hit.material)
+        } else {
+            media.left(hit.object)
+        };
+        let at = Interaction {
+            dir: ray.dir,
+            uv: s.uv,
+            n_geom,
+            n_shade,
+            entering,
+            outside_ior: self.ior_of(if entering { media } else { &beyond }),
+        };
+        if w.rec.on() {
+            let node_hit = NodeHit {
+                object: hit.object,
+                material: hit.material,
+                point: s.p,
+                theta_i: at.cos_i().acos().to_degrees(),
+                theta_t: None,
+                n1_n2: None,
+                f_s_f_p: None,
+                r_exact_schlick: None,
+                r: None,
+            };
+            w.rec.finish(id, &|n| n.hit = Some(node_hit));
+        }
+        let scatter = self.materials[hit.material as usize].scatter(&at, w.rng);
+        if let Some(radiance) = scatter.emitted {
+            return (radiance, End::LightHit);
+        }
+        let child_ray = |lobe: &Lobe| Ray {
+            origin: offset_ray_origin(
+                s.p,
+                match lobe.side {
+                    Side::Reflect => n_geom,
+                    Side::Transmit => -n_geom,
+                },
+            ),
+            dir: lobe.dir,
+            time: ray.time,
+        };
+        if scatter.total_internal_reflection {
+            w.stats.tir_events += 1;
+        }
+        if w.rec.on() {
+            if let Some(i) = scatter.interface {
+                record_interface(w.rec, id, i);
+            }
+            if scatter.total_internal_reflection {
+                // The refracted branch that total internal reflection forbids.
+                let reflected = scatter.lobes().next().map_or(*ray, child_ray);
+                w.rec.ray(TreeNode {
+                    parent: Some(id),
+                    kind: RayKind::Refract,
+                    ray: reflected,
+                    depth: b.depth + 1,
+                    branch_weight: 0.0,
+                    path_weight: 0.0,
+                    hit: None,
+                    end_point: s.p,
+                    end: End::TotalInternalReflection,
+                    radiance: Color::ZERO,
+                });
+            }
+        }
+        let mut l = match scatter.direct {
+            Some(direct) => direct.scale * self.direct(ray, hit, &at, &direct, id, w),
+            None => Color::ZERO,
+        };
+        let lobes = scatter.lobes().count();
+        if lobes == 0 {
+            return (l, End::Absorbed);
+        }
+        // Each child traced through the media on its side of the surface.
+        let mut trace_child = |lobe: &Lobe, factor: f32, weight: f32, w: &mut Walk<R>| {
+            let (kind, media) = match lobe.side {
+                Side::Reflect => (RayKind::Reflect, media),
+                Side::Transmit => (RayKind::Refract, &beyond),
+            };
+            let child = Branch {
+                depth: b.depth + 1,
+                weight,
+                kind,
+                parent: Some(id),
+                factor,
+            };
+            self.child(child, &child_ray(lobe), media, w)
+        };
+        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
+            l += self.follow_one(&scatter, b, w, &mut trace_child);
+        } else {
+            for lobe in scatter.lobes() {
+                let factor = lobe.weight.max_element();
+                // A lobe of weight 0 adds nothing: it is not traced.
+                if factor > 0.0 {
+                    l += lobe.weight * trace_child(lobe, factor, b.weight * factor, w);
+                }
+            }
+        }
+        (l, End::Split)
+    }
+
+    /// Stochastic mode: follows one lobe, chosen with probability equal to its branch
+    /// weight (the last takes any rounding remainder). Dividing by that probability, a
+    /// dielectric's R / P(reflect) = 1 leaves the path weight unchanged.
+    fn follow_one<R: Recorder>(
+        &self,
+        scatter: &Scatter,
+        b: Branch,
+        w: &mut Walk<R>,
+        trace_child: &mut impl FnMut(&Lobe, f32, f32, &mut Walk<R>) -> Color,
+    ) -> Color {
+        let mut lobes = scatter.lobes();
+        let Some(first) = lobes.next() else {
+            return Color::ZERO;
+        };
+        if b.depth >= self.params.max_depth || b.weight < self.params.min_weight {
+            // Let `child` count and record the cut, once.
+            return trace_child(first, 1.0, b.weight, w);
+        }
+        let u = w.rng.next_1d();
+        let mut chosen = first;
+        let mut cumulative = first.weight.max_element();
+        for lobe in lobes {
+            if u < cumulative {
+                break;
+            }
+            chosen = lobe;
+            cumulative += lobe.weight.max_element();
+        }
+        let p = chosen.weight.max_element();
+        if p <= 0.0 {
+            return Color::ZERO;
+        }
+        let tint = chosen.weight / p;
+        tint * trace_child(chosen, tint.max_element(), b.weight * tint.max_element(), w)
+    }
+
+    /// Traces a child ray if the pruning rules allow, recording why not.
+    fn child<R: Recorder>(&self, b: Branch, ray: &Ray, media: &Media, w: &mut Walk<R>) -> Color {
+        let why = if b.depth > self.params.max_depth {
+            w.stats.pruned_by_depth += 1;
+            Some(End::DepthLimit)
+        } else if b.weight < self.params.min_weight {
+            w.stats.pruned_by_weight += 1;
+            Some(End::WeightLimit)
+        } else {
+            None
+        };
+        match why {
+            Some(end) => {
+                w.rec.ray(b.node(ray, ray.origin, end));
+                Color::ZERO
+            }
+            None => {
+                match b.kind {
+                    RayKind::Refract => w.stats.refraction_rays += 1,
+                    _ => w.stats.reflection_rays += 1,
+                }
+                self.trace_in(ray, b, media, w)
+            }
+        }
+    }
+
+    /// Shading by the lights: ambient plus every light, one shadow ray to one sampled point
+    /// of each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ.
+    fn direct<R: Recorder>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        at: &Interaction,
+        direct: &Direct,
+        id: usize,
+        w: &mut Walk<R>,
+    ) -> Color {
+        let p = hit.surface.p;
+        let (n_geom, n) = (at.n_geom, at.n_shade);
+        let origin = offset_ray_origin(p, n_geom);
+        let view = -ray.dir;
+        let mut sum = self.scene.ambient * direct.brdf.albedo;
+        for light in &self.lights {
+            let u = w.rng.next_2d();
+            let Some(ls) = light.sample(p, u) else {
+                continue;
+            };
+            let cos = n.dot(ls.dir);
+            if cos <= 0.0 || n_geom.dot(ls.dir) <= 0.0 {
+                continue;
+            }
+            w.stats.shadow_rays += 1;
+            let shadow = Ray {
+                origin,
+                dir: ls.dir,
+                time: ray.time,
+            };
+            // Stop just short of the light's surface (it is not in the BVH anyway).
+            let blocked = self.scene.occluded(&shadow, ls.dist * (1.0 - 1e-4));
+            let mut contribution = Color::ZERO;
+            if !blocked {
+                contribution = direct.brdf.eval(n, ls.dir, view) * ls.value * cos;
+                sum += contribution;
+            }
+            if w.rec.on() {
+                w.rec.ray(TreeNode {
+                    parent: Some(id),
+                    kind: RayKind::Shadow,
+                    ray: shadow,
+                    depth: 0,
+                    branch_weight: 1.0,
+                    path_weight: 0.0,
+                    hit: None,
+                    end_point: shadow.at(ls.dist),
+                    end: if blocked { End::Occluded } else { End::Lit },
+                    radiance: contribution,
+                });
+            }
+        }
+        sum
+    }
+}

@@ -1,0 +1,158 @@
+//! What the inspector records of a ray tree: every ray, what it met, the lecture's
+//! quantities at each interface, and why it ended. The renderer records nothing
+//! ([`NoRecorder`] compiles away); the inspector records a [`RayTree`].
+
+use crate::material::Interface;
+use crate::math::{Color, Ray, Vec3};
+
+/// The kind of a ray in the tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum RayKind {
+    /// From the eye.
+    Camera,
+    /// Mirror, glossy or Fresnel reflection.
+    Reflect,
+    /// Refraction into or out of a dielectric.
+    Refract,
+    /// Towards a light.
+    Shadow,
+}
+
+/// Why a branch of the ray tree ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum End {
+    /// It left the scene: the background's radiance.
+    Miss,
+    /// It reached a light or an emitting surface.
+    LightHit,
+    /// It ended on a diffuse surface, whose shading (shadow rays) absorbs the rest.
+    Absorbed,
+    /// It split into child rays.
+    Split,
+    /// Not traced: it would exceed the maximum depth.
+    DepthLimit,
+    /// Not traced: its path weight fell below the minimum.
+    WeightLimit,
+    /// The refracted ray does not exist: total internal reflection.
+    TotalInternalReflection,
+    /// A shadow ray that reached its light.
+    Lit,
+    /// A shadow ray blocked on its way.
+    Occluded,
+}
+
+/// What a recorded ray met, with the lecture's quantities at a dielectric.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct NodeHit {
+    /// The object hit.
+    pub object: u32,
+    /// Its material.
+    pub material: u32,
+    /// Where.
+    pub point: Vec3,
+    /// Angle of incidence, degrees.
+    pub theta_i: f32,
+    /// At a dielectric: the angle of refraction (degrees), if it exists.
+    pub theta_t: Option<f32>,
+    /// At a dielectric or glaze: the indices n1 → n2.
+    pub n1_n2: Option<(f32, f32)>,
+    /// At a dielectric or glaze: the Fresnel amplitudes F_s, F_p.
+    pub f_s_f_p: Option<(f32, f32)>,
+    /// At a dielectric or glaze: the exact reflectance and Schlick's.
+    pub r_exact_schlick: Option<(f32, f32)>,
+    /// The reflectance R the tree used (by the current Fresnel model).
+    pub r: Option<f32>,
+}
+
+/// One ray of a recorded tree.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct TreeNode {
+    /// The node it branched from.
+    pub parent: Option<usize>,
+    /// What kind of ray.
+    pub kind: RayKind,
+    /// The ray (for a pruned branch, none was traced: its would-be direction).
+    pub ray: Ray,
+    /// Its level in the tree (camera rays 0).
+    pub depth: u32,
+    /// The factor its parent gave it (R, 1 − R, a reflectance).
+    pub branch_weight: f32,
+    /// The product of the factors from the camera down to it.
+    pub path_weight: f32,
+    /// What it met, if anything.
+    pub hit: Option<NodeHit>,
+    /// Where it ended (the hit point, or a point far along a miss).
+    pub end_point: Vec3,
+    /// Why it ended.
+    pub end: End,
+    /// The radiance it brought back.
+    pub radiance: Color,
+}
+
+/// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of
+/// this compiles away; the inspector uses [`RayTree`].
+pub trait Recorder {
+    /// A ray about to be traced; returns its id.
+    fn ray(&mut self, _node: TreeNode) -> usize {
+        0
+    }
+    /// Amends a ray's record once its hit, end and radiance are known.
+    fn finish(&mut self, _id: usize, _f: &dyn Fn(&mut TreeNode)) {}
+    /// Whether anything is recorded (skips work done only for the record).
+    fn on(&self) -> bool {
+        false
+    }
+}
+
+/// Records nothing.
+pub struct NoRecorder;
+impl Recorder for NoRecorder {}
+
+/// The whole tree of one camera sample, in the order it was traced.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct RayTree {
+    /// Every ray, parents before children.
+    pub nodes: Vec<TreeNode>,
+}
+
+impl RayTree {
+    /// The children of node `id`, in order.
+    pub fn children(&self, id: usize) -> impl Iterator<Item = (usize, &TreeNode)> {
+        self.nodes
+            .iter()
+            .enumerate()
+            .filter(move |(_, n)| n.parent == Some(id))
+    }
+}
+
+impl Recorder for RayTree {
+    fn ray(&mut self, node: TreeNode) -> usize {
+        self.nodes.push(node);
+        self.nodes.len() - 1
+    }
+    fn finish(&mut self, id: usize, f: &dyn Fn(&mut TreeNode)) {
+        if let Some(n) = self.nodes.get_mut(id) {
+            f(n);
+        }
+    }
+    fn on(&self) -> bool {
+        true
+    }
+}
+
+/// Records the lecture's quantities at a dielectric interface hit by node `id`.
+pub(super) fn record_interface<R: Recorder>(rec: &mut R, id: usize, i: Interface) {
+    let Interface { cos_i, n1, n2, r } = i;
+    let (f_s, f_p, r_exact) = crate::optics::fresnel_exact(cos_i, n1, n2);
+    let theta_t = crate::optics::cos_transmitted(cos_i, n1, n2).map(|c| c.acos().to_degrees());
+    let r_schlick = crate::optics::schlick(cos_i, n1, n2);
+    rec.finish(id, &|n| {
+        if let Some(h) = &mut n.hit {
+            h.theta_t = theta_t;
+            h.n1_n2 = Some((n1, n2));
+            h.f_s_f_p = Some((f_s, f_p));
+            h.r_exact_schlick = Some((r_exact, r_schlick));
+            h.r = Some(r);
+        }
+    });
+}
