@@ -273,6 +273,18 @@ impl RaylabApp {
         }
     }
 
+    /// The cost heat map's scale: the smallest and largest rays per sample over both sides,
+    /// so that the two sides of an A/B view are coloured alike.
+    fn cost_scale(&self) -> Option<(f32, f32)> {
+        let frames = std::iter::once(self.main.frame())
+            .chain(self.compare.as_ref().map(|c| c.side.frame()))
+            .flatten()
+            .filter(|f| !f.cost.is_empty());
+        frames
+            .map(|f| instruments::cost_range(&f.cost))
+            .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
+    }
+
     /// Parameters and camera back to the scene's.
     fn reset_to_defaults(&mut self) {
         self.settings.params = self.scene.params.clone();
@@ -292,7 +304,12 @@ impl eframe::App for RaylabApp {
         self.receive_sheet();
         self.dropped_files(ctx);
         let told = self.told();
-        let (params, cost) = (&self.settings.params, self.instruments.show_cost);
+        let cost = self
+            .instruments
+            .show_cost
+            .then(|| self.cost_scale())
+            .flatten();
+        let params = &self.settings.params;
         for (side, p) in std::iter::once((&mut self.main, params.clone())).chain(
             self.compare
                 .as_mut()

@@ -1,7 +1,7 @@
 //! One side of the view: an engine, what it was last told, its newest frame and the
 //! texture that shows it. The main view is one side; the A/B view's side B is another.
 
-use super::instruments::{cost_range, heat_map_rgba};
+use super::instruments::heat_map_rgba;
 use crate::camera::Camera;
 use crate::params::Params;
 use crate::render::{Engine, EngineConfig, EngineError, Frame, to_srgba8};
@@ -25,10 +25,10 @@ pub(crate) struct Side {
     told: Told,
     frame: Option<Frame>,
     texture: Option<egui::TextureHandle>,
-    // The texture's name, and what it shows: exposure and whether the cost map; `None`
-    // after a new frame arrived.
+    // The texture's name, and what it shows: the exposure, or the cost map's scale;
+    // `None` after a new frame arrived.
     name: &'static str,
-    shown: Option<(f32, bool)>,
+    shown: Option<(f32, Option<(f32, f32)>)>,
     paused: bool,
 }
 
@@ -100,18 +100,16 @@ impl Side {
     }
 
     /// Brings the texture up to date with the newest frame, shown at `exposure`, or as the
-    /// cost heat map.
-    pub(crate) fn upload(&mut self, ctx: &egui::Context, exposure: f32, cost: bool) {
+    /// cost heat map on the scale `cost` (rays per sample from black to yellow).
+    pub(crate) fn upload(&mut self, ctx: &egui::Context, exposure: f32, cost: Option<(f32, f32)>) {
         let Some(frame) = &self.frame else { return };
-        let cost = cost && !frame.cost.is_empty();
+        let cost = cost.filter(|_| !frame.cost.is_empty());
         if self.shown == Some((exposure, cost)) {
             return;
         }
-        let rgba = if cost {
-            let (lo, hi) = cost_range(&frame.cost);
-            heat_map_rgba(&frame.cost, lo, hi)
-        } else {
-            to_srgba8(&frame.pixels, exposure)
+        let rgba = match cost {
+            Some((lo, hi)) => heat_map_rgba(&frame.cost, lo, hi),
+            None => to_srgba8(&frame.pixels, exposure),
         };
         let image = egui::ColorImage::from_rgba_unmultiplied(
             [frame.width as usize, frame.height as usize],

@@ -145,8 +145,7 @@ impl RaylabApp {
                 ui.separator();
                 ui.label(RichText::new("paused").strong());
             }
-            if self.instruments.show_cost && !f.cost.is_empty() {
-                let (lo, hi) = super::instruments::cost_range(&f.cost);
+            if let Some((lo, hi)) = self.instruments.show_cost.then(|| self.cost_scale()).flatten() {
                 ui.separator();
                 ui.label(format!("cost: {lo:.1} (black) to {hi:.1} (yellow) rays per sample"));
             }
