@@ -374,3 +374,27 @@ fn sweep_writes_a_labelled_contact_sheet() {
     );
     assert!(!d.join("x.png").exists());
 }
+
+#[test]
+fn params_prints_every_parameter_with_its_default_and_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raylab(&["params"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for spec in raylab::params::TABLE {
+        let line = out
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(spec.name))
+            .unwrap_or_else(|| panic!("no line for {}:\n{out}", spec.name));
+        assert!(line.contains(&spec.range_text()), "{line}");
+    }
+    assert!(
+        out.lines()
+            .any(|l| l.starts_with("min_weight") && l.contains("0.001"))
+    );
+    let md = raylab(&["params", "--markdown"], dir.path());
+    assert_eq!(
+        String::from_utf8_lossy(&md.stdout),
+        raylab::params::markdown_table()
+    );
+}
