@@ -6,8 +6,8 @@ use crate::params::Params;
 use crate::scene::{Scene, SceneError, SceneSource};
 use crossbeam_channel::{Receiver, Sender};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use std::time::{Duration, Instant, SystemTime};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, SystemTime};
 
 /// Why a scene is being loaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,32 +24,58 @@ pub(crate) struct Loaded {
     result: Result<Scene, SceneError>,
 }
 
-/// Scenes loading on threads of their own, and the file watched for changes.
+/// The watched file: its path, when it was last seen to change, and whether it is the scene
+/// shown (reload) or one that failed to open (open again).
+type Watched = Option<(PathBuf, Option<SystemTime>, Purpose)>;
+
+/// Scenes loading on threads of their own, and the file watched for changes. A watcher
+/// thread reads the file's time stamp twice a second and wakes the window only when it
+/// changed, so an idle window does not repaint to poll.
 pub(crate) struct Loader {
     tx: Sender<Loaded>,
     rx: Receiver<Loaded>,
     loading: usize,
-    // The file to load when it changes, when it was last seen to change, and whether it
-    // is the scene shown (reload) or one that failed to open (open again).
-    watched: Option<(PathBuf, Option<SystemTime>, Purpose)>,
+    watched: Arc<Mutex<Watched>>,
+    changed: Receiver<(PathBuf, Purpose)>,
     // The file of the last Open, to watch if it fails.
     opening: Option<PathBuf>,
-    last_poll: Instant,
+    // Woken when a load finishes or the watched file changes.
+    ctx: egui::Context,
 }
 
 /// How often the watched file's time stamp is read.
 const POLL: Duration = Duration::from_millis(500);
 
 impl Loader {
-    pub(crate) fn new() -> Loader {
+    pub(crate) fn new(ctx: &egui::Context) -> Loader {
         let (tx, rx) = crossbeam_channel::unbounded();
+        let (changed_tx, changed) = crossbeam_channel::unbounded();
+        let watched: Arc<Mutex<Watched>> = Arc::new(Mutex::new(None));
+        let shared = Arc::clone(&watched);
+        let wake = ctx.clone();
+        // Ends once the loader is dropped (it holds the other reference).
+        std::thread::spawn(move || {
+            while Arc::strong_count(&shared) > 1 {
+                std::thread::sleep(POLL);
+                let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
+                if let Some((path, seen, purpose)) = guard.as_mut() {
+                    let now = modified(path);
+                    if now != *seen {
+                        *seen = now;
+                        let _ = changed_tx.send((path.clone(), *purpose));
+                        wake.request_repaint();
+                    }
+                }
+            }
+        });
         Loader {
             tx,
             rx,
             loading: 0,
-            watched: None,
+            watched,
+            changed,
             opening: None,
-            last_poll: Instant::now(),
+            ctx: ctx.clone(),
         }
     }
 
@@ -59,10 +85,12 @@ impl Loader {
             self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
         }
         let tx = self.tx.clone();
+        let wake = self.ctx.clone();
         self.loading += 1;
         std::thread::spawn(move || {
             let result = Scene::load(&reference);
             let _ = tx.send(Loaded { purpose, result });
+            wake.request_repaint();
         });
     }
 
@@ -71,27 +99,22 @@ impl Loader {
         self.loading > 0
     }
 
-    /// Watches `scene`'s file, if it has one, to reload it when it changes.
-    pub(crate) fn watch(&mut self, scene: &Scene) {
-        self.watched = match &scene.source {
-            SceneSource::File(path) => Some((path.clone(), modified(path), Purpose::Reload)),
-            _ => None,
-        };
+    fn set_watched(&self, watched: Watched) {
+        *self.watched.lock().unwrap_or_else(|e| e.into_inner()) = watched;
     }
 
-    /// Starts a load if the watched file changed since it was last seen.
+    /// Watches `scene`'s file, if it has one, to reload it when it changes.
+    pub(crate) fn watch(&mut self, scene: &Scene) {
+        self.set_watched(match &scene.source {
+            SceneSource::File(path) => Some((path.clone(), modified(path), Purpose::Reload)),
+            _ => None,
+        });
+    }
+
+    /// Starts a load for each change the watcher saw.
     pub(crate) fn poll(&mut self) {
-        if self.last_poll.elapsed() < POLL {
-            return;
-        }
-        self.last_poll = Instant::now();
-        if let Some((path, seen, purpose)) = &mut self.watched {
-            let now = modified(path);
-            if now != *seen {
-                *seen = now;
-                let (reference, purpose) = (path.display().to_string(), *purpose);
-                self.load(reference, purpose);
-            }
+        while let Ok((path, purpose)) = self.changed.try_recv() {
+            self.load(path.display().to_string(), purpose);
         }
     }
 
@@ -103,7 +126,7 @@ impl Loader {
             && loaded.result.is_err()
             && let Some(path) = self.opening.take()
         {
-            self.watched = Some((path.clone(), modified(&path), Purpose::Open));
+            self.set_watched(Some((path.clone(), modified(&path), Purpose::Open)));
         }
         Some(loaded)
     }

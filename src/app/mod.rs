@@ -186,7 +186,7 @@ impl RaylabApp {
             settings.params.clone(),
             config,
         )?;
-        let mut loader = Loader::new();
+        let mut loader = Loader::new(&cc.egui_ctx);
         loader.watch(&scene);
         Ok(RaylabApp {
             close_at: options.close_after.map(|d| Instant::now() + d),
@@ -294,9 +294,6 @@ impl RaylabApp {
     }
 }
 
-/// How often the window wakes while idle, to watch the scene file.
-const IDLE_POLL: Duration = Duration::from_millis(500);
-
 impl eframe::App for RaylabApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         self.receive_scenes();
@@ -320,9 +317,13 @@ impl eframe::App for RaylabApp {
             side.upload(ctx, params.exposure, cost);
         }
         self.refresh_inspection();
-        ctx.request_repaint_after(IDLE_POLL);
-        if self.close_at.is_some_and(|t| Instant::now() >= t) {
-            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        // Nothing here repaints by itself: an idle window sleeps until the engines, the
+        // loader, a contact sheet or the user wake it.
+        if let Some(t) = self.close_at {
+            match t.checked_duration_since(Instant::now()) {
+                Some(left) if !left.is_zero() => ctx.request_repaint_after(left),
+                _ => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
+            }
         }
     }
 
