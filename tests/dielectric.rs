@@ -116,9 +116,7 @@ fn a_slab_transmits_beer_lambert_with_fresnel_losses_at_both_faces() {
                 (Shape::Mesh(slab), glass(1.5, sigma)),
                 (
                     Shape::Mesh(emitter),
-                    Material::Emissive(Emissive {
-                        radiance: Color::ONE,
-                    }),
+                    Material::Emissive(Emissive::solid(Color::ONE)),
                 ),
             ],
             camera,

@@ -22,9 +22,7 @@ fn scene(objects: Vec<(Shape, Material)>, lights: Vec<Light>, camera: Camera) ->
 }
 
 fn glow() -> Material {
-    Material::Emissive(Emissive {
-        radiance: Color::ONE,
-    })
+    Material::Emissive(Emissive::solid(Color::ONE))
 }
 
 fn white() -> Material {

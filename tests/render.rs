@@ -9,6 +9,7 @@ use raylab::params::Params;
 use raylab::render::{Film, render, render_pass};
 use raylab::scene::{Scene, SceneDesc};
 use std::f32::consts::PI;
+use std::path::Path;
 
 fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
@@ -224,9 +225,7 @@ fn facing_mirrors_prune_at_the_depth_limit_with_geometric_weights() {
 #[test]
 fn non_finite_samples_are_dropped_and_counted_never_written() {
     // An object emitting infinite radiance (only possible from code; files refuse it).
-    let glow = Material::Emissive(Emissive {
-        radiance: Color::new(f32::INFINITY, 1.0, f32::NAN),
-    });
+    let glow = Material::Emissive(Emissive::solid(Color::new(f32::INFINITY, 1.0, f32::NAN)));
     let scene = top_down(glow, vec![], 2.0, 40.0, Color::ONE);
     let (film, stats) = render(
         &scene,
@@ -289,4 +288,43 @@ fn the_cost_of_a_pixel_is_the_rays_its_samples_traced() {
         cost(&lit, 8).iter().all(|&c| c == 2.0),
         "camera + shadow ray"
     );
+}
+
+#[test]
+fn a_textured_emitter_shows_its_checker_squares_at_their_radiance() {
+    // One emitting quad filling the view, 2 × 2 squares: seen directly, each pixel is the
+    // radiance of its square (× strength), exactly.
+    let text = r#"
+        [image]
+        width = 8
+        height = 8
+        [camera]
+        position = [0, 0, 5]
+        look_at = [0, 0, 0]
+        fov = 20
+        [material.board]
+        type = "emissive"
+        color = [1, 0.5, 0.25]
+        checker = { color = [0, 2, 0], scale = 2 }
+        strength = 2
+        [[quad]]
+        corner = [-2, -2, 0]
+        edge_u = [4, 0, 0]
+        edge_v = [0, 4, 0]
+        material = "board"
+    "#;
+    let scene = Scene::from_toml_str(text, "board.toml", Path::new(".")).unwrap();
+    let params = Params {
+        spp: 4,
+        ..scene.params.clone()
+    };
+    let (film, _) = render(&scene, &params, 8, 8, &()).unwrap();
+    let px: Vec<Color> = film.pixels().collect();
+    let (a, b) = (Color::new(2.0, 1.0, 0.5), Color::new(0.0, 4.0, 0.0));
+    // The view spans the quad's middle: the four corners of the image lie in four squares.
+    let corners = [px[0], px[7], px[56], px[63]];
+    assert!(corners.iter().all(|&c| c == a || c == b), "{corners:?}");
+    assert_eq!(corners.iter().filter(|&&c| c == a).count(), 2);
+    assert_eq!(corners[0], corners[3], "diagonal squares alike");
+    assert_ne!(corners[0], corners[1], "neighbours differ");
 }

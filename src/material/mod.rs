@@ -42,8 +42,18 @@ pub enum Material {
 /// A surface that emits light (and reflects none).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Emissive {
-    /// Emitted radiance.
-    pub radiance: Color,
+    /// Emitted radiance, which may vary over the surface (an emitting checkerboard is one
+    /// textured quad).
+    pub radiance: Texture,
+}
+
+impl Emissive {
+    /// A surface emitting `radiance` everywhere.
+    pub fn solid(radiance: Color) -> Emissive {
+        Emissive {
+            radiance: Texture::Solid(radiance),
+        }
+    }
 }
 
 /// A hit as a material sees it.
@@ -172,7 +182,7 @@ impl Material {
             Material::Mirror(m) => m.scatter(hit),
             Material::Glossy(m) => m.scatter(hit, u),
             Material::Emissive(m) => Scatter {
-                emitted: Some(m.radiance),
+                emitted: Some(m.radiance.eval(hit.uv)),
                 ..Scatter::default()
             },
             Material::Dielectric(m) => m.scatter(hit),

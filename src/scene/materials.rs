@@ -25,6 +25,7 @@ pub(super) enum MaterialDef {
     },
     Emissive {
         color: Rgb,
+        checker: Option<EmissiveCheckerDef>,
         strength: Option<NonNegative>,
     },
     Dielectric {
@@ -44,6 +45,14 @@ pub(super) enum MaterialDef {
         fresnel: Option<FresnelMode>,
         constant_reflectance: Option<Unit>,
     },
+}
+
+/// The checker of an emitter: its second colour is a radiance (any value ≥ 0).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct EmissiveCheckerDef {
+    color: Rgb,
+    scale: Positive,
 }
 
 #[derive(Deserialize)]
@@ -110,9 +119,23 @@ pub(super) fn material(def: MaterialDef) -> Material {
             reflectance: reflectance.0,
             exponent: exponent.0,
         }),
-        MaterialDef::Emissive { color, strength } => Material::Emissive(Emissive {
-            radiance: color.0 * strength.map_or(1.0, |s| s.0),
-        }),
+        MaterialDef::Emissive {
+            color,
+            checker,
+            strength,
+        } => {
+            let k = strength.map_or(1.0, |s| s.0);
+            Material::Emissive(Emissive {
+                radiance: match checker {
+                    None => Texture::Solid(color.0 * k),
+                    Some(c) => Texture::Checker {
+                        even: color.0 * k,
+                        odd: c.color.0 * k,
+                        scale: c.scale.0,
+                    },
+                },
+            })
+        }
         MaterialDef::Dielectric {
             ior,
             ior_fixed,

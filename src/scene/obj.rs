@@ -128,7 +128,7 @@ fn map_material(m: &tobj::Material) -> Material {
     };
     let emissive = rgb(m.emissive, 0.0);
     if emissive.max_element() > 0.0 {
-        return Material::Emissive(Emissive { radiance: emissive });
+        return Material::Emissive(Emissive::solid(emissive));
     }
     match m.illumination_model {
         Some(3) | Some(5) => Material::Mirror(Mirror {
