@@ -469,6 +469,17 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         wait_for(&engine, engine.generation())?;
         latencies.push(start.elapsed().as_secs_f64() * 1e3);
     }
+    // A drag: a change every 16 ms for 2 s, as a slider moved at 60 Hz.
+    let drag = raylab::render::simulate_drag(
+        &mut engine,
+        Duration::from_millis(16),
+        Duration::from_secs(2),
+        |i| Params {
+            ior: Some(1.2 + 0.02 * (i % 40) as f32),
+            ..params.clone()
+        },
+    );
+    print_drag(&drag);
     // Shutdown in the middle of a pass: the workers stop at their next pixel.
     let start = Instant::now();
     engine.shutdown();
@@ -507,6 +518,34 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         rays as f64 / pass / 1e6
     );
     Ok(())
+}
+
+/// The drag simulation's figures: first-frame latency, the level shown, how stale.
+fn print_drag(drag: &raylab::render::DragReport) {
+    let mut ms: Vec<f64> = drag
+        .first_frame
+        .iter()
+        .flatten()
+        .map(|d| d.as_secs_f64() * 1e3)
+        .collect();
+    ms.sort_by(f64::total_cmp);
+    let missed = drag.first_frame.len() - ms.len();
+    let mut blocks = drag.block_shown.clone();
+    blocks.sort_unstable();
+    let (Some(first_med), Some(block_med)) = (ms.get(ms.len() / 2), blocks.get(blocks.len() / 2))
+    else {
+        println!("drag: no frames");
+        return;
+    };
+    println!(
+        "drag (a change every 16 ms for 2 s, {} changes): first frame median {first_med:.2} ms, \
+         worst {:.2} ms, {missed} without one; level shown median {block_med}x{block_med}, \
+         coarsest {b}x{b}; at most {} generation(s) behind",
+        drag.first_frame.len(),
+        ms.last().copied().unwrap_or_default(),
+        drag.generations_behind.iter().max().copied().unwrap_or(0),
+        b = blocks.last().copied().unwrap_or(0),
+    );
 }
 
 fn scenes_command() -> Result<()> {

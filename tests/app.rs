@@ -135,7 +135,7 @@ fn a_failed_save_says_so_and_keeps_the_image() {
     std::fs::write(&blocked, b"").unwrap();
     let mut h = app("default", &blocked);
     step_until(&mut h, "a full frame", |a| {
-        a.latest_frame().is_some_and(|f| !f.preview)
+        a.latest_frame().is_some_and(|f| !f.is_preview())
     });
     h.get_by_label("Save snapshot").click();
     h.step();
@@ -179,7 +179,7 @@ fn space_pauses_and_reset_restores_the_scene_defaults() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("default", dir.path());
     step_until(&mut h, "a full frame", |a| {
-        a.latest_frame().is_some_and(|f| !f.preview)
+        a.latest_frame().is_some_and(|f| !f.is_preview())
     });
     h.key_press(egui::Key::Space);
     h.step();
@@ -275,7 +275,7 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("glass", dir.path());
     step_until(&mut h, "a full frame", |a| {
-        a.latest_frame().is_some_and(|f| !f.preview)
+        a.latest_frame().is_some_and(|f| !f.is_preview())
     });
     h.get_by_label("Instruments").click();
     h.run_steps(3);
@@ -462,7 +462,7 @@ fn the_cost_heat_map_shows_rays_per_sample() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("ray-tree", dir.path());
     step_until(&mut h, "a full frame", |a| {
-        a.latest_frame().is_some_and(|f| !f.preview)
+        a.latest_frame().is_some_and(|f| !f.is_preview())
     });
     h.get_by_label("Instruments").click();
     h.run_steps(3);

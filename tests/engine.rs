@@ -65,9 +65,10 @@ fn every_frame_of_a_new_generation_shows_the_new_parameters() {
     };
     let mut e = engine(&scene, a.clone());
     let first = frames_until(&e, Duration::from_secs(20), |f| f.progress.done());
-    assert!(
-        first[0].preview,
-        "a generation opens with its coarse preview"
+    assert_eq!(
+        first.iter().take(3).map(|f| f.block).collect::<Vec<_>>(),
+        raylab::render::PREVIEW_LEVELS,
+        "a generation opens with its pyramid of previews, coarse to fine"
     );
     assert!(first.iter().all(|f| f.generation == 1));
 
@@ -84,8 +85,8 @@ fn every_frame_of_a_new_generation_shows_the_new_parameters() {
     });
     let mut spps = Vec::new();
     for f in frames.iter().filter(|f| f.generation == generation) {
-        let expected = if f.preview {
-            render_preview(&scene, &scene.camera, &b, W, H, 8, &())
+        let expected = if f.is_preview() {
+            render_preview(&scene, &scene.camera, &b, W, H, f.block, &())
                 .unwrap()
                 .0
         } else {
@@ -94,15 +95,15 @@ fn every_frame_of_a_new_generation_shows_the_new_parameters() {
         assert_eq!(
             bits(&f.pixels),
             bits(&expected),
-            "frame at {} spp (preview {})",
+            "frame at {} spp (block {})",
             f.progress.spp,
-            f.preview
+            f.block
         );
         spps.push(f.progress.spp);
     }
-    assert_eq!(spps[0], 0, "the preview comes first");
+    assert_eq!(spps[..3], [0, 0, 0], "the previews come first");
     assert!(
-        spps.windows(2).all(|w| w[0] < w[1]),
+        spps[3..].windows(2).all(|w| w[0] < w[1]),
         "passes only add samples: {spps:?}"
     );
     assert_eq!(*spps.last().unwrap(), 6);
@@ -186,7 +187,7 @@ fn pause_holds_and_resume_finishes_and_unlimited_runs_on() {
         ..scene.params.clone()
     };
     let e = engine(&scene, p);
-    frames_until(&e, Duration::from_secs(20), |f| !f.preview);
+    frames_until(&e, Duration::from_secs(20), |f| !f.is_preview());
     e.pause();
     let paused = frames_until(&e, Duration::from_secs(20), |f| f.progress.paused);
     let held = paused.last().unwrap().progress.spp;

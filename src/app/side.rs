@@ -111,13 +111,17 @@ impl Side {
             Some((lo, hi)) => heat_map_rgba(&frame.cost, lo, hi),
             None => to_srgba8(&frame.pixels, exposure),
         };
-        let image = egui::ColorImage::from_rgba_unmultiplied(
-            [frame.width as usize, frame.height as usize],
-            &rgba,
-        );
-        // Sharp pixels when zoomed in for pixel-peeping, smooth when fitted smaller.
+        let (w, h) = frame.grid_size();
+        let image = egui::ColorImage::from_rgba_unmultiplied([w as usize, h as usize], &rgba);
+        // A preview's blocks are stretched smoothly (bilinear); a pass's pixels are sharp
+        // when zoomed in for pixel-peeping, smooth when fitted smaller.
+        let magnification = if frame.is_preview() {
+            egui::TextureFilter::Linear
+        } else {
+            egui::TextureFilter::Nearest
+        };
         let options = egui::TextureOptions {
-            magnification: egui::TextureFilter::Nearest,
+            magnification,
             minification: egui::TextureFilter::Linear,
             ..Default::default()
         };

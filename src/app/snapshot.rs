@@ -11,7 +11,7 @@ use std::time::SystemTime;
 impl RaylabApp {
     /// Writes the newest full frame to `path` (PNG or EXR) with its sidecar.
     pub(super) fn save_to(&mut self, path: &Path) -> Result<PathBuf, String> {
-        let Some(frame) = self.main.frame().filter(|f| !f.preview) else {
+        let Some(frame) = self.main.frame().filter(|f| !f.is_preview()) else {
             return Err("Nothing to save yet: wait for the first pass".into());
         };
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {

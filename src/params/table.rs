@@ -308,7 +308,7 @@ impl Spec {
     /// The window's tooltip: the explanation, then the valid values.
     pub fn tooltip(&self) -> String {
         format!(
-            "{}\n\n`{}`: {}.",
+            "{}\n\nParameter {}: {}.",
             self.explain,
             self.name,
             self.range_text()

@@ -21,8 +21,10 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-/// Side of the blocks of the coarse preview that opens every generation.
-pub const PREVIEW_BLOCK: u32 = 8;
+/// The resolution pyramid that opens every generation: previews with one sample per block
+/// of these sides, each upsampled smoothly, before the full passes. The first costs 1/64
+/// of a pass, so it shows within a frame; a change cancels the rest.
+pub const PREVIEW_LEVELS: [u32; 3] = [8, 4, 2];
 /// The most samples per pixel one pass adds.
 pub const MAX_PASS_SPP: u32 = 16;
 /// Passes are kept about this long, so that frames keep coming.
@@ -92,15 +94,33 @@ pub struct Frame {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Linear mean radiance, row-major from the top left. Every pixel changes from one
-    /// frame to the next (a pass adds samples to all of them), so frames are whole.
+    /// Linear mean radiance, row-major from the top left: every pixel after a pass; for a
+    /// preview, one value per block ([`Frame::grid_size`]), to be stretched over the image
+    /// with bilinear filtering. Every pixel changes from one frame to the next (a pass adds
+    /// samples to all of them), so frames are whole.
     pub pixels: Arc<Vec<Color>>,
     /// Rays traced per sample in every pixel (the cost heat map); empty for a preview.
     pub cost: Arc<Vec<f32>>,
-    /// True for the coarse preview (one sample per block).
-    pub preview: bool,
+    /// A preview's block side (one sample per block, upsampled): 8, 4 or 2; 1 for the
+    /// film after a pass.
+    pub block: u32,
     /// Progress at this frame.
     pub progress: Progress,
+}
+
+impl Frame {
+    /// Whether this is a preview (one sample per block), not the film after a pass.
+    pub fn is_preview(&self) -> bool {
+        self.block > 1
+    }
+
+    /// The size of `pixels`: the image's for a pass, its blocks' for a preview.
+    pub fn grid_size(&self) -> (u32, u32) {
+        (
+            self.width.div_ceil(self.block),
+            self.height.div_ceil(self.block),
+        )
+    }
 }
 
 /// The engine cannot start.
@@ -173,7 +193,7 @@ impl Engine {
             unlimited: false,
             paused: false,
             generation: 1,
-            needs_preview: true,
+            preview_level: 0,
             started: Instant::now(),
             finished: None,
             pass_time: Duration::ZERO,
@@ -347,7 +367,8 @@ struct Controller {
     unlimited: bool,
     paused: bool,
     generation: u64,
-    needs_preview: bool,
+    // The next level of PREVIEW_LEVELS to render; past the end once they are done.
+    preview_level: usize,
     started: Instant,
     // How long the generation took to reach its target, once it has.
     finished: Option<Duration>,
@@ -372,7 +393,7 @@ impl Controller {
         'outer: loop {
             // Take every command that waits; wait for one when there is nothing to do.
             loop {
-                let idle = !self.needs_preview && (self.paused || self.target_reached());
+                let idle = !self.needs_preview() && (self.paused || self.target_reached());
                 let next = if idle {
                     if self.outbox.pending.is_some() {
                         match commands.recv_timeout(Duration::from_millis(10)) {
@@ -401,7 +422,7 @@ impl Controller {
                     break 'outer;
                 }
             }
-            if self.needs_preview {
+            if self.needs_preview() {
                 self.preview(&pool);
             } else if !self.paused && !self.target_reached() {
                 self.pass(&pool);
@@ -439,19 +460,19 @@ impl Controller {
             Command::Unlimited(u) => {
                 self.unlimited = u;
                 self.finished = self.target_reached().then(|| self.started.elapsed());
-                self.send_frame(false);
+                self.send_frame();
                 false
             }
             Command::Pause(p) => {
                 self.paused = p;
-                self.send_frame(false);
+                self.send_frame();
                 false
             }
         };
         if restart {
             self.generation = self.generation.max(generation);
             self.film.clear();
-            self.needs_preview = true;
+            self.preview_level = 0;
             self.started = Instant::now();
             self.finished = None;
             self.pass_time = Duration::ZERO;
@@ -470,8 +491,14 @@ impl Controller {
         self.target().is_some_and(|t| self.film.spp() >= t)
     }
 
+    fn needs_preview(&self) -> bool {
+        self.preview_level < PREVIEW_LEVELS.len()
+    }
+
+    /// The next level of the pyramid, unless a newer generation cancels it.
     fn preview(&mut self, pool: &rayon::ThreadPool) {
         let (w, h) = (self.film.width(), self.film.height());
+        let block = PREVIEW_LEVELS[self.preview_level];
         let result = pool.install(|| {
             render_preview(
                 &self.scene,
@@ -479,7 +506,7 @@ impl Controller {
                 &self.params,
                 w,
                 h,
-                PREVIEW_BLOCK,
+                block,
                 &Watch {
                     requested: &self.requested,
                     generation: self.generation,
@@ -487,9 +514,9 @@ impl Controller {
             )
         });
         if let Ok((pixels, stats)) = result {
-            self.needs_preview = false;
+            self.preview_level += 1;
             self.stats += stats;
-            self.emit(Arc::new(pixels), Arc::new(Vec::new()), true);
+            self.emit(Arc::new(pixels), Arc::new(Vec::new()), block);
         }
     }
 
@@ -540,7 +567,7 @@ impl Controller {
             if self.target_reached() {
                 self.finished = Some(self.started.elapsed());
             }
-            self.send_frame(false);
+            self.send_frame();
         }
     }
 
@@ -571,23 +598,23 @@ impl Controller {
     }
 
     /// Sends the film as it is (or, before any pass, nothing new: progress only).
-    fn send_frame(&mut self, preview: bool) {
+    fn send_frame(&mut self) {
         if self.film.spp() == 0 {
             return;
         }
         let pixels = Arc::new(self.film.pixels().collect());
         let cost = Arc::new(self.film.cost());
-        self.emit(pixels, cost, preview);
+        self.emit(pixels, cost, 1);
     }
 
-    fn emit(&mut self, pixels: Arc<Vec<Color>>, cost: Arc<Vec<f32>>, preview: bool) {
+    fn emit(&mut self, pixels: Arc<Vec<Color>>, cost: Arc<Vec<f32>>, block: u32) {
         let frame = Frame {
             generation: self.generation,
             width: self.film.width(),
             height: self.film.height(),
             pixels,
             cost,
-            preview,
+            block,
             progress: self.progress(),
         };
         self.outbox.send(frame);

@@ -197,9 +197,10 @@ impl Film {
         self.spp = spp;
     }
 
-    /// Empties the film, keeping its memory.
+    /// Empties the film, keeping its memory: it reads black, and the next pass starts each
+    /// pixel afresh as it reaches it, so emptying costs nothing (a drag empties it at
+    /// every change).
     pub fn clear(&mut self) {
-        self.pixels.fill(Accum::default());
         self.spp = 0;
     }
 
@@ -213,20 +214,33 @@ impl Film {
         self.spp = 0;
     }
 
+    /// The accumulators; none while the film is empty (they may hold an earlier image).
+    fn accums(&self) -> &[Accum] {
+        if self.spp == 0 { &[] } else { &self.pixels }
+    }
+
     /// The mean radiance of pixel (x, y); black before any sample.
     pub fn pixel(&self, x: u32, y: u32) -> Color {
-        self.pixels[(y * self.width + x) as usize].mean()
+        self.accums()
+            .get((y * self.width + x) as usize)
+            .map_or(Color::ZERO, Accum::mean)
     }
 
     /// Rays traced per sample in every pixel, row-major: the cost of each pixel's tree.
     pub fn cost(&self) -> Vec<f32> {
         let spp = self.spp.max(1) as f32;
-        self.pixels.iter().map(|p| p.rays as f32 / spp).collect()
+        match self.accums() {
+            [] => vec![0.0; self.pixels.len()],
+            a => a.iter().map(|p| p.rays as f32 / spp).collect(),
+        }
     }
 
-    /// Mean radiance of every pixel, row-major.
+    /// Mean radiance of every pixel, row-major (black while the film is empty).
     pub fn pixels(&self) -> impl Iterator<Item = Color> + '_ {
-        self.pixels.iter().map(Accum::mean)
+        let empty = self.spp == 0;
+        self.pixels
+            .iter()
+            .map(move |a| if empty { Color::ZERO } else { a.mean() })
     }
 
     /// The estimated noise of the image, relative to its mean brightness: the standard
@@ -239,7 +253,7 @@ impl Film {
         }
         let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
         let (mut err2, mut total, mut n) = (0.0f64, 0.0f64, 0usize);
-        for p in &self.pixels {
+        for p in self.accums() {
             let even_count = p.count - p.odd_count;
             if p.odd_count == 0 || even_count == 0 {
                 continue;
@@ -292,6 +306,7 @@ mod tests {
     fn exposure_scales_before_clamping() {
         let mut f = Film::new(1, 1);
         f.pixels[0].add(0, Color::new(0.25, 0.5, 2.0));
+        f.set_spp(1);
         let px = f.to_srgb8(1.0).get_pixel(0, 0).0;
         assert_eq!(px, [188, 255, 255]);
     }
@@ -310,5 +325,30 @@ mod tests {
         assert!((f.noise().unwrap() - 0.1).abs() < 1e-6);
         f.set_spp(1);
         assert_eq!(f.noise(), None);
+    }
+
+    #[test]
+    fn a_cleared_film_reads_black_and_its_next_pass_starts_afresh() {
+        let scene = crate::scene::Scene::load("default").unwrap();
+        let params = crate::params::Params {
+            spp: 2,
+            ..scene.params.clone()
+        };
+        let mut f = crate::render::render(&scene, &params, 16, 9, &())
+            .unwrap()
+            .0;
+        f.clear();
+        assert!(f.pixels().all(|c| c == Color::ZERO));
+        assert!(f.cost().iter().all(|&c| c == 0.0));
+        // Another seed: any trace of the first image would show.
+        let params = crate::params::Params { seed: 1, ..params };
+        let fresh = crate::render::render(&scene, &params, 16, 9, &())
+            .unwrap()
+            .0;
+        crate::render::render_pass(&scene, &scene.camera, &params, &mut f, 2, &()).unwrap();
+        assert!(
+            f.pixels().eq(fresh.pixels()),
+            "no trace of the earlier image"
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! The one render kernel: a pass of samples over the whole film, in bands of rows run in
 //! parallel. The CLI, the tests and the progressive engine all call [`render_pass`].
 
-use super::Film;
+use super::{Accum, Film};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::params::Params;
@@ -59,6 +59,10 @@ pub fn render_pass(
                     return None;
                 }
                 let (x, y) = (i as u32 % width, y0 + i as u32 / width);
+                if first == 0 {
+                    // An empty film keeps its old sums until each pixel starts afresh here.
+                    *pixel = Accum::default();
+                }
                 for s in first..first + samples {
                     let before = stats.total_rays();
                     let c = tracer.sample(x, y, s, &mut stats);
@@ -84,9 +88,11 @@ pub fn render_pass(
     Ok(total)
 }
 
-/// A coarse preview: one sample (number 0) at the centre of every `block` × `block` block,
-/// filling the block. Row-major linear radiance, `width` × `height`. For the first
-/// feedback after a change: `block` 8 costs 1/64 of a 1-spp pass.
+/// A preview at one level of the resolution pyramid: one sample (number 0) at the centre
+/// of every `block` × `block` block of a `width` × `height` image. Returns the grid of
+/// blocks, `width.div_ceil(block)` × `height.div_ceil(block)`, row-major linear radiance:
+/// the display stretches it over the image with bilinear filtering, so no blocks show.
+/// `block` 8 costs 1/64 of a 1-spp pass, 4 costs 1/16, 2 costs 1/4.
 pub fn render_preview(
     scene: &Scene,
     camera: &Camera,
@@ -98,28 +104,22 @@ pub fn render_preview(
 ) -> Result<(Vec<Color>, Stats), Cancelled> {
     let tracer = Tracer::with_camera(scene, camera, params, width, height);
     let block = block.max(1);
-    let band_len = (width * block) as usize;
-    let mut image = vec![Color::ZERO; width as usize * height as usize];
-    let results: Vec<Option<Stats>> = image
-        .par_chunks_mut(band_len)
+    let nx = width.div_ceil(block);
+    // The pixel at the centre of block i (the last block may be cut short).
+    let centre = |i: u32, size: u32| (i * block + block / 2).min(size - 1);
+    let mut grid = vec![Color::ZERO; nx as usize * height.div_ceil(block) as usize];
+    let results: Vec<Option<Stats>> = grid
+        .par_chunks_mut(nx as usize)
         .enumerate()
-        .map(|(band, rows)| {
+        .map(|(j, row)| {
             let mut stats = Stats::default();
-            let y0 = band as u32 * block;
-            let rows_here = rows.len() as u32 / width;
-            let cy = (y0 + rows_here / 2).min(height - 1);
-            for bx in (0..width).step_by(block as usize) {
+            let cy = centre(j as u32, height);
+            for (i, cell) in row.iter_mut().enumerate() {
                 if !observer.keep_going() {
                     return None;
                 }
-                let cx = (bx + block / 2).min(width - 1);
-                let c = tracer.sample(cx, cy, 0, &mut stats);
-                let c = if c.is_finite() { c } else { Color::ZERO };
-                for row in 0..rows_here {
-                    let start = (row * width + bx) as usize;
-                    let end = start + block.min(width - bx) as usize;
-                    rows[start..end].fill(c);
-                }
+                let c = tracer.sample(centre(i as u32, width), cy, 0, &mut stats);
+                *cell = if c.is_finite() { c } else { Color::ZERO };
             }
             Some(stats)
         })
@@ -128,5 +128,5 @@ pub fn render_preview(
     for r in results {
         total += r.ok_or(Cancelled)?;
     }
-    Ok((image, total))
+    Ok((grid, total))
 }

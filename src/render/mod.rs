@@ -1,13 +1,17 @@
 //! Rendering: the film, the render kernel, the progressive engine, and snapshots with
 //! their sidecars.
 
+mod drag;
 mod engine;
 mod film;
 mod kernel;
 mod sheet;
 mod snapshot;
 
-pub use engine::{Engine, EngineConfig, EngineError, Frame, MAX_PASS_SPP, PREVIEW_BLOCK, Progress};
+pub use drag::{DragReport, simulate_drag};
+pub use engine::{
+    Engine, EngineConfig, EngineError, Frame, MAX_PASS_SPP, PREVIEW_LEVELS, Progress,
+};
 pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
 pub use sheet::{SheetError, contact_sheet, parse_sweep};

@@ -1,0 +1,60 @@
+//! A slider dragged at 60 Hz, simulated against the engine: what the window would show.
+
+use super::{Engine, Frame};
+use crate::params::Params;
+use crossbeam_channel::RecvTimeoutError;
+use std::time::{Duration, Instant};
+
+/// What a drag showed, one entry per display frame.
+#[derive(Clone, Debug, Default)]
+pub struct DragReport {
+    /// Time from each change to the first frame of its generation; `None` where none came
+    /// before the next change.
+    pub first_frame: Vec<Option<Duration>>,
+    /// The block side of the frame shown at each display frame (1: a full pass).
+    pub block_shown: Vec<u32>,
+    /// How many generations behind the newest the frame shown was.
+    pub generations_behind: Vec<u64>,
+}
+
+/// Changes `engine`'s parameters every `tick` for `duration` (`change(i)` gives the i-th
+/// parameters), and records at the end of each tick the newest frame the engine sent, as
+/// the window would show it.
+pub fn simulate_drag(
+    engine: &mut Engine,
+    tick: Duration,
+    duration: Duration,
+    change: impl Fn(u32) -> Params,
+) -> DragReport {
+    let mut report = DragReport::default();
+    let mut shown: Option<Frame> = None;
+    let start = Instant::now();
+    let mut i = 0;
+    while start.elapsed() < duration {
+        let changed = Instant::now();
+        engine.set_params(change(i));
+        let generation = engine.generation();
+        let mut first = None;
+        let end = changed + tick;
+        loop {
+            let left = end.saturating_duration_since(Instant::now());
+            match engine.frames().recv_timeout(left) {
+                Ok(f) => {
+                    if f.generation == generation && first.is_none() {
+                        first = Some(changed.elapsed());
+                    }
+                    shown = Some(f);
+                }
+                Err(RecvTimeoutError::Timeout) => break,
+                Err(RecvTimeoutError::Disconnected) => return report,
+            }
+        }
+        report.first_frame.push(first);
+        if let Some(f) = &shown {
+            report.block_shown.push(f.block);
+            report.generations_behind.push(generation - f.generation);
+        }
+        i += 1;
+    }
+    report
+}
