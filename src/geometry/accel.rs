@@ -27,12 +27,20 @@ pub struct PrimRef {
     pub index: u32,
 }
 
-/// Acceleration structure over a list of shapes.
+/// Up to this many spheres and quads are tested one by one, outside the BVH: for a handful
+/// of them a loop beats descending a tree built for millions of triangles.
+const DIRECT_MAX: usize = 16;
+
+/// Acceleration structure over a list of shapes: the BVH over triangles (and over spheres
+/// and quads when there are many), the few spheres and quads tested directly, and the
+/// unbounded planes.
 #[derive(Clone, Debug)]
 pub struct Accel {
     bvh: Option<CwBvh>,
     // In the BVH's leaf order, so a leaf's primitive id indexes this directly.
     prims: Vec<PrimRef>,
+    // Spheres and quads tested directly (when there are at most DIRECT_MAX).
+    direct: Vec<PrimRef>,
     unbounded: Vec<u32>,
 }
 
@@ -42,9 +50,19 @@ impl Accel {
         let mut prims = Vec::new();
         let mut bounds: Vec<Aabb> = Vec::new();
         let mut unbounded = Vec::new();
+        let analytic = |s: &Shape| matches!(s, Shape::Sphere(_) | Shape::Quad(_));
+        let direct_ok = shapes.iter().filter(|s| analytic(s)).count() <= DIRECT_MAX;
+        let mut direct = Vec::new();
         for (object, shape) in shapes.iter().enumerate() {
             if matches!(shape, Shape::Plane(_)) {
                 unbounded.push(object as u32);
+                continue;
+            }
+            if direct_ok && analytic(shape) {
+                direct.push(PrimRef {
+                    object: object as u32,
+                    index: 0,
+                });
                 continue;
             }
             for index in 0..shape.primitive_count() as u32 {
@@ -72,13 +90,14 @@ impl Accel {
         Accel {
             bvh,
             prims,
+            direct,
             unbounded,
         }
     }
 
-    /// Number of primitives in the BVH.
+    /// Number of bounded primitives (in the BVH or tested directly).
     pub fn primitive_count(&self) -> usize {
-        self.prims.len()
+        self.prims.len() + self.direct.len()
     }
 
     /// The nearest primitive hit by `ray` in (0, t_max), and its distance.
@@ -92,18 +111,25 @@ impl Accel {
                 best = Some((PrimRef { object, index: 0 }, t));
             }
         }
-        if let Some(bvh) = &self.bvh {
-            let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_best);
-            let mut hit = obvhs::ray::RayHit::none();
-            let found = bvh.ray_traverse(obv_ray, &mut hit, |r, id| {
-                let p = self.prims[id];
-                shapes[p.object as usize]
-                    .intersect_t(p.index, ray, r.tmax)
-                    .unwrap_or(f32::INFINITY)
-            });
-            if found {
-                best = Some((self.prims[hit.primitive_id as usize], hit.t));
+        for &p in &self.direct {
+            if let Some(t) = shapes[p.object as usize].intersect_t(p.index, ray, t_best) {
+                t_best = t;
+                best = Some((p, t));
             }
+        }
+        let Some(bvh) = &self.bvh else {
+            return best;
+        };
+        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_best);
+        let mut hit = obvhs::ray::RayHit::none();
+        let found = bvh.ray_traverse(obv_ray, &mut hit, |r, id| {
+            let p = self.prims[id];
+            shapes[p.object as usize]
+                .intersect_t(p.index, ray, r.tmax)
+                .unwrap_or(f32::INFINITY)
+        });
+        if found {
+            best = Some((self.prims[hit.primitive_id as usize], hit.t));
         }
         best
     }
@@ -116,6 +142,11 @@ impl Accel {
             .unbounded
             .iter()
             .any(|&o| shapes[o as usize].intersect_t(0, ray, t_max).is_some())
+            || self.direct.iter().any(|p| {
+                shapes[p.object as usize]
+                    .intersect_t(p.index, ray, t_max)
+                    .is_some()
+            })
         {
             return true;
         }
@@ -142,7 +173,7 @@ impl Accel {
     ) -> Option<(PrimRef, f32)> {
         let mut best: Option<(PrimRef, f32)> = None;
         let mut t_best = t_max;
-        let all = self.prims.iter().copied().chain(
+        let all = self.prims.iter().chain(&self.direct).copied().chain(
             self.unbounded
                 .iter()
                 .map(|&object| PrimRef { object, index: 0 }),

@@ -77,10 +77,11 @@ impl Shape {
         }
     }
 
-    /// The full hit record of primitive `index` at distance `t` along `ray`.
-    pub fn surface_hit(&self, index: u32, ray: &Ray, t: f32) -> SurfaceHit {
+    /// The full hit record of primitive `index` at distance `t` along `ray`; surface
+    /// coordinates only `with_uv` where they cost extra (spheres), else zero.
+    pub fn surface_hit(&self, index: u32, ray: &Ray, t: f32, with_uv: bool) -> SurfaceHit {
         match self {
-            Shape::Sphere(s) => s.surface_hit(ray, t),
+            Shape::Sphere(s) => s.surface_hit(ray, t, with_uv),
             Shape::Quad(q) => q.surface_hit(ray, t),
             Shape::Plane(p) => p.surface_hit(ray, t),
             Shape::Mesh(m) => m.surface_hit(index as usize, ray, t),

@@ -74,15 +74,20 @@ impl Sphere {
     }
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
-    pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
+    pub fn surface_hit(&self, ray: &Ray, t: f32, with_uv: bool) -> SurfaceHit {
         let center = self.center_at(ray.time);
         let n = (ray.at(t) - center).normalize();
         let p = center + self.radius * n;
-        // Longitude around +y and colatitude from +y, each in [0, 1].
-        let uv = Vec2::new(
-            0.5 + n.z.atan2(n.x) / (2.0 * PI),
-            n.y.clamp(-1.0, 1.0).acos() / PI,
-        );
+        // Longitude around +y and colatitude from +y, each in [0, 1]; only for textures
+        // (atan2 and acos cost as much as the intersection).
+        let uv = if with_uv {
+            Vec2::new(
+                0.5 + n.z.atan2(n.x) / (2.0 * PI),
+                n.y.clamp(-1.0, 1.0).acos() / PI,
+            )
+        } else {
+            Vec2::ZERO
+        };
         SurfaceHit {
             t,
             p,
@@ -246,7 +251,7 @@ mod tests {
             .is_none()
         );
         assert!(s.intersect_t(&ray, 3.9).is_none());
-        let hit = s.surface_hit(&ray, 4.0);
+        let hit = s.surface_hit(&ray, 4.0, true);
         assert!((hit.p - Vec3::new(0.0, 0.0, -4.0)).length() < 1e-6);
         assert!((hit.n_geom - Vec3::Z).length() < 1e-6);
     }

@@ -217,6 +217,17 @@ impl Material {
         }
     }
 
+    /// Whether its scattering reads surface coordinates (a checker texture).
+    pub fn uses_uv(&self) -> bool {
+        let textured = |t: &Texture| !matches!(t, Texture::Solid(_));
+        match self {
+            Material::Diffuse(d) => textured(&d.albedo),
+            Material::Glazed(g) => textured(&g.base),
+            Material::Emissive(e) => textured(&e.radiance),
+            Material::Mirror(_) | Material::Glossy(_) | Material::Dielectric(_) => false,
+        }
+    }
+
     /// The Phong exponent the `phong_exponent` parameter replaces, if this is glossy.
     pub fn phong_exponent(&self) -> Option<f32> {
         match self {

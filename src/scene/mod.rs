@@ -169,6 +169,8 @@ pub struct Scene {
     /// Index of refraction of the surrounding medium.
     pub medium_ior: f32,
     accel: Accel,
+    // Whether each object's material reads surface coordinates (a texture).
+    object_uses_uv: Vec<bool>,
 }
 
 impl Scene {
@@ -183,7 +185,12 @@ impl Scene {
             shapes.push(o.shape);
         }
         let accel = Accel::build(&shapes);
-        let (material_names, materials) = desc.materials.into_iter().unzip();
+        let (material_names, materials): (Vec<String>, Vec<Material>) =
+            desc.materials.into_iter().unzip();
+        let object_uses_uv = object_materials
+            .iter()
+            .map(|&m| materials.get(m as usize).is_some_and(Material::uses_uv))
+            .collect();
         Scene {
             name: desc.name,
             description: desc.description,
@@ -196,6 +203,7 @@ impl Scene {
             material_names,
             object_names,
             object_materials,
+            object_uses_uv,
             shapes,
             lights: desc.lights,
             ambient: desc.ambient,
@@ -336,7 +344,7 @@ impl Scene {
     fn hit_record(&self, prim: PrimRef, ray: &Ray, t: f32) -> Hit {
         let o = prim.object as usize;
         Hit {
-            surface: self.shapes[o].surface_hit(prim.index, ray, t),
+            surface: self.shapes[o].surface_hit(prim.index, ray, t, self.object_uses_uv[o]),
             object: prim.object,
             material: self.object_materials[o],
         }

@@ -55,6 +55,10 @@ impl Media {
 /// exp(−σ t) per channel; exactly 1 where σ = 0 (even for t = ∞).
 #[inline]
 pub(super) fn transmittance(sigma: Color, t: f32) -> Color {
+    // Nothing absorbs along most rays: no exp for them.
+    if sigma == Color::ZERO {
+        return Color::ONE;
+    }
     Color::select(sigma.cmpeq(Color::ZERO), Color::ONE, (-sigma * t).exp())
 }
 
