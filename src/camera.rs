@@ -42,11 +42,23 @@ pub struct CameraSample {
 }
 
 impl CameraSample {
-    /// Draws the camera's dimensions from `u`.
-    pub fn draw(u: &mut impl Uniform) -> CameraSample {
+    /// Draws the camera's dimensions from `u`. Without a `lens` (a pinhole) or a `shutter`
+    /// interval their numbers cannot change the ray: their dimensions are skipped, not
+    /// computed, and read as 0.
+    pub fn draw(u: &mut impl Uniform, lens: bool, shutter: bool) -> CameraSample {
         let pixel = u.next_2d();
-        let lens = u.next_2d();
-        let time = u.next_1d();
+        let lens = if lens {
+            u.next_2d()
+        } else {
+            u.skip(1);
+            Vec2::ZERO
+        };
+        let time = if shutter {
+            u.next_1d()
+        } else {
+            u.skip(1);
+            0.0
+        };
         CameraSample { pixel, lens, time }
     }
 }
@@ -135,6 +147,12 @@ impl Camera {
 }
 
 impl CameraFrame {
+    /// The camera sample for a ray of this frame: the lens and time drawn only where the
+    /// frame has a lens and an open shutter.
+    pub fn draw_sample(&self, u: &mut impl Uniform) -> CameraSample {
+        CameraSample::draw(u, self.aperture > 0.0, self.shutter.1 > self.shutter.0)
+    }
+
     /// The eye ray through `film`, the image position with (0, 0) at the top-left corner and
     /// (1, 1) at the bottom-right, from lens sample `lens` (unit square), at time sample
     /// `time_u` (unit interval, mapped onto the shutter).

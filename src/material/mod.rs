@@ -251,6 +251,7 @@ pub(crate) mod test_util {
         fn next_2d(&mut self) -> Vec2 {
             Vec2::new(self.0.remove(0), self.0.remove(0))
         }
+        fn skip(&mut self, _n: u32) {}
     }
 
     /// A ray arriving from the outside at `theta` degrees from the normal +Y, in air.

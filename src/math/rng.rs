@@ -87,13 +87,20 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
 /// positions). That superset sum runs over the 5 bits of a position in 5 shift-xor steps.
 #[inline]
 pub fn sobol_2d(index: u32) -> (u32, u32) {
+    (index.reverse_bits(), pascal(index).reverse_bits())
+}
+
+/// The second Sobol dimension before its bit reversal: the Pascal matrix mod 2 applied to
+/// `index` (Lucas's theorem), in five steps.
+#[inline]
+fn pascal(index: u32) -> u32 {
     let mut y = index;
     y ^= (y >> 1) & 0x5555_5555;
     y ^= (y >> 2) & 0x3333_3333;
     y ^= (y >> 4) & 0x0f0f_0f0f;
     y ^= (y >> 8) & 0x00ff_00ff;
     y ^= (y >> 16) & 0x0000_ffff;
-    (index.reverse_bits(), y.reverse_bits())
+    y
 }
 
 /// A 32-bit fraction to a float in [0, 1) (its top 24 bits, exact in f32).
@@ -153,6 +160,8 @@ pub struct SampleStream {
     // Samples per pixel the pattern is laid out for (regular, jittered).
     count: u32,
     sample: u32,
+    // The sample number's bits reversed, for the Owen scrambling of Sobol indices.
+    sample_reversed: u32,
     // Mixes seed and pixel: every dimension's permutation and scramble derive from it.
     pixel_key: u64,
     // Mixes seed, pixel and sample: the random numbers derive from it.
@@ -178,6 +187,7 @@ impl SampleStream {
             pattern,
             count: spp.max(1),
             sample,
+            sample_reversed: sample.reverse_bits(),
             pixel_key,
             sample_key: mix64(pixel_key ^ (sample as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03)),
             dim: 0,
@@ -207,12 +217,15 @@ impl SampleStream {
     #[inline]
     fn sobol_pair(&self) -> Vec2 {
         let key = self.dimension_key();
-        let index = owen_scramble(self.sample, key as u32);
-        let (x, y) = sobol_2d(index);
         let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
+        // In full: index = owen_scramble(sample, key), (x, y) = sobol_2d(index), then each
+        // Owen-scrambled. With owen_scramble(v, s) = rev(LK(rev(v), s)) and sobol_2d(i) =
+        // (rev(i), rev(pascal(i))), the bit reversals cancel in pairs: 3 instead of 8,
+        // the same bits.
+        let index = laine_karras(self.sample_reversed, key as u32).reverse_bits();
         Vec2::new(
-            fraction_to_f32(owen_scramble(x, sx)),
-            fraction_to_f32(owen_scramble(y, sy)),
+            fraction_to_f32(laine_karras(index, sx).reverse_bits()),
+            fraction_to_f32(laine_karras(pascal(index), sy).reverse_bits()),
         )
     }
 
@@ -278,6 +291,9 @@ pub trait Uniform {
     fn next_1d(&mut self) -> f32;
     /// The next two dimensions, jointly stratified where the source can.
     fn next_2d(&mut self) -> Vec2;
+    /// Passes over `n` draws (of either kind) whose numbers would go unused, keeping the
+    /// draws after them where they were.
+    fn skip(&mut self, n: u32);
 }
 
 impl Uniform for SampleStream {
@@ -288,6 +304,10 @@ impl Uniform for SampleStream {
     #[inline]
     fn next_2d(&mut self) -> Vec2 {
         SampleStream::next_2d(self)
+    }
+    #[inline]
+    fn skip(&mut self, n: u32) {
+        self.dim += n;
     }
 }
 
@@ -429,6 +449,26 @@ mod tests {
                 cov.abs() < 4.0 / (12.0 * (n as f64).sqrt()),
                 "{pattern:?}: covariance {cov}"
             );
+        }
+    }
+
+    #[test]
+    fn the_sobol_shortcut_equals_the_long_form() {
+        for pixel in 0..4 {
+            for sample in [0, 1, 2, 3, 7, 100, 1023, 65_537] {
+                let mut st = SampleStream::with_pattern(Pattern::Sobol, 16, 3, pixel, sample);
+                for _ in 0..6 {
+                    let key = st.dimension_key();
+                    let index = owen_scramble(sample, key as u32);
+                    let (x, y) = sobol_2d(index);
+                    let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
+                    let long = Vec2::new(
+                        fraction_to_f32(owen_scramble(x, sx)),
+                        fraction_to_f32(owen_scramble(y, sy)),
+                    );
+                    assert_eq!(st.next_2d(), long, "pixel {pixel}, sample {sample}");
+                }
+            }
         }
     }
 }

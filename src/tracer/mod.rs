@@ -12,7 +12,7 @@ mod record;
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
 
-use crate::camera::{Camera, CameraFrame, CameraSample};
+use crate::camera::{Camera, CameraFrame};
 use crate::light::Light;
 use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
@@ -202,7 +202,7 @@ impl<'a> Tracer<'a> {
         let mut rng =
             SampleStream::with_pattern(p.pattern, p.spp, p.seed, y * self.width + x, sample);
         // The camera's dimensions first, then the tree's own.
-        let cs = CameraSample::draw(&mut rng);
+        let cs = self.frame.draw_sample(&mut rng);
         let film = Vec2::new(
             (x as f32 + cs.pixel.x) / self.width as f32,
             (y as f32 + cs.pixel.y) / self.height as f32,

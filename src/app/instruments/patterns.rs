@@ -16,7 +16,11 @@ pub(crate) fn sample_pattern_ui(
     let mut lens = Vec::new();
     let mut time = Vec::new();
     for s in 0..n {
-        let cs = CameraSample::draw(&mut SampleStream::with_pattern(pattern, spp, seed, 0, s));
+        let cs = CameraSample::draw(
+            &mut SampleStream::with_pattern(pattern, spp, seed, 0, s),
+            true,
+            true,
+        );
         pixel.push(cs.pixel);
         lens.push(concentric_disk(cs.lens));
         time.push(cs.time);
