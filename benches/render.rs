@@ -1,7 +1,10 @@
-//! Rays per second on the default scene and on a million-triangle mesh, and BVH build time.
+//! Samples and rays per second on (a) the default scene, (b) a glass sphere before an
+//! emitting checkerboard, (c) three emitting checkerboards through a thin lens and (d) a
+//! million-triangle mesh, each on one thread and on all; and the BVH build time.
 //!
-//! `cargo bench` (criterion). Throughput is in rays (elements/s = rays/s): every ray the
-//! pass traces, of every kind, counted once up front (the count is deterministic).
+//! `cargo bench` (criterion). Each 1-spp pass is timed twice, once counted in samples
+//! (elements/s = samples/s) and once in rays (every ray the pass traces, of every kind,
+//! counted up front: the count is deterministic).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raylab::camera::Camera;
@@ -14,6 +17,7 @@ use raylab::render::render;
 use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
 use std::f32::consts::PI;
 use std::hint::black_box;
+use std::time::Duration;
 
 const WIDTH: u32 = 480;
 const HEIGHT: u32 = 270;
@@ -93,7 +97,9 @@ fn mesh_scene(mesh: Mesh) -> SceneDesc {
     }
 }
 
-fn rays_per_second(c: &mut Criterion, name: &str, scene: &Scene) {
+/// Samples per second and rays per second of 1-spp passes over `scene`, on one thread and
+/// on all of them.
+fn throughput(c: &mut Criterion, name: &str, scene: &Scene) {
     let params = Params {
         spp: 1,
         ..scene.params.clone()
@@ -102,18 +108,45 @@ fn rays_per_second(c: &mut Criterion, name: &str, scene: &Scene) {
         .expect("no cancel")
         .1
         .total_rays();
+    let samples = u64::from(WIDTH * HEIGHT);
+    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut group = c.benchmark_group(name);
     group.sample_size(10);
-    group.throughput(Throughput::Elements(rays));
-    group.bench_function(format!("1spp_{WIDTH}x{HEIGHT}"), |b| {
-        b.iter(|| black_box(render(scene, &params, WIDTH, HEIGHT, &()).expect("no cancel")))
-    });
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+    for threads in [1, all] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a thread pool");
+        for (what, count) in [("samples", samples), ("rays", rays)] {
+            group.throughput(Throughput::Elements(count));
+            let id = format!("{what}/{threads}_threads/1spp_{WIDTH}x{HEIGHT}");
+            group.bench_function(id, |b| {
+                b.iter(|| {
+                    pool.install(|| {
+                        black_box(render(scene, &params, WIDTH, HEIGHT, &()).expect("no cancel"))
+                    })
+                })
+            });
+        }
+    }
     group.finish();
+}
+
+/// A benchmark scene of benches/.
+fn bench_scene(file: &str) -> Scene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("benches")
+        .join(file);
+    Scene::load_file(&path).expect("benchmark scene")
 }
 
 fn benches(c: &mut Criterion) {
     let default = Scene::load("default").expect("built-in scene");
-    rays_per_second(c, "default_scene", &default);
+    throughput(c, "a_default_scene", &default);
+    throughput(c, "b_specular", &bench_scene("specular.toml"));
+    throughput(c, "c_thin_lens", &bench_scene("thin-lens.toml"));
 
     let mesh = bumpy_sphere(1000, 500);
     assert!(mesh.triangle_count() >= 1_000_000);
@@ -130,7 +163,7 @@ fn benches(c: &mut Criterion) {
     });
     group.finish();
     let scene = Scene::new(desc, SceneSource::Code);
-    rays_per_second(c, "million_triangles", &scene);
+    throughput(c, "d_million_triangles", &scene);
 }
 
 criterion_group!(render_benches, benches);
