@@ -432,9 +432,10 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         ..scene.params.clone()
     };
     println!(
-        "raylab bench: {} at {width}x{height}, {} worker threads, {} cores",
+        "raylab bench: {} at {width}x{height}, {} worker thread{}, {} cores",
         scene.name,
         config.threads,
+        if config.threads == 1 { "" } else { "s" },
         std::thread::available_parallelism().map_or(1, |n| n.get())
     );
 
@@ -479,7 +480,6 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
             ..params.clone()
         },
     );
-    print_drag(&drag);
     // Shutdown in the middle of a pass: the workers stop at their next pixel.
     let start = Instant::now();
     engine.shutdown();
@@ -493,6 +493,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         at(1.0),
         latencies.len()
     );
+    print_drag(&drag);
     println!("shutdown mid-pass: {shutdown_ms:.1} ms");
 
     // A full-resolution pass of one sample per pixel, on the same number of threads.

@@ -9,7 +9,7 @@
 //! next pixel and stop, and every frame is tagged with the generation it belongs to, so
 //! no frame mixes samples of two.
 
-use super::{Film, PassObserver, render_pass, render_preview};
+use super::{Film, Frame, PassObserver, Progress, render_pass, render_preview};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::params::Params;
@@ -55,72 +55,6 @@ impl EngineConfig {
 
 fn cores() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
-/// How far the current generation has got.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Progress {
-    /// Samples per pixel in the film.
-    pub spp: u32,
-    /// Samples per pixel it stops at; `None` runs on without end.
-    pub target: Option<u32>,
-    /// Time since the generation started.
-    pub elapsed: Duration,
-    /// Rays traced per second by the full-resolution passes.
-    pub rays_per_second: f64,
-    /// Estimated time to reach the target.
-    pub eta: Option<Duration>,
-    /// Estimated noise relative to the image's brightness (see [`Film::noise`]).
-    pub noise: Option<f32>,
-    /// What the tracer did in this generation.
-    pub stats: Stats,
-    /// Whether refinement is paused.
-    pub paused: bool,
-}
-
-impl Progress {
-    /// Whether the target has been reached.
-    pub fn done(&self) -> bool {
-        self.target.is_some_and(|t| self.spp >= t)
-    }
-}
-
-/// One image of a generation: a coarse preview, or the film after a pass.
-#[derive(Clone, Debug)]
-pub struct Frame {
-    /// The generation it belongs to.
-    pub generation: u64,
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Linear mean radiance, row-major from the top left: every pixel after a pass; for a
-    /// preview, one value per block ([`Frame::grid_size`]), to be stretched over the image
-    /// with bilinear filtering. Every pixel changes from one frame to the next (a pass adds
-    /// samples to all of them), so frames are whole.
-    pub pixels: Arc<Vec<Color>>,
-    /// Rays traced per sample in every pixel (the cost heat map); empty for a preview.
-    pub cost: Arc<Vec<f32>>,
-    /// A preview's block side (one sample per block, upsampled): 8, 4 or 2; 1 for the
-    /// film after a pass.
-    pub block: u32,
-    /// Progress at this frame.
-    pub progress: Progress,
-}
-
-impl Frame {
-    /// Whether this is a preview (one sample per block), not the film after a pass.
-    pub fn is_preview(&self) -> bool {
-        self.block > 1
-    }
-
-    /// The size of `pixels`: the image's for a pass, its blocks' for a preview.
-    pub fn grid_size(&self) -> (u32, u32) {
-        (
-            self.width.div_ceil(self.block),
-            self.height.div_ceil(self.block),
-        )
-    }
 }
 
 /// The engine cannot start.
