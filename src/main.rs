@@ -12,6 +12,27 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// Writes a line to stdout. When the reader has gone (`raylab params | head`), the program
+/// ends quietly instead of panicking on the closed pipe.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if writeln!(std::io::stdout(), $($arg)*).is_err() {
+            std::process::exit(0);
+        }
+    }};
+}
+
+/// Like `say!`, without the newline.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        if write!(std::io::stdout(), $($arg)*).is_err() {
+            std::process::exit(0);
+        }
+    }};
+}
+
 #[derive(Parser)]
 #[command(
     name = "raylab",
@@ -199,7 +220,7 @@ fn main() -> ExitCode {
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Scenes) => scenes_command(),
         Some(Command::Params { markdown }) => {
-            print!(
+            say_raw!(
                 "{}",
                 if markdown {
                     raylab::params::markdown_table()
@@ -216,6 +237,13 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of our output has gone (`raylab fresnel | head`): nothing went wrong.
+        Err(e)
+            if e.downcast_ref::<std::io::Error>()
+                .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) =>
+        {
+            ExitCode::SUCCESS
+        }
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(2)
@@ -431,7 +459,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         spp: 1 << 16,
         ..scene.params.clone()
     };
-    println!(
+    say!(
         "raylab bench: {} at {width}x{height}, {} worker thread{}, {} cores",
         scene.name,
         config.threads,
@@ -486,7 +514,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
     let shutdown_ms = start.elapsed().as_secs_f64() * 1e3;
     latencies.sort_by(f64::total_cmp);
     let at = |q: f64| latencies[((latencies.len() - 1) as f64 * q).round() as usize];
-    println!(
+    say!(
         "change -> first frame: median {:.2} ms, p95 {:.2} ms, max {:.2} ms ({} changes)",
         at(0.5),
         at(0.95),
@@ -494,7 +522,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         latencies.len()
     );
     print_drag(&drag);
-    println!("shutdown mid-pass: {shutdown_ms:.1} ms");
+    say!("shutdown mid-pass: {shutdown_ms:.1} ms");
 
     // A full-resolution pass of one sample per pixel, on the same number of threads.
     let pool = rayon::ThreadPoolBuilder::new()
@@ -512,7 +540,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
     }
     times.sort_by(f64::total_cmp);
     let pass = times[times.len() / 2];
-    println!(
+    say!(
         "1-spp pass: {:.1} ms (median of 5), {:.2} M rays, {:.2} M rays/s",
         pass * 1e3,
         rays as f64 / 1e6,
@@ -535,10 +563,10 @@ fn print_drag(drag: &raylab::render::DragReport) {
     blocks.sort_unstable();
     let (Some(first_med), Some(block_med)) = (ms.get(ms.len() / 2), blocks.get(blocks.len() / 2))
     else {
-        println!("drag: no frames");
+        say!("drag: no frames");
         return;
     };
-    println!(
+    say!(
         "drag (a change every 16 ms for 2 s, {} changes): first frame median {first_med:.2} ms, \
          worst {:.2} ms, {missed} without one; level shown median {block_med}x{block_med}, \
          coarsest {b}x{b}; at most {} generation(s) behind",
@@ -551,7 +579,7 @@ fn print_drag(drag: &raylab::render::DragReport) {
 
 fn scenes_command() -> Result<()> {
     for b in BUILTIN_SCENES {
-        println!("{:<28} {} (built in)", b.name, b.description());
+        say!("{:<28} {} (built in)", b.name, b.description());
     }
     let dir = Path::new("scenes");
     let Ok(entries) = std::fs::read_dir(dir) else {
@@ -567,7 +595,7 @@ fn scenes_command() -> Result<()> {
             Ok(text) => raylab::scene::describe(&text).unwrap_or_else(|| "(no description)".into()),
             Err(e) => format!("(unreadable: {e})"),
         };
-        println!("{:<28} {description}", f.display());
+        say!("{:<28} {description}", f.display());
     }
     Ok(())
 }

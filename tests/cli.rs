@@ -398,3 +398,23 @@ fn params_prints_every_parameter_with_its_default_and_range() {
         raylab::params::markdown_table()
     );
 }
+
+#[test]
+fn a_reader_that_stops_early_ends_the_program_quietly() {
+    // `raylab fresnel --step 0.01 | head -1`: 9001 rows, far more than a pipe holds, and
+    // nobody reads them: the program must end without a panic or an error.
+    let dir = tempfile::tempdir().unwrap();
+    for args in [&["fresnel", "--step", "0.01"][..], &["params"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .current_dir(dir.path())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("the binary runs");
+        drop(child.stdout.take());
+        let o = child.wait_with_output().unwrap();
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
+    }
+}
