@@ -521,7 +521,7 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         at(1.0),
         latencies.len()
     );
-    print_drag(&drag);
+    say!("{}", drag.summary());
     say!("shutdown mid-pass: {shutdown_ms:.1} ms");
 
     // A full-resolution pass of one sample per pixel, on the same number of threads.
@@ -547,34 +547,6 @@ fn bench_command(args: &BenchArgs) -> Result<()> {
         rays as f64 / pass / 1e6
     );
     Ok(())
-}
-
-/// The drag simulation's figures: first-frame latency, the level shown, how stale.
-fn print_drag(drag: &raylab::render::DragReport) {
-    let mut ms: Vec<f64> = drag
-        .first_frame
-        .iter()
-        .flatten()
-        .map(|d| d.as_secs_f64() * 1e3)
-        .collect();
-    ms.sort_by(f64::total_cmp);
-    let missed = drag.first_frame.len() - ms.len();
-    let mut blocks = drag.block_shown.clone();
-    blocks.sort_unstable();
-    let (Some(first_med), Some(block_med)) = (ms.get(ms.len() / 2), blocks.get(blocks.len() / 2))
-    else {
-        say!("drag: no frames");
-        return;
-    };
-    say!(
-        "drag (a change every 16 ms for 2 s, {} changes): first frame median {first_med:.2} ms, \
-         worst {:.2} ms, {missed} without one; level shown median {block_med}x{block_med}, \
-         coarsest {b}x{b}; at most {} generation(s) behind",
-        drag.first_frame.len(),
-        ms.last().copied().unwrap_or_default(),
-        drag.generations_behind.iter().max().copied().unwrap_or(0),
-        b = blocks.last().copied().unwrap_or(0),
-    );
 }
 
 fn scenes_command() -> Result<()> {

@@ -17,6 +17,37 @@ pub struct DragReport {
     pub generations_behind: Vec<u64>,
 }
 
+impl DragReport {
+    /// One line: first-frame latency (median, worst, changes without a frame), the level
+    /// shown (median, coarsest) and how many generations behind the shown frame was.
+    pub fn summary(&self) -> String {
+        let mut ms: Vec<f64> = self
+            .first_frame
+            .iter()
+            .flatten()
+            .map(|d| d.as_secs_f64() * 1e3)
+            .collect();
+        ms.sort_by(f64::total_cmp);
+        let mut blocks = self.block_shown.clone();
+        blocks.sort_unstable();
+        let (Some(median_ms), Some(median_block)) =
+            (ms.get(ms.len() / 2), blocks.get(blocks.len() / 2))
+        else {
+            return "drag: no frames".into();
+        };
+        format!(
+            "drag ({} changes, one every 16 ms): first frame median {median_ms:.2} ms, worst \
+             {:.2} ms, {} without one; level shown median {median_block}x{median_block}, \
+             coarsest {b}x{b}; at most {} generation(s) behind",
+            self.first_frame.len(),
+            ms.last().copied().unwrap_or_default(),
+            self.first_frame.len() - ms.len(),
+            self.generations_behind.iter().max().copied().unwrap_or(0),
+            b = blocks.last().copied().unwrap_or(0),
+        )
+    }
+}
+
 /// Changes `engine`'s parameters every `tick` for `duration` (`change(i)` gives the i-th
 /// parameters), and records at the end of each tick the newest frame the engine sent, as
 /// the window would show it.
