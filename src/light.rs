@@ -132,13 +132,58 @@ impl Light {
         }
     }
 
+    /// This light ready to be sampled and hit many times.
+    pub fn prepare(&self) -> PreparedLight {
+        let quad = match &self.shape {
+            LightShape::Rect {
+                center,
+                edge_u,
+                edge_v,
+            } => {
+                let (u, v) = (*edge_u * self.scale, *edge_v * self.scale);
+                Some(Quad::new(*center - 0.5 * (u + v), u, v))
+            }
+            _ => None,
+        };
+        PreparedLight {
+            area: self.area(),
+            normal: self.normal(),
+            radiance: self.radiance(),
+            quad,
+            light: self.clone(),
+        }
+    }
+
+    /// A direction towards the light from `p` (see [`PreparedLight::sample`]).
+    pub fn sample(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
+        self.prepare().sample(p, u)
+    }
+
+    /// Where `ray` meets the light (see [`PreparedLight::hit`]).
+    pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<(f32, Color)> {
+        self.prepare().hit(ray, t_max)
+    }
+}
+
+/// A light with what every sample and hit needs computed once for its scale: its area,
+/// emitting side, radiance and (for a rectangle) its quad. The tracer keeps its lights so.
+#[derive(Clone, Debug)]
+pub struct PreparedLight {
+    light: Light,
+    area: f32,
+    normal: Option<Vec3>,
+    radiance: Color,
+    quad: Option<Quad>,
+}
+
+impl PreparedLight {
     /// A direction towards the light from `p`, from the uniform pair `u`: a uniform point
     /// on a rectangle or disk (density 1/A per area, so d²/(A cos θ_l) per solid angle), a
     /// uniform direction in the cone a sphere subtends, or the point itself. `None` when
     /// `p` sees only the back of the light, or is inside it.
     pub fn sample(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
-        let s = self.scale;
-        let (q, normal) = match &self.shape {
+        let s = self.light.scale;
+        let (q, normal) = match &self.light.shape {
             LightShape::Sphere { center, radius } if radius * s > 0.0 => {
                 return self.sample_sphere(p, *center, radius * s, u);
             }
@@ -149,7 +194,7 @@ impl Light {
                 edge_v,
             } => (
                 *center + s * ((u.x - 0.5) * *edge_u + (u.y - 0.5) * *edge_v),
-                self.normal(),
+                self.normal,
             ),
             LightShape::Disk {
                 center,
@@ -171,12 +216,12 @@ impl Light {
         if cos_l <= 0.0 {
             return None;
         }
-        let area = self.area();
+        let area = self.area;
         // Per solid angle the area density 1/A becomes d² / (A cos θ_l); L A = intensity.
         let value = if area > 0.0 {
-            self.radiance() * (area * cos_l / (dist * dist))
+            self.radiance * (area * cos_l / (dist * dist))
         } else {
-            self.intensity * (cos_l / (dist * dist))
+            self.light.intensity * (cos_l / (dist * dist))
         };
         Some(LightSample { dir, dist, value })
     }
@@ -202,28 +247,19 @@ impl Light {
         Some(LightSample {
             dir,
             dist,
-            value: self.radiance() * (2.0 * PI * (1.0 - cos_max)),
+            value: self.radiance * (2.0 * PI * (1.0 - cos_max)),
         })
     }
 
     /// Where `ray` meets the light's emitting surface before `t_max`, and the radiance it
     /// sees there (black from behind a rectangle or disk). Points are never hit.
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<(f32, Color)> {
-        if self.area() <= 0.0 {
+        if self.area <= 0.0 {
             return None;
         }
-        let s = self.scale;
-        let t = match &self.shape {
-            LightShape::Rect {
-                center,
-                edge_u,
-                edge_v,
-            } => {
-                let (u, v) = (*edge_u * s, *edge_v * s);
-                Quad::new(*center - 0.5 * (u + v), u, v)
-                    .intersect_t(ray, t_max)?
-                    .0
-            }
+        let s = self.light.scale;
+        let t = match &self.light.shape {
+            LightShape::Rect { .. } => self.quad.as_ref()?.intersect_t(ray, t_max)?.0,
             LightShape::Disk {
                 center,
                 normal,
@@ -241,8 +277,8 @@ impl Light {
                 Sphere::new(*center, radius * s).intersect_t(ray, t_max)?
             }
         };
-        let front = self.normal().is_none_or(|n| ray.dir.dot(n) < 0.0);
-        Some((t, if front { self.radiance() } else { Color::ZERO }))
+        let front = self.normal.is_none_or(|n| ray.dir.dot(n) < 0.0);
+        Some((t, if front { self.radiance } else { Color::ZERO }))
     }
 }
 

@@ -13,7 +13,7 @@ pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
 
 use crate::camera::{Camera, CameraFrame};
-use crate::light::Light;
+use crate::light::PreparedLight;
 use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::params::{Params, TreeMode};
@@ -136,8 +136,8 @@ pub struct Tracer<'a> {
     params: &'a Params,
     // The scene's materials with the parameters' overrides (ior, fresnel, ...) applied.
     materials: Vec<Material>,
-    // The scene's lights at the parameters' light size.
-    lights: Vec<Light>,
+    // The scene's lights at the parameters' light size, prepared once.
+    lights: Vec<PreparedLight>,
     frame: CameraFrame,
     width: u32,
     height: u32,
@@ -168,7 +168,7 @@ impl<'a> Tracer<'a> {
             lights: scene
                 .lights
                 .iter()
-                .map(|l| l.scaled(params.light_size))
+                .map(|l| l.scaled(params.light_size).prepare())
                 .collect(),
             frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
             width,
