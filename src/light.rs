@@ -153,16 +153,6 @@ impl Light {
             light: self.clone(),
         }
     }
-
-    /// A direction towards the light from `p` (see [`PreparedLight::sample`]).
-    pub fn sample(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
-        self.prepare().sample(p, u)
-    }
-
-    /// Where `ray` meets the light (see [`PreparedLight::hit`]).
-    pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<(f32, Color)> {
-        self.prepare().hit(ray, t_max)
-    }
 }
 
 /// A light with what every sample and hit needs computed once for its scale: its area,
@@ -314,6 +304,7 @@ mod tests {
 
     /// The irradiance estimate at `p` (normal `n`) from `samples` samples of `light`.
     fn irradiance(light: &Light, p: Vec3, n: Vec3, samples: u32) -> f64 {
+        let light = light.prepare();
         let mut sum = 0.0f64;
         for i in 0..samples {
             let u =
@@ -349,6 +340,7 @@ mod tests {
         // From behind, nothing.
         assert!(
             light
+                .prepare()
                 .sample(Vec3::new(0.0, 5.0, 0.0), Vec2::splat(0.5))
                 .is_none()
         );
@@ -382,19 +374,22 @@ mod tests {
             scale: 0.0,
         };
         // edge_u × edge_v = x × z = −y: it shines down.
-        let s = rect.sample(Vec3::ZERO, Vec2::splat(0.3)).unwrap();
+        let point = rect.prepare();
+        let s = point.sample(Vec3::ZERO, Vec2::splat(0.3)).unwrap();
         assert!((s.value.x - 4.0 / 4.0).abs() < 1e-6 && (s.dir - Vec3::Y).length() < 1e-6);
         assert!(
-            rect.sample(Vec3::new(0.0, 4.0, 0.0), Vec2::splat(0.3))
+            point
+                .sample(Vec3::new(0.0, 4.0, 0.0), Vec2::splat(0.3))
                 .is_none()
         );
         assert!(
-            rect.hit(&Ray::new(Vec3::ZERO, Vec3::Y, 0.0), f32::INFINITY)
+            point
+                .hit(&Ray::new(Vec3::ZERO, Vec3::Y, 0.0), f32::INFINITY)
                 .is_none(),
             "a point is never hit"
         );
         // At size 1 it is seen from below, and is dark from above.
-        let big = rect.scaled(1.0);
+        let big = rect.scaled(1.0).prepare();
         let (t, l) = big
             .hit(&Ray::new(Vec3::ZERO, Vec3::Y, 0.0), f32::INFINITY)
             .unwrap();

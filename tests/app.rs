@@ -210,6 +210,11 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
         h.get_by_label(section).click();
         h.step();
     }
+    // Every parameter the table gives a slider has one in the panel, under the table's
+    // label (a name the panel misspelt would show the raw name instead).
+    for spec in raylab::params::TABLE.iter().filter(|s| s.slider.is_some()) {
+        h.get_by_role_and_label(Role::Slider, spec.label);
+    }
     // Each control's tooltip, found by a phrase of it, with its formula's glyphs.
     let tooltip = |h: &mut Harness<'static, RaylabApp>, phrase: &str| {
         h.run_steps(40);

@@ -276,12 +276,9 @@ impl RaylabApp {
     /// The cost heat map's scale: the smallest and largest rays per sample over both sides,
     /// so that the two sides of an A/B view are coloured alike.
     fn cost_scale(&self) -> Option<(f32, f32)> {
-        let frames = std::iter::once(self.main.frame())
-            .chain(self.compare.as_ref().map(|c| c.side.frame()))
+        std::iter::once(self.main.cost_range())
+            .chain(self.compare.as_ref().map(|c| c.side.cost_range()))
             .flatten()
-            .filter(|f| !f.cost.is_empty());
-        frames
-            .map(|f| instruments::cost_range(&f.cost))
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
     }
 
@@ -301,20 +298,23 @@ impl eframe::App for RaylabApp {
         self.receive_sheet();
         self.dropped_files(ctx);
         let told = self.told();
+        let params = &self.settings.params;
+        self.main.sync(&told, params);
+        self.main.receive();
+        if let Some(c) = &mut self.compare {
+            c.side.sync(&told, &c.kind.side_b(params));
+            c.side.receive();
+        }
+        // The heat map's scale from the frames just taken, for both sides alike.
         let cost = self
             .instruments
             .show_cost
             .then(|| self.cost_scale())
             .flatten();
-        let params = &self.settings.params;
-        for (side, p) in std::iter::once((&mut self.main, params.clone())).chain(
-            self.compare
-                .as_mut()
-                .map(|c| (&mut c.side, c.kind.side_b(params))),
-        ) {
-            side.sync(&told, &p);
-            side.receive();
-            side.upload(ctx, params.exposure, cost);
+        let exposure = self.settings.params.exposure;
+        self.main.upload(ctx, exposure, cost);
+        if let Some(c) = &mut self.compare {
+            c.side.upload(ctx, exposure, cost);
         }
         self.refresh_inspection();
         // Nothing here repaints by itself: an idle window sleeps until the engines, the

@@ -1,7 +1,7 @@
 //! One side of the view: an engine, what it was last told, its newest frame and the
 //! texture that shows it. The main view is one side; the A/B view's side B is another.
 
-use super::instruments::heat_map_rgba;
+use super::instruments::{cost_range, heat_map_rgba};
 use crate::camera::Camera;
 use crate::params::Params;
 use crate::render::{Engine, EngineConfig, EngineError, Frame, to_srgba8};
@@ -29,6 +29,8 @@ pub(crate) struct Side {
     // `None` after a new frame arrived.
     name: &'static str,
     shown: Option<(f32, Option<(f32, f32)>)>,
+    // The newest frame's fewest and most rays per sample, found once when it arrived.
+    cost_range: Option<(f32, f32)>,
     paused: bool,
 }
 
@@ -59,6 +61,7 @@ impl Side {
             texture: None,
             name,
             shown: None,
+            cost_range: None,
             paused: false,
         })
     }
@@ -94,6 +97,7 @@ impl Side {
     pub(crate) fn receive(&mut self) {
         if let Some(frame) = self.engine.frames().try_iter().last() {
             self.paused = frame.progress.paused;
+            self.cost_range = (!frame.cost.is_empty()).then(|| cost_range(&frame.cost));
             self.frame = Some(frame);
             self.shown = None;
         }
@@ -165,6 +169,11 @@ impl Side {
     /// The newest frame received.
     pub(crate) fn frame(&self) -> Option<&Frame> {
         self.frame.as_ref()
+    }
+
+    /// The newest frame's fewest and most rays per sample (none for a preview).
+    pub(crate) fn cost_range(&self) -> Option<(f32, f32)> {
+        self.cost_range
     }
 
     /// The texture showing it.
