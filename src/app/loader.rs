@@ -11,7 +11,7 @@ use std::time::{Duration, SystemTime};
 
 /// Why a scene is being loaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Purpose {
+pub(crate) enum LoadPurpose {
     /// Opened by the user: the scene's defaults replace the parameters.
     Open,
     /// Its file changed on disk: parameters the user changed are kept.
@@ -20,13 +20,13 @@ pub(crate) enum Purpose {
 
 /// A finished load.
 pub(crate) struct Loaded {
-    purpose: Purpose,
+    purpose: LoadPurpose,
     result: Result<Scene, SceneError>,
 }
 
 /// The watched file: its path, when it was last seen to change, and whether it is the scene
 /// shown (reload) or one that failed to open (open again).
-type Watched = Option<(PathBuf, Option<SystemTime>, Purpose)>;
+type Watched = Option<(PathBuf, Option<SystemTime>, LoadPurpose)>;
 
 /// Scenes loading on threads of their own, and the file watched for changes. A watcher
 /// thread reads the file's time stamp twice a second and wakes the window only when it
@@ -36,7 +36,7 @@ pub(crate) struct Loader {
     rx: Receiver<Loaded>,
     loading: usize,
     watched: Arc<Mutex<Watched>>,
-    changed: Receiver<(PathBuf, Purpose)>,
+    changed: Receiver<(PathBuf, LoadPurpose)>,
     // The file of the last Open, to watch if it fails.
     opening: Option<PathBuf>,
     // Woken when a load finishes or the watched file changes.
@@ -80,8 +80,8 @@ impl Loader {
     }
 
     /// Loads a scene file, built-in name or OBJ file on a thread of its own.
-    pub(crate) fn load(&mut self, reference: String, purpose: Purpose) {
-        if purpose == Purpose::Open {
+    pub(crate) fn load(&mut self, reference: String, purpose: LoadPurpose) {
+        if purpose == LoadPurpose::Open {
             self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
         }
         let tx = self.tx.clone();
@@ -106,7 +106,7 @@ impl Loader {
     /// Watches `scene`'s file, if it has one, to reload it when it changes.
     pub(crate) fn watch(&mut self, scene: &Scene) {
         self.set_watched(match &scene.source {
-            SceneSource::File(path) => Some((path.clone(), modified(path), Purpose::Reload)),
+            SceneSource::File(path) => Some((path.clone(), modified(path), LoadPurpose::Reload)),
             _ => None,
         });
     }
@@ -122,11 +122,11 @@ impl Loader {
     fn receive(&mut self) -> Option<Loaded> {
         let loaded = self.rx.try_recv().ok()?;
         self.loading = self.loading.saturating_sub(1);
-        if loaded.purpose == Purpose::Open
+        if loaded.purpose == LoadPurpose::Open
             && loaded.result.is_err()
             && let Some(path) = self.opening.take()
         {
-            self.set_watched(Some((path.clone(), modified(&path), Purpose::Open)));
+            self.set_watched(Some((path.clone(), modified(&path), LoadPurpose::Open)));
         }
         Some(loaded)
     }
@@ -135,7 +135,7 @@ impl Loader {
 impl RaylabApp {
     /// Loads a scene file, built-in name or OBJ file; it replaces the scene when loaded.
     pub fn open_scene(&mut self, reference: &str) {
-        self.loader.load(reference.to_string(), Purpose::Open);
+        self.loader.load(reference.to_string(), LoadPurpose::Open);
     }
 
     /// Takes the scenes that finished loading: a good one replaces the scene shown, a bad
@@ -153,7 +153,7 @@ impl RaylabApp {
             };
             let s = &mut self.settings;
             match loaded.purpose {
-                Purpose::Open => {
+                LoadPurpose::Open => {
                     s.params = scene.params.clone();
                     s.camera = scene.camera.clone();
                     let slide = self.lecture.arrived(&scene);
@@ -164,7 +164,7 @@ impl RaylabApp {
                         }
                     }
                 }
-                Purpose::Reload => {
+                LoadPurpose::Reload => {
                     s.params = merge_defaults(&s.params, &self.scene.params, &scene.params);
                     // A camera the user moved stays.
                     if s.camera == self.scene.camera {
@@ -173,8 +173,8 @@ impl RaylabApp {
                 }
             }
             let verb = match loaded.purpose {
-                Purpose::Open => "Opened",
-                Purpose::Reload => "Reloaded",
+                LoadPurpose::Open => "Opened",
+                LoadPurpose::Reload => "Reloaded",
             };
             self.toasts.info(format!("{verb} {}", scene.name));
             self.keep_side_a();

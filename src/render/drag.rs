@@ -8,6 +8,8 @@ use std::time::{Duration, Instant};
 /// What a drag showed, one entry per display frame.
 #[derive(Clone, Debug, Default)]
 pub struct DragReport {
+    /// The time between changes.
+    pub tick: Duration,
     /// Time from each change to the first frame of its generation; `None` where none came
     /// before the next change.
     pub first_frame: Vec<Option<Duration>>,
@@ -36,10 +38,11 @@ impl DragReport {
             return "drag: no frames".into();
         };
         format!(
-            "drag ({} changes, one every 16 ms): first frame median {median_ms:.2} ms, worst \
+            "drag ({} changes, one every {} ms): first frame median {median_ms:.2} ms, worst \
              {:.2} ms, {} without one; level shown median {median_block}x{median_block}, \
              coarsest {b}x{b}; at most {} generation(s) behind",
             self.first_frame.len(),
+            self.tick.as_millis(),
             ms.last().copied().unwrap_or_default(),
             self.first_frame.len() - ms.len(),
             self.generations_behind.iter().max().copied().unwrap_or(0),
@@ -57,7 +60,10 @@ pub fn simulate_drag(
     duration: Duration,
     change: impl Fn(u32) -> Params,
 ) -> DragReport {
-    let mut report = DragReport::default();
+    let mut report = DragReport {
+        tick,
+        ..DragReport::default()
+    };
     let mut shown: Option<Frame> = None;
     let start = Instant::now();
     let mut i = 0;
