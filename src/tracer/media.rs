@@ -10,7 +10,9 @@ pub const MAX_NESTING: usize = 8;
 /// scene's surrounding medium.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Media {
-    len: u8,
+    // A whole word, not a byte: the struct is copied at every hit, and a byte-wide
+    // increment followed by a word-wide copy stalls store-to-load forwarding.
+    len: u32,
     // (object, material) of each medium entered.
     items: [(u32, u32); MAX_NESTING],
 }
@@ -40,6 +42,14 @@ impl Media {
             self.len += 1;
         }
         self
+    }
+
+    /// The innermost medium's material once `object` is left, without building that stack.
+    pub(super) fn innermost_after_leaving(&self, object: u32) -> Option<u32> {
+        match self.active().iter().rposition(|&(o, _)| o == object) {
+            Some(i) if i + 1 == self.len as usize => i.checked_sub(1).map(|j| self.items[j].1),
+            _ => self.innermost(),
+        }
     }
 
     /// After leaving `object` (the innermost one, unless geometry overlaps).
@@ -76,6 +86,12 @@ mod tests {
         assert_eq!(m.left(3).left(5), Media::default());
         // Leaving what was never entered changes nothing.
         assert_eq!(m.left(9), m);
+        for object in [3, 5, 9] {
+            assert_eq!(
+                m.innermost_after_leaving(object),
+                m.left(object).innermost()
+            );
+        }
     }
 
     #[test]

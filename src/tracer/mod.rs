@@ -225,10 +225,10 @@ impl<'a> Tracer<'a> {
         self.trace_in(&ray, root, &Media::default(), &mut walk)
     }
 
-    /// The index of refraction of the medium a ray in `media` travels through.
-    fn ior_of(&self, media: &Media) -> f32 {
-        media
-            .innermost()
+    /// The index of refraction of the medium whose innermost dielectric is `innermost` (a
+    /// material), or of the scene's surrounding medium.
+    fn ior_of(&self, innermost: Option<u32>) -> f32 {
+        innermost
             .and_then(|m| self.materials[m as usize].dielectric())
             .map_or(self.scene.medium_ior, |d| d.ior)
     }
@@ -265,7 +265,7 @@ impl<'a> Tracer<'a> {
     }
 
     fn trace_in<R: Recorder>(&self, ray: &Ray, b: Branch, media: &Media, w: &mut Walk<R>) -> Color {
-        let id = w.rec.ray(b.node(ray, ray.at(100.0), End::Miss));
+        let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
         let sigma = media
             .innermost()
             .and_then(|m| self.materials[m as usize].dielectric())
@@ -282,14 +282,14 @@ impl<'a> Tracer<'a> {
         }
         let (radiance, end) = if let Some(radiance) = emitted {
             (transmittance(sigma, nearest) * radiance, End::LightHit)
-        } else if let Some(hit) = hit {
+        } else if let Some(hit) = &hit {
             // Beer–Lambert along the segment just travelled.
             let tr = transmittance(sigma, hit.surface.t);
             let b = Branch {
                 weight: b.weight * tr.max_element(),
                 ..b
             };
-            let (l, end) = self.shade(ray, &hit, b, id, media, w);
+            let (l, end) = self.shade(ray, hit, b, id, media, w);
             (tr * l, end)
         } else {
             let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
@@ -329,11 +329,11 @@ impl<'a> Tracer<'a> {
         } else {
             (-s.n_geom, -s.n_shade)
         };
-        // The media beyond the surface, should a ray cross it.
-        let beyond = if entering {
-            media.entered(hit.object, hit.material)
+        // The medium on the side the ray arrived from (once left, when inside).
+        let outside = if entering {
+            media.innermost()
         } else {
-            media.left(hit.object)
+            media.innermost_after_leaving(hit.object)
         };
         let at = Interaction {
             dir: ray.dir,
@@ -341,7 +341,7 @@ impl<'a> Tracer<'a> {
             n_geom,
             n_shade,
             entering,
-            outside_ior: self.ior_of(if entering { media } else { &beyond }),
+            outside_ior: self.ior_of(outside),
         };
         if w.rec.on() {
             let node_hit = NodeHit {
@@ -382,7 +382,7 @@ impl<'a> Tracer<'a> {
             if scatter.total_internal_reflection {
                 // The refracted branch that total internal reflection forbids.
                 let reflected = scatter.lobes().next().map_or(*ray, child_ray);
-                w.rec.ray(TreeNode {
+                w.rec.ray(|| TreeNode {
                     parent: Some(id),
                     kind: RayKind::Refract,
                     ray: reflected,
@@ -406,9 +406,18 @@ impl<'a> Tracer<'a> {
         }
         // Each child traced through the media on its side of the surface.
         let mut trace_child = |lobe: &Lobe, factor: f32, weight: f32, w: &mut Walk<R>| {
+            // Built only for a crossing ray: the stack is copied whole.
+            let beyond;
             let (kind, media) = match lobe.side {
                 Side::Reflect => (RayKind::Reflect, media),
-                Side::Transmit => (RayKind::Refract, &beyond),
+                Side::Transmit => {
+                    beyond = if entering {
+                        media.entered(hit.object, hit.material)
+                    } else {
+                        media.left(hit.object)
+                    };
+                    (RayKind::Refract, &beyond)
+                }
             };
             let child = Branch {
                 depth: b.depth + 1,
@@ -482,7 +491,7 @@ impl<'a> Tracer<'a> {
         };
         match why {
             Some(end) => {
-                w.rec.ray(b.node(ray, ray.origin, end));
+                w.rec.ray(|| b.node(ray, ray.origin, end));
                 Color::ZERO
             }
             None => {
@@ -534,7 +543,7 @@ impl<'a> Tracer<'a> {
                 sum += contribution;
             }
             if w.rec.on() {
-                w.rec.ray(TreeNode {
+                w.rec.ray(|| TreeNode {
                     parent: Some(id),
                     kind: RayKind::Shadow,
                     ray: shadow,

@@ -92,8 +92,8 @@ pub struct TreeNode {
 /// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of
 /// this compiles away; the inspector uses [`RayTree`].
 pub trait Recorder {
-    /// A ray about to be traced; returns its id.
-    fn ray(&mut self, _node: TreeNode) -> usize {
+    /// A ray about to be traced, its record built only when recording; returns its id.
+    fn ray(&mut self, _node: impl FnOnce() -> TreeNode) -> usize {
         0
     }
     /// Amends a ray's record once its hit, end and radiance are known.
@@ -126,8 +126,8 @@ impl RayTree {
 }
 
 impl Recorder for RayTree {
-    fn ray(&mut self, node: TreeNode) -> usize {
-        self.nodes.push(node);
+    fn ray(&mut self, node: impl FnOnce() -> TreeNode) -> usize {
+        self.nodes.push(node());
         self.nodes.len() - 1
     }
     fn finish(&mut self, id: usize, f: &dyn Fn(&mut TreeNode)) {
