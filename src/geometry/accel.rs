@@ -3,7 +3,7 @@
 //! The tree is obvhs's compressed wide BVH (8 children a node), built with PLOC and
 //! reinsertion: a SAH-quality tree that builds a million triangles in well under a second.
 
-use super::Shape;
+use super::{Plane, Quad, Shape, Sphere};
 use crate::math::Ray;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
 use std::time::Duration;
@@ -39,9 +39,55 @@ pub struct Accel {
     bvh: Option<CwBvh>,
     // In the BVH's leaf order, so a leaf's primitive id indexes this directly.
     prims: Vec<PrimRef>,
-    // Spheres and quads tested directly (when there are at most DIRECT_MAX).
-    direct: Vec<PrimRef>,
-    unbounded: Vec<u32>,
+    // The shapes tested one by one, copied out beside their object numbers: a tight loop
+    // per kind, with no lookup in the scene's list and no match on the kind of shape.
+    direct: Direct,
+}
+
+/// The spheres and quads tested directly (when there are at most DIRECT_MAX), and the planes.
+#[derive(Clone, Debug, Default)]
+struct Direct {
+    spheres: Vec<(u32, Sphere)>,
+    quads: Vec<(u32, Quad)>,
+    planes: Vec<(u32, Plane)>,
+}
+
+impl Direct {
+    /// The nearest hit in (0, t_max), and its distance.
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
+        let mut best: Option<(u32, f32)> = None;
+        let limit = |best: Option<(u32, f32)>| best.map_or(t_max, |(_, t)| t);
+        for (o, p) in &self.planes {
+            best = p.intersect_t(ray, limit(best)).map(|t| (*o, t)).or(best);
+        }
+        for (o, s) in &self.spheres {
+            best = s.intersect_t(ray, limit(best)).map(|t| (*o, t)).or(best);
+        }
+        for (o, q) in &self.quads {
+            best = q
+                .intersect_t(ray, limit(best))
+                .map(|(t, _)| (*o, t))
+                .or(best);
+        }
+        best.map(|(object, t)| (PrimRef { object, index: 0 }, t))
+    }
+
+    /// Whether any of them blocks `ray` in (0, t_max).
+    #[inline]
+    fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.planes
+            .iter()
+            .any(|(_, p)| p.intersect_t(ray, t_max).is_some())
+            || self
+                .spheres
+                .iter()
+                .any(|(_, s)| s.intersect_t(ray, t_max).is_some())
+            || self
+                .quads
+                .iter()
+                .any(|(_, q)| q.intersect_t(ray, t_max).is_some())
+    }
 }
 
 impl Accel {
@@ -49,28 +95,21 @@ impl Accel {
     pub fn build(shapes: &[Shape]) -> Self {
         let mut prims = Vec::new();
         let mut bounds: Vec<Aabb> = Vec::new();
-        let mut unbounded = Vec::new();
         let analytic = |s: &Shape| matches!(s, Shape::Sphere(_) | Shape::Quad(_));
         let direct_ok = shapes.iter().filter(|s| analytic(s)).count() <= DIRECT_MAX;
-        let mut direct = Vec::new();
+        let mut direct = Direct::default();
         for (object, shape) in shapes.iter().enumerate() {
-            if matches!(shape, Shape::Plane(_)) {
-                unbounded.push(object as u32);
-                continue;
-            }
-            if direct_ok && analytic(shape) {
-                direct.push(PrimRef {
-                    object: object as u32,
-                    index: 0,
-                });
-                continue;
-            }
-            for index in 0..shape.primitive_count() as u32 {
-                prims.push(PrimRef {
-                    object: object as u32,
-                    index,
-                });
-                bounds.push(shape.primitive_bounds(index));
+            let object = object as u32;
+            match shape {
+                Shape::Plane(p) => direct.planes.push((object, p.clone())),
+                Shape::Sphere(s) if direct_ok => direct.spheres.push((object, s.clone())),
+                Shape::Quad(q) if direct_ok => direct.quads.push((object, q.clone())),
+                _ => {
+                    for index in 0..shape.primitive_count() as u32 {
+                        prims.push(PrimRef { object, index });
+                        bounds.push(shape.primitive_bounds(index));
+                    }
+                }
             }
         }
         let bvh = (!prims.is_empty()).then(|| {
@@ -87,36 +126,19 @@ impl Accel {
                 .map(|&i| prims[i as usize])
                 .collect();
         }
-        Accel {
-            bvh,
-            prims,
-            direct,
-            unbounded,
-        }
+        Accel { bvh, prims, direct }
     }
 
     /// Number of bounded primitives (in the BVH or tested directly).
     pub fn primitive_count(&self) -> usize {
-        self.prims.len() + self.direct.len()
+        self.prims.len() + self.direct.spheres.len() + self.direct.quads.len()
     }
 
     /// The nearest primitive hit by `ray` in (0, t_max), and its distance.
     #[inline]
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        let mut best: Option<(PrimRef, f32)> = None;
-        let mut t_best = t_max;
-        for &object in &self.unbounded {
-            if let Some(t) = shapes[object as usize].intersect_t(0, ray, t_best) {
-                t_best = t;
-                best = Some((PrimRef { object, index: 0 }, t));
-            }
-        }
-        for &p in &self.direct {
-            if let Some(t) = shapes[p.object as usize].intersect_t(p.index, ray, t_best) {
-                t_best = t;
-                best = Some((p, t));
-            }
-        }
+        let mut best = self.direct.intersect(ray, t_max);
+        let t_best = best.map_or(t_max, |(_, t)| t);
         let Some(bvh) = &self.bvh else {
             return best;
         };
@@ -138,16 +160,7 @@ impl Accel {
     /// the first blocker found.
     #[inline]
     pub fn occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
-        if self
-            .unbounded
-            .iter()
-            .any(|&o| shapes[o as usize].intersect_t(0, ray, t_max).is_some())
-            || self.direct.iter().any(|p| {
-                shapes[p.object as usize]
-                    .intersect_t(p.index, ray, t_max)
-                    .is_some()
-            })
-        {
+        if self.direct.occluded(ray, t_max) {
             return true;
         }
         match &self.bvh {
@@ -171,13 +184,10 @@ impl Accel {
         ray: &Ray,
         t_max: f32,
     ) -> Option<(PrimRef, f32)> {
-        let mut best: Option<(PrimRef, f32)> = None;
-        let mut t_best = t_max;
-        let all = self.prims.iter().chain(&self.direct).copied().chain(
-            self.unbounded
-                .iter()
-                .map(|&object| PrimRef { object, index: 0 }),
-        );
+        // The directly tested shapes first, then every BVH primitive one by one.
+        let mut best = self.direct.intersect(ray, t_max);
+        let mut t_best = best.map_or(t_max, |(_, t)| t);
+        let all = self.prims.iter().copied();
         for p in all {
             if let Some(t) = shapes[p.object as usize].intersect_t(p.index, ray, t_best) {
                 t_best = t;
