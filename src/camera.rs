@@ -89,6 +89,33 @@ impl Camera {
         }
     }
 
+    /// Checks what makes a view: `position` and `look_at` apart and within the scene's
+    /// limits, `up` not parallel to the view direction, a field of view between 0 and 180
+    /// degrees. Scene files and sidecars alike pass through here.
+    pub fn check(&self) -> Result<(), String> {
+        use crate::geometry::{MAX_COORDINATE, within_limits};
+        if !within_limits(self.position) || !within_limits(self.look_at) {
+            return Err(format!(
+                "`position` and `look_at` must be finite and within ±{MAX_COORDINATE:e}"
+            ));
+        }
+        let view = self.look_at - self.position;
+        if view.length_squared() == 0.0 {
+            return Err("`look_at` must differ from `position`".into());
+        }
+        let cross = self.up.cross(view).length_squared();
+        if !(cross > 0.0 && cross.is_finite()) {
+            return Err("`up` must not be parallel to the view direction".into());
+        }
+        if !(self.fov_deg > 0.0 && self.fov_deg < 180.0) {
+            return Err(format!(
+                "`fov` must be between 0 and 180 degrees (exclusive), got {}",
+                self.fov_deg
+            ));
+        }
+        Ok(())
+    }
+
     /// The distance from the eye to the `look_at` point: the default focus distance.
     pub fn look_distance(&self) -> f32 {
         (self.look_at - self.position).length()

@@ -201,17 +201,13 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("`{s}` is not of the form WxH, e.g. 960x540"))?;
     let side = |v: &str| -> Result<u32, String> {
-        let n: u32 = v
-            .trim()
+        v.trim()
             .parse()
-            .map_err(|_| format!("`{v}` is not a whole number of pixels"))?;
-        if (1..=16384).contains(&n) {
-            Ok(n)
-        } else {
-            Err(format!("{n} is out of range (1 to 16384 pixels)"))
-        }
+            .map_err(|_| format!("`{v}` is not a whole number of pixels"))
     };
-    Ok((side(w)?, side(h)?))
+    let (w, h) = (side(w)?, side(h)?);
+    raylab::render::check_size(w, h)?;
+    Ok((w, h))
 }
 
 fn main() -> ExitCode {
@@ -348,7 +344,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         let pixels = (width as u64 * height as u64) as f64;
         let rays = stats.total_rays();
         eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight; {} non-finite samples dropped; wrote {} and {}",
+            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped; wrote {} and {}",
             scene.name,
             width,
             height,
@@ -361,6 +357,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
             stats.tir_events,
             stats.pruned_by_depth,
             stats.pruned_by_weight,
+            stats.pruned_by_budget,
             stats.non_finite,
             args.output.display(),
             json.display()

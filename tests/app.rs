@@ -161,7 +161,7 @@ fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
     step_until(&mut h, "the load to finish", |a| !a.is_loading());
     let error = h.state().error().expect("an error").to_string();
     assert!(
-        error.ends_with("bad.toml:6:10: must be greater than 0, got -2"),
+        error.ends_with("bad.toml:6:10: must be greater than 0 and at most 1e6, got -2"),
         "{error}"
     );
     // Shown in the window, and the old scene still there.

@@ -1,36 +1,10 @@
 //! The `raylab` binary, run as a user runs it.
 
+mod common;
+
+use common::{fails, raylab, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn raylab(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raylab"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Runs and expects exit code 2 with one error line containing `words`.
-fn fails(args: &[&str], cwd: &Path, words: &str) -> String {
-    let o = raylab(args, cwd);
-    let err = stderr(&o);
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "{args:?} should exit 2; stderr: {err}"
-    );
-    assert!(
-        err.contains(words),
-        "{args:?}: expected `{words}` in: {err}"
-    );
-    assert!(!err.contains("panicked"), "{err}");
-    err
-}
+use std::process::Command;
 
 #[test]
 fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
@@ -180,7 +154,7 @@ fn bad_input_exits_2_with_one_clear_line() {
     fails(
         &["render", "-o", "x.png", "--size", "0x10"],
         d,
-        "out of range",
+        "between 1 and 16384",
     );
     fails(&["render", "-o", "x.png", "--size", "big"], d, "WxH");
     fails(&["render", "-o", "x.png", "--threads", "0"], d, "threads");

@@ -91,7 +91,8 @@ impl Direct {
 }
 
 impl Accel {
-    /// Builds the BVH over `shapes` (the scene's objects, in order).
+    /// Builds the BVH over `shapes` (the scene's objects, in order). Every shape must be
+    /// [`Shape::within_limits`]: the builder panics on bounds near 5e18.
     pub fn build(shapes: &[Shape]) -> Self {
         let mut prims = Vec::new();
         let mut bounds: Vec<Aabb> = Vec::new();

@@ -16,6 +16,18 @@ pub use shapes::{Plane, Quad, Sphere};
 use crate::math::{Ray, Vec3};
 use glam::Vec2;
 
+/// How far from the origin geometry may reach, in scene units, on any axis and at any time
+/// of the frame. Beyond it an f32 hit point keeps too few digits to offset a ray off its
+/// surface, and far beyond it (about 5e18) the BVH builder's arithmetic overflows. Scene
+/// files are checked against it before anything is built.
+pub const MAX_COORDINATE: f32 = 1e6;
+
+/// Whether `v` lies within ±[`MAX_COORDINATE`] on every axis (false for NaN).
+pub fn within_limits(v: Vec3) -> bool {
+    // Compared per axis: `max_element` would pass over a NaN.
+    v.abs().cmple(Vec3::splat(MAX_COORDINATE)).all()
+}
+
 /// Where a ray meets a surface.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceHit {
@@ -63,6 +75,18 @@ impl Shape {
             Shape::Quad(q) => q.bounds(),
             Shape::Plane(_) => obvhs::aabb::Aabb::INFINITY,
             Shape::Mesh(m) => m.triangle_bounds(index as usize),
+        }
+    }
+
+    /// Whether the whole shape, over the whole frame, lies within ±[`MAX_COORDINATE`] (a
+    /// plane: its anchor point).
+    pub fn within_limits(&self) -> bool {
+        let inside = |b: obvhs::aabb::Aabb| within_limits(b.min) && within_limits(b.max);
+        match self {
+            Shape::Sphere(s) => inside(s.bounds()),
+            Shape::Quad(q) => inside(q.bounds()),
+            Shape::Plane(p) => within_limits(p.point),
+            Shape::Mesh(m) => (0..m.triangle_count()).all(|i| inside(m.triangle_bounds(i))),
         }
     }
 

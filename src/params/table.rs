@@ -234,9 +234,10 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "focus_distance",
         label: "Focus distance",
+        // Four times the largest coordinate: farther than anything a scene can hold.
         kind: Kind::Number {
             min: 0.0,
-            max: f64::INFINITY,
+            max: 4.0 * crate::geometry::MAX_COORDINATE as f64,
             open_min: true,
         },
         unit: "scene units",
@@ -300,6 +301,11 @@ impl Spec {
                 max,
                 ..
             } if max.is_infinite() => format!("> {min}{unit}"),
+            Kind::Number {
+                min,
+                open_min: true,
+                max,
+            } => format!("> {min}, ≤ {max}{unit}"),
             Kind::Number { min, max, .. } => format!("{min} to {max}{unit}"),
             Kind::Choice(words) => words.join(", "),
         }
@@ -346,9 +352,14 @@ impl Spec {
         match self.kind {
             Kind::Number {
                 min,
+                max,
                 open_min: true,
-                ..
-            } => format!("greater than {min}{unit}"),
+            } if max.is_infinite() => format!("greater than {min}{unit}"),
+            Kind::Number {
+                min,
+                max,
+                open_min: true,
+            } => format!("greater than {min} and at most {max}{unit}"),
             Kind::Count { max, min } if max == u64::MAX => format!("at least {min}"),
             Kind::Count { min, max } => format!("between {min} and {max}{unit}"),
             Kind::Number { min, max, .. } => format!("between {min} and {max}{unit}"),

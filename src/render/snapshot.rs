@@ -63,6 +63,14 @@ pub enum SidecarError {
         /// What is wrong.
         message: String,
     },
+    /// Its size, sample count or camera cannot be rendered.
+    #[error("{path}: {message}")]
+    Invalid {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A parameter in it is out of range.
     #[error("{path}: {source}")]
     Param {
@@ -100,8 +108,32 @@ impl Sidecar {
         sidecar
             .params
             .validate()
-            .map_err(|source| SidecarError::Param { path: name, source })?;
+            .map_err(|source| SidecarError::Param {
+                path: name.clone(),
+                source,
+            })?;
+        sidecar.check().map_err(|message| SidecarError::Invalid {
+            path: name,
+            message,
+        })?;
         Ok(sidecar)
+    }
+
+    /// Checks the fields besides the parameters, as the scene loader checks its own: the
+    /// size within the film's limits, a sample count the renderer takes, a camera that
+    /// makes a view.
+    fn check(&self) -> Result<(), String> {
+        super::check_size(self.width, self.height)?;
+        if let Some(n) = self.samples {
+            let max = crate::params::MAX_SPP;
+            if !(1..=max).contains(&n) {
+                return Err(format!("`samples` must be between 1 and {max}, got {n}"));
+            }
+        }
+        if let Some(camera) = &self.camera {
+            camera.check().map_err(|e| format!("camera: {e}"))?;
+        }
+        Ok(())
     }
 
     /// Writes the sidecar as pretty JSON.

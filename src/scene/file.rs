@@ -5,7 +5,7 @@
 
 use super::materials::{MaterialDef, MaterialTable, default_material, material};
 use super::obj::load_obj;
-use super::values::{Dir, Ior, NonNegative, Pixels, Positive, Rgb, V3};
+use super::values::{Dir, Ior, Length, NonNegative, Pixels, Positive, Rgb, V3};
 use super::{Location, Object, Scene, SceneDesc, SceneError, SceneSource};
 use crate::camera::Camera;
 use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
@@ -75,7 +75,7 @@ struct SceneFile {
     description: String,
     ambient: Option<Rgb>,
     medium_ior: Option<Ior>,
-    image: Option<ImageDef>,
+    image: Option<Spanned<ImageDef>>,
     #[serde(default)]
     params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
     camera: CameraDef,
@@ -131,7 +131,7 @@ struct BackgroundDef {
 struct SphereDef {
     name: Option<String>,
     center: V3,
-    radius: Positive,
+    radius: Length,
     velocity: Option<V3>,
     material: Option<Spanned<String>>,
 }
@@ -172,7 +172,7 @@ struct MeshDef {
     name: Option<String>,
     file: Spanned<String>,
     material: Option<Spanned<String>>,
-    scale: Option<Positive>,
+    scale: Option<Length>,
     rotate: Option<V3>,
     translate: Option<V3>,
     velocity: Option<V3>,
@@ -207,7 +207,7 @@ struct RectLightDef {
 struct DiskLightDef {
     center: V3,
     normal: Dir,
-    radius: Positive,
+    radius: Length,
     color: Option<Rgb>,
     intensity: NonNegative,
 }
@@ -216,9 +216,17 @@ struct DiskLightDef {
 #[serde(deny_unknown_fields)]
 struct SphereLightDef {
     center: V3,
-    radius: Positive,
+    radius: Length,
     color: Option<Rgb>,
     intensity: NonNegative,
+}
+
+/// The refusal of geometry that reaches beyond what the renderer handles.
+fn beyond_limits(what: &str) -> String {
+    format!(
+        "{what} reaches beyond ±{:e} scene units, the largest coordinate raylab handles",
+        crate::geometry::MAX_COORDINATE
+    )
 }
 
 /// The material objects get when they name none: a mid-grey diffuse.
@@ -343,16 +351,30 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
                 SceneError::new(at(m.file.span()), format!("after its transform: {e}"))
             })?;
             mesh.velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
+            let mesh = Shape::Mesh(mesh);
+            if !mesh.within_limits() {
+                return Err(SceneError::new(
+                    at(m.file.span()),
+                    beyond_limits("the mesh"),
+                ));
+            }
             objects.push(Object {
                 name: if single {
                     base.clone()
                 } else {
                     format!("{base}/{}", part.name)
                 },
-                shape: Shape::Mesh(mesh),
+                shape: mesh,
                 material,
             });
         }
+    }
+    // Points and lengths were checked as they were read; what they make may still reach out.
+    if let Some(o) = objects.iter().find(|o| !o.shape.within_limits()) {
+        return Err(SceneError::new(
+            Location::file(file),
+            beyond_limits(&format!("object `{}`", o.name)),
+        ));
     }
 
     let mut params = Params::default();
@@ -401,12 +423,6 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     };
 
     let c = f.camera;
-    if (c.look_at.0 - c.position.0).length_squared() == 0.0 {
-        return Err(SceneError::new(
-            Location::file(file),
-            "[camera] `look_at` must differ from `position`",
-        ));
-    }
     let fov = match c.fov {
         Some(fov) if fov.get_ref().0 >= 180.0 => {
             return Err(SceneError::new(
@@ -418,13 +434,10 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         None => 45.0,
     };
     let up = c.up.map_or(Vec3::Y, |u| u.0);
-    if up.cross(c.look_at.0 - c.position.0).length_squared() == 0.0 {
-        return Err(SceneError::new(
-            Location::file(file),
-            "[camera] `up` must not be parallel to the view direction",
-        ));
-    }
     let camera = Camera::looking_at(c.position.0, c.look_at.0, up, fov);
+    camera
+        .check()
+        .map_err(|e| SceneError::new(Location::file(file), format!("[camera] {e}")))?;
 
     let intensity = |color: Option<Rgb>, i: NonNegative| color.map_or(Color::ONE, |c| c.0) * i.0;
     let light = |shape, intensity| Light {
@@ -469,7 +482,16 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         lights.push(light(shape, intensity(s.color, s.intensity)));
     }
 
-    let (width, height) = f.image.map_or((640, 360), |i| (i.width.0, i.height.0));
+    let (width, height) = match f.image {
+        None => (640, 360),
+        Some(i) => {
+            let span = i.span();
+            let i = i.into_inner();
+            crate::render::check_size(i.width.0, i.height.0)
+                .map_err(|e| SceneError::new(at(span), format!("[image]: {e}")))?;
+            (i.width.0, i.height.0)
+        }
+    };
     Ok(SceneDesc {
         name: String::new(),
         description: f.description,

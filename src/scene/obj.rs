@@ -39,16 +39,37 @@ pub fn load_obj(
         newlines: 0,
     };
     let failed_mtl = RefCell::new(None::<String>);
-    let result = tobj::load_obj_buf(&mut reader, &options, |p: &Path| {
-        let name = p.to_string_lossy().into_owned();
-        match read_mtl(&name) {
-            Some(bytes) => tobj::load_mtl_buf(&mut &bytes[..]),
-            None => {
-                failed_mtl.borrow_mut().get_or_insert(name);
-                Err(tobj::LoadError::OpenFileFailed)
+    let bad_mtl = RefCell::new(None::<SceneError>);
+    let mtl_label = |name: &str| Path::new(file).with_file_name(name).display().to_string();
+    // tobj panics on some malformed input: it is given only text checked here, and any
+    // panic left is caught and reported as an error in the file.
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut reader, &options, |p: &Path| {
+            let name = p.to_string_lossy().into_owned();
+            match read_mtl(&name) {
+                Some(bytes) => match check_mtl(&bytes, &mtl_label(&name)) {
+                    Ok(()) => tobj::load_mtl_buf(&mut &bytes[..]),
+                    Err(e) => {
+                        bad_mtl.borrow_mut().get_or_insert(e);
+                        Err(tobj::LoadError::MaterialParseError)
+                    }
+                },
+                None => {
+                    failed_mtl.borrow_mut().get_or_insert(name);
+                    Err(tobj::LoadError::OpenFileFailed)
+                }
             }
-        }
-    });
+        })
+    }))
+    .map_err(|_| {
+        SceneError::new(
+            Location::file(file),
+            "the OBJ reader (tobj) failed on this file or its material library",
+        )
+    })?;
+    if let Some(e) = bad_mtl.into_inner() {
+        return Err(e);
+    }
     let (models, materials) = match result {
         Ok(ok) => ok,
         Err(e) => return Err(obj_error(data, file, e, reader.current_line())),
@@ -71,6 +92,20 @@ pub fn load_obj(
         let positions = triples(&m.positions);
         if m.indices.is_empty() {
             continue;
+        }
+        if !positions.iter().all(|&p| crate::geometry::within_limits(p)) {
+            let (line, col, message) = find_bad_vertex(&String::from_utf8_lossy(data)).unwrap_or((
+                0,
+                0,
+                "a vertex is not a finite point within the limits".into(),
+            ));
+            return Err(SceneError::new(
+                Location {
+                    file: file.to_string(),
+                    line_col: (line > 0).then_some((line, Some(col))),
+                },
+                message,
+            ));
         }
         let indices: Vec<[u32; 3]> = m
             .indices
@@ -217,6 +252,55 @@ fn find_bad_face_index(text: &str) -> Option<(usize, usize, String)> {
     None
 }
 
+/// The first vertex (`v` line) with a coordinate that is not finite or lies beyond
+/// ±[`crate::geometry::MAX_COORDINATE`]: (line, column, message).
+fn find_bad_vertex(text: &str) -> Option<(usize, usize, String)> {
+    let limit = crate::geometry::MAX_COORDINATE;
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("v") {
+            continue;
+        }
+        for word in words.take(3) {
+            let Ok(x) = word.parse::<f32>() else { continue };
+            if !x.is_finite() || x.abs() > limit {
+                let col = line.find(word).map_or(1, |c| c + 1);
+                let what = if x.is_finite() {
+                    format!("is beyond ±{limit:e}, the largest coordinate raylab handles")
+                } else {
+                    "is not a finite number".to_string()
+                };
+                return Some((n + 1, col, format!("vertex coordinate {word} {what}")));
+            }
+        }
+    }
+    None
+}
+
+/// Checks what tobj does not: a colour line (`Ka`, `Kd`, `Ks`, `Ke`) needs three numbers,
+/// and tobj 4 panics on fewer. `file` names the library in the error.
+fn check_mtl(bytes: &[u8], file: &str) -> Result<(), SceneError> {
+    let text = String::from_utf8_lossy(bytes);
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() else {
+            continue;
+        };
+        let numbers = words.take(3).count();
+        if numbers < 3 {
+            let col = line.find(key).map_or(1, |c| c + 1);
+            return Err(SceneError::new(
+                Location {
+                    file: file.to_string(),
+                    line_col: Some((n + 1, Some(col))),
+                },
+                format!("`{key}` needs three numbers (r g b), got {numbers}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// A reader over bytes that counts the newlines consumed, so that when tobj stops at a bad
 /// line, we know which one.
 struct LineCounter<'a> {
@@ -298,6 +382,31 @@ mod tests {
         let (name, m) = parts[0].material.clone().unwrap();
         assert_eq!(name, "shiny");
         assert!(matches!(m, Material::Mirror(_)));
+    }
+
+    #[test]
+    fn short_mtl_colours_are_refused_with_their_line() {
+        let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl a\nf 1 2 3\n";
+        for (mtl, col) in [("newmtl a\n  Kd 1\n", 3), ("newmtl a\nKd\n", 1)] {
+            let read = |_: &str| Some(mtl.as_bytes().to_vec());
+            let e = load_obj(obj, "dir/m.obj", &read).unwrap_err();
+            assert_eq!(e.location.to_string(), format!("dir/m.mtl:2:{col}"), "{e}");
+            assert!(e.message.contains("three numbers"), "{e}");
+        }
+    }
+
+    #[test]
+    fn far_or_infinite_vertices_name_line_and_column() {
+        for (v, message) in [
+            ("1e20", "beyond"),
+            ("inf", "not a finite"),
+            ("NaN", "not a finite"),
+        ] {
+            let obj = format!("v 0 0 0\nv 1 0 0\nv 0  {v} 0\nf 1 2 3\n");
+            let e = load_obj(obj.as_bytes(), "far.obj", &no_mtl).unwrap_err();
+            assert_eq!(e.location.to_string(), "far.obj:3:6", "{e}");
+            assert!(e.message.contains(message), "{e}");
+        }
     }
 
     #[test]

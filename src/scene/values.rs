@@ -1,8 +1,10 @@
 //! The checked values of the scene format: numbers, vectors and colours that deserialize
 //! only when finite and in range, so that serde's error carries the offending value's span.
 
+use crate::geometry::{MAX_COORDINATE, within_limits};
 use crate::math::{Color, Vec3};
 use crate::params::IOR_RANGE;
+use crate::render::MAX_IMAGE_SIDE;
 use serde::Deserialize;
 
 /// A finite number.
@@ -22,6 +24,21 @@ impl TryFrom<f64> for Num {
     }
 }
 
+/// A number as an error message shows it: plainly, or in exponent form when very large
+/// or small (`1e20`, not twenty-one digits).
+struct Shown(f64);
+
+impl std::fmt::Display for Shown {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || (1e-4..1e7).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
 /// Declares a number type that deserializes only from a finite value meeting `$ok`,
 /// else fails with `$message`: `|v, f|` names the value read and its f32.
 macro_rules! checked_number {
@@ -35,7 +52,12 @@ macro_rules! checked_number {
             type Error = String;
             fn try_from($v: f64) -> Result<Self, String> {
                 let Num($f) = Num::try_from($v)?;
-                if $ok { Ok($name($f)) } else { Err(format!($($message)+)) }
+                if $ok {
+                    Ok($name($f))
+                } else {
+                    let $v = Shown($v);
+                    Err(format!($($message)+))
+                }
             }
         }
     };
@@ -64,7 +86,14 @@ checked_number!(
     Unit, |v, f| (0.0..=1.0).contains(&f), "must be between 0 and 1, got {v}"
 );
 
-/// A vector of three finite numbers.
+checked_number!(
+    /// A length: a finite number > 0, at most the largest coordinate.
+    Length, |v, f| f > 0.0 && f <= MAX_COORDINATE,
+    "must be greater than 0 and at most {MAX_COORDINATE:e}, got {v}"
+);
+
+/// A vector of three finite numbers, each within ±[`MAX_COORDINATE`] (points, edges,
+/// velocities, colours).
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(try_from = "[f64; 3]")]
 pub(super) struct V3(pub(super) Vec3);
@@ -73,10 +102,14 @@ impl TryFrom<[f64; 3]> for V3 {
     type Error = String;
     fn try_from(v: [f64; 3]) -> Result<Self, String> {
         let f = Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
-        if f.is_finite() {
-            Ok(V3(f))
-        } else {
+        if !f.is_finite() {
             Err(format!("{v:?} has a non-finite component"))
+        } else if !within_limits(f) {
+            Err(format!(
+                "{v:?} is beyond ±{MAX_COORDINATE:e}, the largest coordinate raylab handles"
+            ))
+        } else {
+            Ok(V3(f))
         }
     }
 }
@@ -136,9 +169,6 @@ impl TryFrom<[f64; 3]> for Reflectance {
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(try_from = "i64")]
 pub(super) struct Pixels(pub(super) u32);
-
-/// The largest image side accepted.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 impl TryFrom<i64> for Pixels {
     type Error = String;

@@ -23,6 +23,13 @@ use media::transmittance;
 use record::record_interface;
 use std::ops::AddAssign;
 
+/// The most reflected and refracted rays one camera sample may trace. Depth and weight
+/// prune any tree a lecture draws long before this (a full binary tree of depth 8 has 510
+/// child rays), but with no weight limit a deep tree grows without bound (a prism at depth
+/// 64 would trace millions a sample): beyond the budget the rest of it is pruned, and
+/// counted.
+pub const MAX_TREE_RAYS: u32 = 1024;
+
 /// What the tracer did: rays by kind and branches pruned.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
@@ -43,6 +50,8 @@ pub struct Stats {
     pub pruned_by_depth: u64,
     /// Branches not traced because their path weight fell below `min_weight`.
     pub pruned_by_weight: u64,
+    /// Branches not traced because their sample had traced [`MAX_TREE_RAYS`] child rays.
+    pub pruned_by_budget: u64,
     /// Samples dropped because they were NaN or infinite.
     pub non_finite: u64,
 }
@@ -64,6 +73,7 @@ impl AddAssign for Stats {
         self.tir_events += o.tir_events;
         self.pruned_by_depth += o.pruned_by_depth;
         self.pruned_by_weight += o.pruned_by_weight;
+        self.pruned_by_budget += o.pruned_by_budget;
         self.non_finite += o.non_finite;
     }
 }
@@ -94,11 +104,12 @@ pub fn pick(scene: &Scene, camera: &Camera, aspect: f32, film: Vec2) -> Option<P
 }
 
 /// What travels down the tree with every ray: the sample's random numbers, the counters,
-/// and the recorder.
+/// the recorder, and the child rays the sample has traced so far.
 struct Walk<'w, R: Recorder> {
     rng: &'w mut SampleStream,
     stats: &'w mut Stats,
     rec: &'w mut R,
+    tree_rays: u32,
 }
 
 /// Where a ray sits in the tree.
@@ -209,11 +220,17 @@ impl<'a> Tracer<'a> {
         );
         let ray = self.frame.ray(film, cs.lens, cs.time);
         stats.samples += 1;
+        if !(ray.origin.is_finite() && ray.dir.is_finite()) {
+            // Not traced: the kernel counts and drops the sample, where the background
+            // would have turned a NaN direction into a colour.
+            return Color::NAN;
+        }
         stats.camera_rays += 1;
         let mut walk = Walk {
             rng: &mut rng,
             stats,
             rec,
+            tree_rays: 0,
         };
         let root = Branch {
             depth: 0,
@@ -260,6 +277,7 @@ impl<'a> Tracer<'a> {
                 rng,
                 stats,
                 rec: &mut NoRecorder,
+                tree_rays: 0,
             },
         )
     }
@@ -486,7 +504,11 @@ impl<'a> Tracer<'a> {
         } else if b.weight < self.params.min_weight {
             w.stats.pruned_by_weight += 1;
             Some(End::WeightLimit)
+        } else if w.tree_rays >= MAX_TREE_RAYS {
+            w.stats.pruned_by_budget += 1;
+            Some(End::BudgetLimit)
         } else {
+            w.tree_rays += 1;
             None
         };
         match why {

@@ -33,6 +33,8 @@ pub enum End {
     DepthLimit,
     /// Not traced: its path weight fell below the minimum.
     WeightLimit,
+    /// Not traced: its camera sample has traced [`super::MAX_TREE_RAYS`] child rays.
+    BudgetLimit,
     /// The refracted ray does not exist: total internal reflection.
     TotalInternalReflection,
     /// A shadow ray that reached its light.

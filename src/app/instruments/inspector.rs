@@ -36,6 +36,7 @@ fn end_text(end: crate::tracer::End) -> &'static str {
         Split => "split into child rays",
         DepthLimit => "pruned: depth limit",
         WeightLimit => "pruned: weight below the minimum",
+        BudgetLimit => "pruned: the sample's ray budget is spent",
         TotalInternalReflection => "no refracted ray: total internal reflection",
         Lit => "reached its light",
         Occluded => "blocked: in shadow",

@@ -1,0 +1,55 @@
+//! Helpers shared by the tests that run the `raylab` binary as a user runs it.
+
+#![allow(dead_code)] // Each test file uses its own share of these.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// Runs `raylab` with `args` in `cwd`.
+pub fn raylab(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("the binary runs")
+}
+
+/// What the run wrote to stderr.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs and expects exit code 2 with one error line containing `words`.
+pub fn fails(args: &[&str], cwd: &Path, words: &str) -> String {
+    let o = raylab(args, cwd);
+    let err = stderr(&o);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{args:?} should exit 2; stderr: {err}"
+    );
+    assert!(
+        err.contains(words),
+        "{args:?}: expected `{words}` in: {err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
+/// A JSON file (a sidecar) as a value.
+pub fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).expect("the file exists"))
+        .expect("the file is JSON")
+}
+
+/// The one-line error of scene `text` read as `t.toml`, its OBJ paths relative to `dir`.
+pub fn scene_error(text: &str, dir: &Path) -> String {
+    match raylab::scene::Scene::from_toml_str(text, "t.toml", dir) {
+        Ok(_) => panic!("expected an error for:\n{text}"),
+        Err(e) => {
+            let s = e.to_string();
+            assert!(!s.contains('\n'), "error is not one line: {s}");
+            s
+        }
+    }
+}

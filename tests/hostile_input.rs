@@ -1,0 +1,223 @@
+//! Input that once crashed raylab, hung it or slipped through unchecked: each is refused in
+//! one line naming the file (and line:column where it has lines), or bounded.
+
+mod common;
+
+use common::{fails, raylab, read_json, scene_error, stderr};
+use raylab::camera::Camera;
+use raylab::math::Vec3;
+use raylab::params::Params;
+use raylab::render::render;
+use raylab::scene::SceneDesc;
+
+const CAMERA: &str = "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n";
+
+fn assert_starts(e: &str, prefix: &str, words: &str) {
+    assert!(e.starts_with(prefix), "expected `{prefix}…`, got: {e}");
+    assert!(e.contains(words), "expected `{words}` in: {e}");
+}
+
+#[test]
+fn geometry_beyond_what_the_bvh_handles_is_refused_where_it_is_written() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // Each of these once panicked inside the BVH builder.
+    let e = scene_error(
+        &format!("{CAMERA}[[sphere]]\ncenter = [0, 1, 0]\nradius = 1e20\n"),
+        dir,
+    );
+    assert_starts(&e, "t.toml:6:10: ", "at most 1e6");
+    let e = scene_error(
+        &format!("{CAMERA}[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nvelocity = [3e38, 0, 0]\n"),
+        dir,
+    );
+    assert_starts(&e, "t.toml:7:12: ", "largest coordinate");
+    // Within the limits point by point, beyond them as a whole: named by the object.
+    let e = scene_error(
+        &format!("{CAMERA}[[sphere]]\nname = \"far\"\ncenter = [999999, 1, 0]\nradius = 100\n"),
+        dir,
+    );
+    assert_starts(&e, "t.toml: ", "object `far` reaches beyond");
+    std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let e = scene_error(
+        &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\nscale = 1e30\n"),
+        dir,
+    );
+    assert_starts(&e, "t.toml:6:9: ", "at most 1e6");
+    let e = scene_error(
+        &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\nscale = 1e6\ntranslate = [1e6, 0, 0]\n"),
+        dir,
+    );
+    assert_starts(&e, "t.toml:5:8: ", "the mesh reaches beyond");
+    // An OBJ vertex far out or not a number: the OBJ's own line and column.
+    std::fs::write(
+        dir.join("far.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1e20 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let e = scene_error(&format!("{CAMERA}[[mesh]]\nfile = \"far.obj\"\n"), dir);
+    assert!(e.contains("far.obj:3:5: vertex coordinate 1e20"), "{e}");
+    // The camera: also once accepted from sidecars, now one check for both.
+    let e = scene_error("[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 5]\n", dir);
+    assert_starts(&e, "t.toml: ", "must differ");
+}
+
+#[test]
+fn a_short_mtl_colour_is_an_error_not_a_crash() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    std::fs::write(
+        dir.join("m.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n",
+    )
+    .unwrap();
+    for mtl in ["newmtl a\nKd 1\n", "newmtl a\nKd\n", "newmtl a\nKe 1 2\n"] {
+        std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+        let e = scene_error(&format!("{CAMERA}[[mesh]]\nfile = \"m.obj\"\n"), dir);
+        assert!(e.contains("m.mtl:2:1: `K"), "{e}");
+        assert!(e.contains("three numbers"), "{e}");
+    }
+}
+
+#[test]
+fn a_camera_ray_that_is_not_finite_is_counted_and_dropped() {
+    // Only code can build such a camera now (files are checked); the tracer still guards.
+    let camera = Camera::looking_at(Vec3::splat(f32::INFINITY), Vec3::ZERO, Vec3::Y, 40.0);
+    let scene = SceneDesc::empty(camera).build();
+    let (film, stats) = render(&scene, &Params::default(), 4, 4, &()).unwrap();
+    assert_eq!(stats.samples, 16 * Params::default().spp as u64);
+    assert_eq!(stats.non_finite, stats.samples, "{stats:?}");
+    assert_eq!(stats.camera_rays, 0, "{stats:?}");
+    assert!(film.pixels().all(|c| c == raylab::math::Color::ZERO));
+}
+
+#[test]
+fn sidecar_fields_are_checked_like_the_scene_files() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let o = raylab(
+        &["render", "-o", "s.png", "--size", "8x8", "--spp", "1", "-q"],
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut good = read_json(&dir.join("s.json"));
+    // At the pixel budget: one more row is too many.
+    good["width"] = 4096.into();
+    let camera = serde_json::json!({
+        "position": [0.0, 1.0, 5.0], "look_at": [0.0, 1.0, 0.0], "up": [0.0, 1.0, 0.0], "fov_deg": 40.0
+    });
+    let cases: Vec<(&str, serde_json::Value, &str)> = vec![
+        ("width", 0.into(), "width must be between 1 and 16384"),
+        ("height", 0.into(), "height must be between 1 and 16384"),
+        ("width", 16385.into(), "width must be between 1 and 16384"),
+        ("height", 4097.into(), "more than the 16777216"),
+        ("samples", 0.into(), "`samples` must be between 1"),
+        (
+            "samples",
+            4294967295u32.into(),
+            "`samples` must be between 1",
+        ),
+    ];
+    let mut cameras = Vec::new();
+    for (field, value) in [
+        ("look_at", serde_json::json!([0.0, 1.0, 5.0])),
+        ("up", serde_json::json!([0.0, 0.0, 1.0])),
+        ("fov_deg", serde_json::json!(0.0)),
+        ("fov_deg", serde_json::json!(180.0)),
+    ] {
+        let mut c = camera.clone();
+        c[field] = value;
+        cameras.push(c);
+    }
+    let all = cases
+        .into_iter()
+        .chain(cameras.into_iter().map(|c| ("camera", c, "camera: ")));
+    for (n, (field, value, words)) in all.enumerate() {
+        let mut sidecar = good.clone();
+        sidecar[field] = value;
+        let name = format!("bad{n}.json");
+        std::fs::write(dir.join(&name), sidecar.to_string()).unwrap();
+        fails(
+            &["render", "--params", &name, "-o", "x.png"],
+            dir,
+            &format!("{name}: "),
+        );
+        fails(&["render", "--params", &name, "-o", "x.png"], dir, words);
+    }
+    assert!(!dir.join("x.png").exists(), "nothing is written on error");
+}
+
+#[test]
+fn sizes_and_parameters_beyond_the_renderer_are_refused() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    fails(
+        &["render", "-o", "x.png", "--size", "16384x16384"],
+        dir,
+        "more than the 16777216",
+    );
+    fails(
+        &[
+            "render",
+            "-o",
+            "x.png",
+            "--size",
+            "8x8",
+            "--set",
+            "aperture=100",
+            "--set",
+            "focus_distance=3e38",
+        ],
+        dir,
+        "at most 4000000",
+    );
+    std::fs::write(
+        dir.join("huge.toml"),
+        format!("{CAMERA}[image]\nwidth = 16384\nheight = 16384\n"),
+    )
+    .unwrap();
+    fails(
+        &["render", "huge.toml", "-o", "x.png"],
+        dir,
+        "huge.toml:4:1: [image]: 16384x16384",
+    );
+}
+
+#[test]
+fn a_ray_tree_without_a_weight_limit_is_cut_by_the_ray_budget() {
+    // Once about 1.27x more rays each level, to depth 64: days at 960x540.
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let o = raylab(
+        &[
+            "render",
+            "tir",
+            "-o",
+            "t.png",
+            "--size",
+            "24x14",
+            "--spp",
+            "1",
+            "--set",
+            "max_depth=64",
+            "--set",
+            "min_weight=0",
+        ],
+        dir,
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("by the ray budget"), "{err}");
+    let sidecar = read_json(&dir.join("t.json"));
+    let stats = &sidecar["stats"];
+    let budget = raylab::tracer::MAX_TREE_RAYS as u64;
+    assert!(stats["pruned_by_budget"].as_u64().unwrap() > 0, "{stats}");
+    let (samples, rays) = (
+        stats["samples"].as_u64().unwrap(),
+        stats["reflection_rays"].as_u64().unwrap() + stats["refraction_rays"].as_u64().unwrap(),
+    );
+    assert!(
+        rays <= samples * budget,
+        "{rays} child rays for {samples} samples"
+    );
+}
