@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders the built-in scenes into screenshots/ with `raylab render`; each PNG gets its
-# sidecar JSON, so `raylab render --params screenshots/NAME.json -o again.png` redoes it.
+# sidecar JSON, so `raylab render --params screenshots/NAME.png.json -o again.png` redoes it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet

@@ -28,6 +28,7 @@ pub mod light;
 pub mod material;
 pub mod math;
 pub mod optics;
+pub mod output;
 pub mod params;
 pub mod render;
 pub mod scene;

@@ -293,6 +293,8 @@ fn render_command(args: RenderArgs) -> Result<()> {
         params.set_assignment(assignment).context("--set")?;
     }
     check_output(&args.output)?;
+    let json = sidecar_path(&args.output);
+    Sidecar::check_target(&json, args.params.as_deref())?;
 
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
@@ -322,10 +324,9 @@ fn render_command(args: RenderArgs) -> Result<()> {
     bar.finish_and_clear();
 
     film.save(&args.output, params.exposure)?;
-    let json = sidecar_path(&args.output);
     Sidecar {
         raylab_version: raylab::VERSION.to_string(),
-        scene: scene.source.reference(),
+        scene: Sidecar::scene_reference(&scene.source, &json),
         width,
         height,
         params: params.clone(),
@@ -427,8 +428,7 @@ fn sweep_command(args: &SweepArgs) -> Result<()> {
     let start = Instant::now();
     let sheet =
         raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
-    sheet
-        .save_with_format(&args.output, image::ImageFormat::Png)
+    raylab::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
         .with_context(|| format!("{}: cannot write the sheet", args.output.display()))?;
     eprintln!(
         "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",

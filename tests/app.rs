@@ -6,7 +6,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raylab::app::{AppOptions, RaylabApp};
 use raylab::optics::FresnelMode;
-use raylab::render::Sidecar;
+use raylab::render::{Sidecar, sidecar_path};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -117,7 +117,7 @@ fn save_writes_the_png_and_a_sidecar_with_the_right_parameters() {
             .to_string_lossy()
             .starts_with("default-")
     );
-    let sidecar = Sidecar::read(&png.with_extension("json")).unwrap();
+    let sidecar = Sidecar::read(&sidecar_path(png)).unwrap();
     assert_eq!(sidecar.scene, "builtin:default");
     assert_eq!(sidecar.params.max_depth, 3);
     assert_eq!(&sidecar.params, h.state().engine().params());

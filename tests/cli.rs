@@ -41,7 +41,7 @@ fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
     assert_eq!((img.width(), img.height()), (64, 36));
 
     let sidecar: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("a.json")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(d.join("a.png.json")).unwrap()).unwrap();
     assert_eq!(sidecar["scene"], "builtin:default");
     assert_eq!(sidecar["raylab_version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(
@@ -54,7 +54,7 @@ fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
 
     // From another folder, the sidecar alone reproduces the image bit for bit.
     let other = tempfile::tempdir().unwrap();
-    let json = d.join("a.json");
+    let json = d.join("a.png.json");
     let o = raylab(
         &[
             "render",
@@ -131,7 +131,7 @@ fn a_scene_file_renders_and_exr_holds_linear_radiance() {
         [2.5, 0.5, 0.25],
         "EXR keeps radiance above 1, unclamped"
     );
-    let sidecar = std::fs::read_to_string(d.join("flat.json")).unwrap();
+    let sidecar = std::fs::read_to_string(d.join("flat.exr.json")).unwrap();
     assert!(sidecar.contains("flat.toml"), "{sidecar}");
 }
 

@@ -100,7 +100,7 @@ fn sidecar_fields_are_checked_like_the_scene_files() {
         dir,
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let mut good = read_json(&dir.join("s.json"));
+    let mut good = read_json(&dir.join("s.png.json"));
     // At the pixel budget: one more row is too many.
     good["width"] = 4096.into();
     let camera = serde_json::json!({
@@ -208,7 +208,7 @@ fn a_ray_tree_without_a_weight_limit_is_cut_by_the_ray_budget() {
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
     assert!(err.contains("by the ray budget"), "{err}");
-    let sidecar = read_json(&dir.join("t.json"));
+    let sidecar = read_json(&dir.join("t.png.json"));
     let stats = &sidecar["stats"];
     let budget = raylab::tracer::MAX_TREE_RAYS as u64;
     assert!(stats["pruned_by_budget"].as_u64().unwrap() > 0, "{stats}");
@@ -219,5 +219,122 @@ fn a_ray_tree_without_a_weight_limit_is_cut_by_the_ray_budget() {
     assert!(
         rays <= samples * budget,
         "{rays} child rays for {samples} samples"
+    );
+}
+
+#[test]
+fn nothing_the_user_has_is_replaced_or_lost() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let small = ["--size", "8x8", "--spp", "1", "-q"];
+    let render = |args: &[&str]| {
+        let all: Vec<&str> = args.iter().chain(&small).copied().collect();
+        let o = raylab(&all, dir);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    };
+    // A file of the user's that happens to share the image's stem is not touched.
+    std::fs::write(dir.join("keep.json"), "my notes").unwrap();
+    render(&["render", "-o", "keep.png"]);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("keep.json")).unwrap(),
+        "my notes"
+    );
+    // Two images of one name, two sidecars.
+    render(&["render", "glass", "-o", "keep.exr"]);
+    assert_eq!(
+        read_json(&dir.join("keep.png.json"))["scene"],
+        "builtin:default"
+    );
+    assert_eq!(
+        read_json(&dir.join("keep.exr.json"))["scene"],
+        "builtin:glass"
+    );
+    // Nothing but the images and their sidecars: no temporary file is left behind.
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "keep.exr",
+            "keep.exr.json",
+            "keep.json",
+            "keep.png",
+            "keep.png.json"
+        ]
+    );
+    // The sidecar being read is never overwritten, nor a file that is not a sidecar.
+    let input = std::fs::read(dir.join("keep.png.json")).unwrap();
+    fails(
+        &[
+            "render",
+            "--params",
+            "keep.png.json",
+            "-o",
+            "keep.png",
+            "--size",
+            "4x4",
+        ],
+        dir,
+        "keep.png.json: is the sidecar this render reads",
+    );
+    assert_eq!(std::fs::read(dir.join("keep.png.json")).unwrap(), input);
+    std::fs::write(dir.join("other.png.json"), "{ \"mine\": 1 }").unwrap();
+    fails(
+        &["render", "-o", "other.png"],
+        dir,
+        "other.png.json: exists and is not a raylab sidecar",
+    );
+    assert!(!dir.join("other.png").exists());
+}
+
+#[test]
+fn a_folder_of_scenes_and_renders_moves_as_a_whole() {
+    let d = tempfile::tempdir().unwrap();
+    let project = d.path().join("project");
+    std::fs::create_dir_all(project.join("scenes")).unwrap();
+    std::fs::create_dir_all(project.join("renders")).unwrap();
+    std::fs::write(
+        project.join("scenes/ball.toml"),
+        format!("{CAMERA}[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\n"),
+    )
+    .unwrap();
+    let o = raylab(
+        &[
+            "render",
+            "../scenes/ball.toml",
+            "-o",
+            "a.png",
+            "--size",
+            "8x8",
+            "--spp",
+            "2",
+            "-q",
+        ],
+        &project.join("renders"),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let sidecar = read_json(&project.join("renders/a.png.json"));
+    assert_eq!(sidecar["scene"], "../scenes/ball.toml");
+    // Moved elsewhere, the render still reproduces bit for bit from its sidecar.
+    let moved = d.path().join("moved");
+    std::fs::rename(&project, &moved).unwrap();
+    let o = raylab(
+        &[
+            "render",
+            "--params",
+            "renders/a.png.json",
+            "-o",
+            "b.png",
+            "-q",
+        ],
+        &moved,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(moved.join("renders/a.png")).unwrap(),
+        std::fs::read(moved.join("b.png")).unwrap()
     );
 }

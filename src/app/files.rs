@@ -240,7 +240,7 @@ pub(crate) fn snapshot_path(dir: &Path, scene: &str, t: SystemTime) -> PathBuf {
     let base = format!("{safe}-{}", timestamp(t));
     let mut path = dir.join(format!("{base}.png"));
     let mut n = 2;
-    while path.exists() || path.with_extension("json").exists() {
+    while path.exists() || crate::render::sidecar_path(&path).exists() {
         path = dir.join(format!("{base}-{n}.png"));
         n += 1;
     }

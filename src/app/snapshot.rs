@@ -17,6 +17,8 @@ impl RaylabApp {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         }
+        let json = sidecar_path(path);
+        Sidecar::check_target(&json, None).map_err(|e| e.to_string())?;
         // The frame's own parameters: those the engine rendered it with.
         let params = self.main.engine().params().clone();
         let exposure = self.settings.params.exposure;
@@ -26,7 +28,7 @@ impl RaylabApp {
         let camera = self.main.camera();
         let sidecar = Sidecar {
             raylab_version: crate::VERSION.to_string(),
-            scene: self.scene.source.reference(),
+            scene: Sidecar::scene_reference(&self.scene.source, &json),
             width: frame.width,
             height: frame.height,
             params: Params {
@@ -39,9 +41,7 @@ impl RaylabApp {
             seconds: Some(frame.progress.elapsed.as_secs_f64()),
             stats: Some(frame.progress.stats),
         };
-        sidecar
-            .write(&sidecar_path(path))
-            .map_err(|e| e.to_string())?;
+        sidecar.write(&json).map_err(|e| e.to_string())?;
         Ok(path.to_path_buf())
     }
 

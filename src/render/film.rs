@@ -1,6 +1,7 @@
 //! The film: per-pixel sums of radiance samples, resolved to PNG (8-bit sRGB) or EXR (linear).
 
 use crate::math::Color;
+use crate::output::save_image;
 use std::path::Path;
 
 /// The longest image side accepted, in pixels.
@@ -180,14 +181,16 @@ pub fn write_image(
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     let written = match ext.as_deref() {
-        Some("png") => srgb_image(width, height, pixels, exposure)
-            .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?
-            .save_with_format(path, image::ImageFormat::Png),
+        Some("png") => {
+            let img = srgb_image(width, height, pixels, exposure)
+                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
+            save_image(&img, path, image::ImageFormat::Png)
+        }
         Some("exr") => {
             let floats = pixels.iter().flat_map(|c| c.to_array()).collect();
             let img = image::Rgb32FImage::from_vec(width, height, floats)
                 .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
-            img.save_with_format(path, image::ImageFormat::OpenExr)
+            save_image(&img, path, image::ImageFormat::OpenExr)
         }
         _ => return Err(FilmError::UnsupportedFormat(name)),
     };

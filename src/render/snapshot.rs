@@ -14,7 +14,9 @@ use std::path::{Path, PathBuf};
 pub struct Sidecar {
     /// The raylab version that wrote it.
     pub raylab_version: String,
-    /// The scene: `builtin:NAME` or an absolute file path.
+    /// The scene: `builtin:NAME`, or the file's path relative to the sidecar's folder
+    /// (absolute where no relative path leads there), so that a folder of scenes and
+    /// renders can move as a whole. [`Sidecar::read`] resolves it.
     pub scene: String,
     /// Image width.
     pub width: u32,
@@ -81,12 +83,65 @@ pub enum SidecarError {
     },
 }
 
-/// The sidecar of an image: the same name with `.json`.
+/// The sidecar of an image: its whole name with `.json` added (`a.png.json`), so that two
+/// images, `a.png` and `a.exr`, never share one.
 pub fn sidecar_path(image: &Path) -> PathBuf {
-    image.with_extension("json")
+    let mut name = image.as_os_str().to_owned();
+    name.push(".json");
+    PathBuf::from(name)
 }
 
 impl Sidecar {
+    /// How a sidecar at `sidecar` names the scene `source`: relative to its own folder
+    /// where a relative path leads there, with `/` between folders on every system.
+    pub fn scene_reference(source: &crate::scene::SceneSource, sidecar: &Path) -> String {
+        let crate::scene::SceneSource::File(scene) = source else {
+            return source.reference();
+        };
+        let folder = sidecar
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let relative = std::fs::canonicalize(folder)
+            .ok()
+            .and_then(|folder| crate::output::relative_path(scene, &folder));
+        match relative {
+            Some(rel) => rel
+                .components()
+                .map(|c| c.as_os_str().to_string_lossy())
+                .collect::<Vec<_>>()
+                .join("/"),
+            None => source.reference(),
+        }
+    }
+
+    /// Whether a sidecar may be written at `path`: refused where that would replace the
+    /// sidecar being read (`input`) or a file that is not a raylab sidecar.
+    pub fn check_target(path: &Path, input: Option<&Path>) -> Result<(), SidecarError> {
+        if !path.exists() {
+            return Ok(());
+        }
+        let refuse = |message: &str| {
+            Err(SidecarError::Invalid {
+                path: path.display().to_string(),
+                message: message.to_string(),
+            })
+        };
+        let same = |a: &Path, b: &Path| matches!((std::fs::canonicalize(a), std::fs::canonicalize(b)), (Ok(a), Ok(b)) if a == b);
+        if input.is_some_and(|input| same(path, input)) {
+            return refuse(
+                "is the sidecar this render reads; not replaced (write the image under another name)",
+            );
+        }
+        let ours = std::fs::read_to_string(path)
+            .ok()
+            .is_some_and(|text| serde_json::from_str::<Sidecar>(&text).is_ok());
+        if !ours {
+            return refuse("exists and is not a raylab sidecar; not replaced");
+        }
+        Ok(())
+    }
+
     /// Reads and checks a sidecar.
     pub fn read(path: &Path) -> Result<Sidecar, SidecarError> {
         let name = path.display().to_string();
@@ -94,17 +149,18 @@ impl Sidecar {
             path: name.clone(),
             source,
         })?;
-        let sidecar: Sidecar = serde_json::from_str(&text).map_err(|e| SidecarError::Parse {
-            path: name.clone(),
-            line: e.line(),
-            column: e.column(),
-            message: e
-                .to_string()
-                .split(" at line")
-                .next()
-                .unwrap_or_default()
-                .to_string(),
-        })?;
+        let mut sidecar: Sidecar =
+            serde_json::from_str(&text).map_err(|e| SidecarError::Parse {
+                path: name.clone(),
+                line: e.line(),
+                column: e.column(),
+                message: e
+                    .to_string()
+                    .split(" at line")
+                    .next()
+                    .unwrap_or_default()
+                    .to_string(),
+            })?;
         sidecar
             .params
             .validate()
@@ -116,6 +172,13 @@ impl Sidecar {
             path: name,
             message,
         })?;
+        // A scene path relative to the sidecar's folder (a bare built-in name stays).
+        if let Some(folder) = path.parent() {
+            let beside = folder.join(&sidecar.scene);
+            if Path::new(&sidecar.scene).is_relative() && beside.is_file() {
+                sidecar.scene = beside.display().to_string();
+            }
+        }
         Ok(sidecar)
     }
 
@@ -143,6 +206,6 @@ impl Sidecar {
             source,
         };
         let json = serde_json::to_string_pretty(self).map_err(|e| io(std::io::Error::other(e)))?;
-        std::fs::write(path, json + "\n").map_err(io)
+        crate::output::write_atomic(path, (json + "\n").as_bytes()).map_err(io)
     }
 }
