@@ -289,9 +289,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
     if let Some(seed) = args.seed {
         params.seed = seed;
     }
-    for assignment in &args.set {
-        params.set_assignment(assignment).context("--set")?;
-    }
+    params.set_all(&args.set).context("--set")?;
     check_output(&args.output)?;
     let json = sidecar_path(&args.output);
     Sidecar::check_target(&json, args.params.as_deref())?;
@@ -412,9 +410,7 @@ fn sweep_command(args: &SweepArgs) -> Result<()> {
     let (name, values) = raylab::render::parse_sweep(&args.param).context("--param")?;
     let scene = Scene::load(&args.scene)?;
     let mut params = scene.params.clone();
-    for assignment in &args.set {
-        params.set_assignment(assignment).context("--set")?;
-    }
+    params.set_all(&args.set).context("--set")?;
     let ext = args
         .output
         .extension()
@@ -560,7 +556,7 @@ fn scenes_command() -> Result<()> {
         .collect();
     files.sort();
     for f in files {
-        let description = match std::fs::read_to_string(&f) {
+        let description = match raylab::input::read_text(&f) {
             Ok(text) => raylab::scene::describe(&text).unwrap_or_else(|| "(no description)".into()),
             Err(e) => format!("(unreadable: {e})"),
         };

@@ -338,3 +338,74 @@ fn a_folder_of_scenes_and_renders_moves_as_a_whole() {
         std::fs::read(moved.join("b.png")).unwrap()
     );
 }
+
+#[cfg(unix)]
+#[test]
+fn devices_pipes_and_folders_are_refused_without_blocking() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // A pipe with no writer: opening it would block for ever.
+    let made = std::process::Command::new("mkfifo")
+        .arg(dir.join("pipe"))
+        .status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    std::fs::create_dir(dir.join("folder.toml")).unwrap();
+    for path in ["/dev/zero", "pipe", "folder.toml"] {
+        fails(&["render", path, "-o", "x.png"], dir, "not a regular file");
+        fails(
+            &["render", "--params", path, "-o", "x.png"],
+            dir,
+            "not a regular file",
+        );
+        std::fs::write(
+            dir.join("mesh.toml"),
+            format!("{CAMERA}[[mesh]]\nfile = \"{path}\"\n"),
+        )
+        .unwrap();
+        fails(
+            &["render", "mesh.toml", "-o", "x.png"],
+            dir,
+            "mesh.toml:5:8: cannot read OBJ file",
+        );
+    }
+}
+
+#[test]
+fn parameters_set_together_are_checked_together_and_errors_are_said_once() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // motion-blur's shutter is open for the whole frame: opening it later is valid only
+    // once it is also shortened, whichever comes first on the command line.
+    for order in [
+        ["shutter_open=0.5", "shutter=0.5"],
+        ["shutter=0.5", "shutter_open=0.5"],
+    ] {
+        let o = raylab(
+            &[
+                "render",
+                "motion-blur",
+                "-o",
+                "m.png",
+                "--size",
+                "8x8",
+                "--spp",
+                "1",
+                "-q",
+                "--set",
+                order[0],
+                "--set",
+                order[1],
+            ],
+            dir,
+        );
+        assert!(o.status.success(), "{order:?}: {}", stderr(&o));
+    }
+    let err = fails(
+        &["render", "--params", "missing.json", "-o", "x.png"],
+        dir,
+        "missing.json: ",
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let said = err.trim_start_matches("error: missing.json: ");
+    assert!(!said.contains(": "), "the reason once: {err}");
+}

@@ -5,7 +5,10 @@
 
 use super::{Plane, Quad, Shape, Sphere};
 use crate::math::Ray;
+use crate::math::rng::mix64;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Duration;
 
 /// The direction with every −0.0 turned into +0.0 (x + 0.0 does that in IEEE arithmetic).
@@ -30,6 +33,68 @@ pub struct PrimRef {
 /// Up to this many spheres and quads are tested one by one, outside the BVH: for a handful
 /// of them a loop beats descending a tree built for millions of triangles.
 const DIRECT_MAX: usize = 16;
+
+/// Makes many identical boxes slightly different. PLOC merges mutual nearest neighbours;
+/// among many identical boxes every distance ties, few pairs are mutual and the build turns
+/// quadratic (20,000 copies of one sphere took 6 s). Beyond its first few copies, each
+/// duplicate grows by its own tiny amount (a box a hair larger still bounds its
+/// primitive). A few copies (the two triangles of a box's face share a box) are left as
+/// they are, and with them the tree and the images of every ordinary scene.
+fn break_ties(bounds: &mut [Aabb]) {
+    const COPIES_KEPT: u32 = 4;
+    // Checked first on a sample of boxes, so that ordinary scenes pay almost nothing: the
+    // copies that make the build slow are tens of thousands, and show in any sample.
+    const SAMPLE: u64 = 4096;
+    let key = |b: &Aabb| {
+        let (lo, hi) = (b.min.to_array(), b.max.to_array());
+        [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]
+            .iter()
+            .fold(0u64, |h, x| mix64(h ^ x.to_bits() as u64))
+    };
+    type Copies = HashMap<u64, u32, BuildHasherDefault<KeyHasher>>;
+    let n = bounds.len() as u64;
+    let mut sampled = Copies::default();
+    let many = (0..SAMPLE.min(n)).any(|k| {
+        let i = if n <= SAMPLE { k } else { mix64(k) % n };
+        let count = sampled.entry(key(&bounds[i as usize])).or_default();
+        *count += 1;
+        *count > COPIES_KEPT
+    });
+    if !many {
+        return;
+    }
+    let mut copies = Copies::with_capacity_and_hasher(bounds.len(), Default::default());
+    for (i, b) in bounds.iter_mut().enumerate() {
+        let count = copies.entry(key(b)).or_default();
+        *count += 1;
+        if *count > COPIES_KEPT {
+            // Up to 0.2 % of the box's extent, below and above by different amounts.
+            let extent = (b.max - b.min).max_element().max(1e-6);
+            let h = mix64(i as u64);
+            let unit = |bits: u64| (bits & 0xff_ffff) as f32 / (1u32 << 24) as f32;
+            b.min -= extent * 1e-3 * (1.0 + unit(h));
+            b.max += extent * 1e-3 * (1.0 + unit(h >> 32));
+        }
+    }
+}
+
+/// Hashes keys that are hashes already: passes them through.
+#[derive(Default)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = mix64(self.0 ^ b as u64);
+        }
+    }
+    fn write_u64(&mut self, key: u64) {
+        self.0 = key;
+    }
+}
 
 /// Acceleration structure over a list of shapes: the BVH over triangles (and over spheres
 /// and quads when there are many), the few spheres and quads tested directly, and the
@@ -113,6 +178,7 @@ impl Accel {
                 }
             }
         }
+        break_ties(&mut bounds);
         let bvh = (!prims.is_empty()).then(|| {
             build_cwbvh(
                 &bounds,
@@ -196,5 +262,37 @@ impl Accel {
             }
         }
         best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3A;
+
+    #[test]
+    fn many_identical_boxes_are_made_distinct_and_still_bound_their_primitive() {
+        let unit = Aabb::new(Vec3A::ZERO, Vec3A::ONE);
+        let mut bounds = vec![unit; 20_000];
+        break_ties(&mut bounds);
+        assert!(
+            bounds
+                .iter()
+                .all(|b| b.min.cmple(unit.min).all() && b.max.cmpge(unit.max).all())
+        );
+        let exact = bounds.iter().filter(|b| **b == unit).count();
+        assert_eq!(exact, 4, "the first copies are kept as they are");
+        let mut sizes: Vec<(u32, u32)> = bounds
+            .iter()
+            .map(|b| (b.min.x.to_bits(), b.max.x.to_bits()))
+            .collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        assert!(sizes.len() > 19_000, "{} distinct boxes", sizes.len());
+        // A few copies (a box's faces: two triangles each) change nothing.
+        let mut pairs = vec![unit, unit, Aabb::new(Vec3A::ONE, Vec3A::splat(2.0))];
+        let before = pairs.clone();
+        break_ties(&mut pairs);
+        assert_eq!(pairs, before);
     }
 }

@@ -118,6 +118,17 @@ pub enum ParamError {
     Syntax(String),
 }
 
+/// A `--set` value as JSON: `scene` is null (left to the scene), numbers are numbers,
+/// anything else a string.
+fn value_json(value: &str) -> serde_json::Value {
+    let value = value.trim();
+    if value == "scene" {
+        serde_json::Value::Null
+    } else {
+        serde_json::from_str(value).unwrap_or_else(|_| serde_json::Value::String(value.to_string()))
+    }
+}
+
 impl Params {
     /// The names of all parameters, in the table's order.
     pub fn names() -> Vec<String> {
@@ -128,49 +139,67 @@ impl Params {
     /// Numbers, `true`/`false` and bare words (for choices) are accepted; `scene` (or
     /// `null`) returns an override such as `ior` to the scene's own values.
     pub fn set(&mut self, name: &str, value: &str) -> Result<(), ParamError> {
-        let value = value.trim();
-        let json = if value == "scene" {
-            serde_json::Value::Null
-        } else {
-            serde_json::from_str(value)
-                .unwrap_or_else(|_| serde_json::Value::String(value.to_string()))
-        };
-        self.set_value(name, json)
+        self.set_value(name, value_json(value))
     }
 
     /// Parses `name=value` and sets it.
     pub fn set_assignment(&mut self, assignment: &str) -> Result<(), ParamError> {
-        let (name, value) = assignment
-            .split_once('=')
-            .ok_or_else(|| ParamError::Syntax(assignment.to_string()))?;
-        self.set(name.trim(), value)
+        self.set_all(&[assignment])
+    }
+
+    /// Parses every `name=value` and sets them together, then checks the result: so
+    /// `shutter_open=0.5 shutter=0.5` is valid in either order, whatever the shutter was
+    /// before. On error nothing changes.
+    pub fn set_all(&mut self, assignments: &[impl AsRef<str>]) -> Result<(), ParamError> {
+        let values = assignments
+            .iter()
+            .map(|a| {
+                let a = a.as_ref();
+                let (name, value) = a
+                    .split_once('=')
+                    .ok_or_else(|| ParamError::Syntax(a.to_string()))?;
+                Ok((name.trim(), value_json(value)))
+            })
+            .collect::<Result<Vec<_>, ParamError>>()?;
+        *self = self.with_values(values)?;
+        Ok(())
     }
 
     /// Sets parameter `name` to a JSON value, checking its type and range. On error
     /// nothing changes.
     pub fn set_value(&mut self, name: &str, value: serde_json::Value) -> Result<(), ParamError> {
-        let invalid = |message: String| ParamError::Invalid {
-            name: name.to_string(),
-            message,
-        };
-        let mut map = match serde_json::to_value(&*self) {
-            Ok(serde_json::Value::Object(map)) => map,
-            _ => return Err(invalid("parameters cannot be serialized".into())),
-        };
-        match map.get_mut(name) {
-            Some(slot) => *slot = value,
-            None => {
-                return Err(ParamError::Unknown {
-                    name: name.to_string(),
-                    known: Params::names().join(", "),
-                });
-            }
-        }
-        let updated: Params = serde_json::from_value(serde_json::Value::Object(map))
-            .map_err(|e| invalid(e.to_string()))?;
-        updated.validate()?;
-        *self = updated;
+        *self = self.with_values([(name, value)])?;
         Ok(())
+    }
+
+    /// These parameters with `values` set, checked once all are in place.
+    fn with_values<'n>(
+        &self,
+        values: impl IntoIterator<Item = (&'n str, serde_json::Value)>,
+    ) -> Result<Params, ParamError> {
+        let mut map = self.to_map();
+        let mut last = String::new();
+        for (name, value) in values {
+            match map.get_mut(name) {
+                Some(slot) => *slot = value,
+                None => {
+                    return Err(ParamError::Unknown {
+                        name: name.to_string(),
+                        known: Params::names().join(", "),
+                    });
+                }
+            }
+            last = name.to_string();
+        }
+        let updated: Params =
+            serde_json::from_value(serde_json::Value::Object(map)).map_err(|e| {
+                ParamError::Invalid {
+                    name: last,
+                    message: e.to_string(),
+                }
+            })?;
+        updated.validate()?;
+        Ok(updated)
     }
 
     /// Whether `other` renders the same image: every parameter equal but the display

@@ -95,12 +95,13 @@ pub enum FilmError {
     #[error("{0}: unsupported image format (use a name ending in .png or .exr)")]
     UnsupportedFormat(String),
     /// Encoding or writing failed.
-    #[error("{path}: cannot write the image: {source}")]
+    // `error`, not `source`: the message already says it, and a source would be said twice.
+    #[error("{path}: cannot write the image: {error}")]
     Write {
         /// The file.
         path: String,
         /// Why.
-        source: image::ImageError,
+        error: image::ImageError,
     },
 }
 
@@ -194,7 +195,7 @@ pub fn write_image(
         }
         _ => return Err(FilmError::UnsupportedFormat(name)),
     };
-    written.map_err(|source| FilmError::Write { path: name, source })
+    written.map_err(|error| FilmError::Write { path: name, error })
 }
 
 impl Film {

@@ -46,12 +46,13 @@ pub struct Sidecar {
 #[derive(Debug, thiserror::Error)]
 pub enum SidecarError {
     /// Reading or writing the file failed.
-    #[error("{path}: {source}")]
+    // `error`, not `source`: the message already says it, and a source would be said twice.
+    #[error("{path}: {error}")]
     Io {
         /// The file.
         path: String,
         /// Why.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The JSON is malformed or does not match.
     #[error("{path}:{line}:{column}: {message}")]
@@ -74,12 +75,12 @@ pub enum SidecarError {
         message: String,
     },
     /// A parameter in it is out of range.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Param {
         /// The file.
         path: String,
         /// Which and why.
-        source: crate::params::ParamError,
+        error: crate::params::ParamError,
     },
 }
 
@@ -133,7 +134,7 @@ impl Sidecar {
                 "is the sidecar this render reads; not replaced (write the image under another name)",
             );
         }
-        let ours = std::fs::read_to_string(path)
+        let ours = crate::input::read_text(path)
             .ok()
             .is_some_and(|text| serde_json::from_str::<Sidecar>(&text).is_ok());
         if !ours {
@@ -145,9 +146,9 @@ impl Sidecar {
     /// Reads and checks a sidecar.
     pub fn read(path: &Path) -> Result<Sidecar, SidecarError> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SidecarError::Io {
+        let text = crate::input::read_text(path).map_err(|error| SidecarError::Io {
             path: name.clone(),
-            source,
+            error,
         })?;
         let mut sidecar: Sidecar =
             serde_json::from_str(&text).map_err(|e| SidecarError::Parse {
@@ -164,9 +165,9 @@ impl Sidecar {
         sidecar
             .params
             .validate()
-            .map_err(|source| SidecarError::Param {
+            .map_err(|error| SidecarError::Param {
                 path: name.clone(),
-                source,
+                error,
             })?;
         sidecar.check().map_err(|message| SidecarError::Invalid {
             path: name,
@@ -201,9 +202,9 @@ impl Sidecar {
 
     /// Writes the sidecar as pretty JSON.
     pub fn write(&self, path: &Path) -> Result<(), SidecarError> {
-        let io = |source| SidecarError::Io {
+        let io = |error| SidecarError::Io {
             path: path.display().to_string(),
-            source,
+            error,
         };
         let json = serde_json::to_string_pretty(self).map_err(|e| io(std::io::Error::other(e)))?;
         crate::output::write_atomic(path, (json + "\n").as_bytes()).map_err(io)

@@ -223,7 +223,9 @@ impl Scene {
             };
         }
         let path = Path::new(name_or_path);
-        if path.is_file() {
+        // Anything there but a built-in's name is read as a file, which refuses what is
+        // not a regular file (a folder, a device, a pipe) with a message.
+        if path.is_file() || (path.exists() && builtin(name_or_path).is_none()) {
             return Scene::load_file(path);
         }
         match builtin(name_or_path) {
