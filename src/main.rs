@@ -33,6 +33,24 @@ macro_rules! say_raw {
     }};
 }
 
+/// A failure while working (a file that cannot be written, threads that cannot start), as
+/// against bad input: the program exits with status 1, not 2.
+#[derive(Debug)]
+struct Runtime(anyhow::Error);
+
+impl std::fmt::Display for Runtime {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:#}", self.0)
+    }
+}
+
+impl std::error::Error for Runtime {}
+
+/// Marks an error as a runtime failure (exit status 1).
+fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
+    anyhow::Error::new(Runtime(e.into()))
+}
+
 #[derive(Parser)]
 #[command(
     name = "raylab",
@@ -193,7 +211,7 @@ fn window(scene: Option<String>, threads: Option<u32>) -> Result<()> {
         close_after,
         ..Default::default()
     };
-    raylab::app::run(options).map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))
+    raylab::app::run(options).map_err(|e| runtime(anyhow::anyhow!("cannot open the window: {e}")))
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -240,9 +258,14 @@ fn main() -> ExitCode {
         {
             ExitCode::SUCCESS
         }
+        // Bad input exits 2 (as clap does for bad options); a failure while working, 1.
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(2)
+            ExitCode::from(if e.downcast_ref::<Runtime>().is_some() {
+                1
+            } else {
+                2
+            })
         }
     }
 }
@@ -297,7 +320,8 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
         .build()
-        .context("cannot start the worker threads")?;
+        .context("cannot start the worker threads")
+        .map_err(runtime)?;
     let show_progress = !args.quiet && std::io::stderr().is_terminal();
     let bar = if show_progress {
         ProgressBar::new(height as u64)
@@ -312,16 +336,18 @@ fn render_command(args: RenderArgs) -> Result<()> {
         .progress_chars("=> "),
     );
     let start = Instant::now();
-    let (film, stats) = pool.install(|| {
-        let mut film = Film::new(width, height);
-        let n = samples.unwrap_or(params.spp);
-        let observer = Progress(bar.clone());
-        render_pass(&scene, &camera, &params, &mut film, n, &observer).map(|s| (film, s))
-    })?;
+    let (film, stats) = pool
+        .install(|| {
+            let mut film = Film::new(width, height);
+            let n = samples.unwrap_or(params.spp);
+            let observer = Progress(bar.clone());
+            render_pass(&scene, &camera, &params, &mut film, n, &observer).map(|s| (film, s))
+        })
+        .map_err(runtime)?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
-    film.save(&args.output, params.exposure)?;
+    film.save(&args.output, params.exposure).map_err(runtime)?;
     Sidecar {
         raylab_version: raylab::VERSION.to_string(),
         scene: Sidecar::scene_reference(&scene.source, &json),
@@ -337,7 +363,8 @@ fn render_command(args: RenderArgs) -> Result<()> {
         seconds: Some(seconds),
         stats: Some(stats),
     }
-    .write(&json)?;
+    .write(&json)
+    .map_err(runtime)?;
 
     if !args.quiet {
         let pixels = (width as u64 * height as u64) as f64;
@@ -425,7 +452,8 @@ fn sweep_command(args: &SweepArgs) -> Result<()> {
     let sheet =
         raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
     raylab::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
-        .with_context(|| format!("{}: cannot write the sheet", args.output.display()))?;
+        .with_context(|| format!("{}: cannot write the sheet", args.output.display()))
+        .map_err(runtime)?;
     eprintln!(
         "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
         scene.name,

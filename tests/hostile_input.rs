@@ -59,7 +59,12 @@ fn geometry_beyond_what_the_bvh_handles_is_refused_where_it_is_written() {
     assert!(e.contains("far.obj:3:5: vertex coordinate 1e20"), "{e}");
     // The camera: also once accepted from sidecars, now one check for both.
     let e = scene_error("[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 5]\n", dir);
-    assert_starts(&e, "t.toml: ", "must differ");
+    assert_starts(&e, "t.toml:1:1: ", "must differ");
+    let e = scene_error(
+        "# c\ncamera = { position = [0, 1, 5], look_at = [0, 1, 5] }\n",
+        dir,
+    );
+    assert_starts(&e, "t.toml:2:10: ", "must differ");
 }
 
 #[test]
@@ -408,4 +413,51 @@ fn parameters_set_together_are_checked_together_and_errors_are_said_once() {
     assert_eq!(err.lines().count(), 1, "{err}");
     let said = err.trim_start_matches("error: missing.json: ");
     assert!(!said.contains(": "), "the reason once: {err}");
+    // A key with a newline in it is shown escaped, on the one line.
+    std::fs::write(
+        dir.join("key.json"),
+        "{ \"scene\": \"default\", \"a\\nb\": 1 }",
+    )
+    .unwrap();
+    let err = fails(
+        &["render", "--params", "key.json", "-o", "x.png"],
+        dir,
+        "key.json:1:",
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
+
+#[test]
+fn a_failure_while_working_exits_1_and_leaves_what_was_there() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // A folder where the image should go: found only when the finished image is written.
+    std::fs::create_dir(dir.join("taken.png")).unwrap();
+    std::fs::write(dir.join("taken.png/inside"), "mine").unwrap();
+    let o = raylab(
+        &[
+            "render",
+            "-o",
+            "taken.png",
+            "--size",
+            "8x8",
+            "--spp",
+            "1",
+            "-q",
+        ],
+        dir,
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("error: taken.png: cannot write the image"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("taken.png/inside")).unwrap(),
+        "mine"
+    );
+    let left: Vec<_> = std::fs::read_dir(dir).unwrap().collect();
+    assert_eq!(left.len(), 1, "no temporary file left: {left:?}");
 }

@@ -155,12 +155,9 @@ impl Sidecar {
                 path: name.clone(),
                 line: e.line(),
                 column: e.column(),
-                message: e
-                    .to_string()
-                    .split(" at line")
-                    .next()
-                    .unwrap_or_default()
-                    .to_string(),
+                message: crate::scene::one_line(
+                    e.to_string().split(" at line").next().unwrap_or_default(),
+                ),
             })?;
         sidecar
             .params

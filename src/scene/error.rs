@@ -72,14 +72,31 @@ pub struct SceneError {
 impl SceneError {
     /// An error at `location`.
     pub fn new(location: Location, message: impl Into<String>) -> Self {
-        // One line, whatever the source said.
-        let message = message
-            .into()
-            .split_whitespace()
-            .collect::<Vec<_>>()
-            .join(" ");
-        SceneError { location, message }
+        SceneError {
+            location,
+            message: one_line(&message.into()),
+        }
     }
+}
+
+/// A message on one line, whatever its source said: runs of whitespace (newlines in a
+/// quoted key among them) become one space, other control characters are escaped.
+pub(crate) fn one_line(message: &str) -> String {
+    message
+        .split_whitespace()
+        .map(|word| {
+            word.chars()
+                .map(|c| {
+                    if c.is_control() {
+                        c.escape_default().collect()
+                    } else {
+                        c.to_string()
+                    }
+                })
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 #[cfg(test)]

@@ -87,7 +87,7 @@ struct SceneFile {
     image: Option<Spanned<ImageDef>>,
     #[serde(default)]
     params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
-    camera: CameraDef,
+    camera: Spanned<CameraDef>,
     background: Option<Spanned<BackgroundDef>>,
     #[serde(default)]
     material: BTreeMap<String, MaterialDef>,
@@ -431,7 +431,8 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         }
     };
 
-    let c = f.camera;
+    let camera_span = f.camera.span();
+    let c = f.camera.into_inner();
     let fov = match c.fov {
         Some(fov) if fov.get_ref().0 >= 180.0 => {
             return Err(SceneError::new(
@@ -446,7 +447,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     let camera = Camera::looking_at(c.position.0, c.look_at.0, up, fov);
     camera
         .check()
-        .map_err(|e| SceneError::new(Location::file(file), format!("[camera] {e}")))?;
+        .map_err(|e| SceneError::new(at(camera_span), format!("[camera] {e}")))?;
 
     let intensity = |color: Option<Rgb>, i: NonNegative| color.map_or(Color::ONE, |c| c.0) * i.0;
     let light = |shape, intensity| Light {

@@ -8,6 +8,7 @@ mod obj;
 mod values;
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
+pub(crate) use error::one_line;
 pub use error::{Location, SceneError, line_col};
 pub use file::describe;
 pub use obj::{ObjPart, load_obj};
