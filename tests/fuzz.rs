@@ -1,0 +1,469 @@
+//! A seeded mutation fuzzer over everything a user hands raylab: scene files, OBJ and MTL
+//! files, sidecars, `--set` assignments and image sizes, and the command line itself. A
+//! case fails on a panic, on a loaded scene that renders a non-finite pixel, or on a case
+//! that runs for more than a minute (a watchdog ends the run). Failing inputs are shrunk
+//! line by line and kept in `tests/fuzz-regressions/`, which every run replays first.
+//!
+//! `cargo test --release --test fuzz` runs 10,000 cases in seconds. A longer
+//! run: `RAYLAB_FUZZ_CASES=100000 RAYLAB_FUZZ_SEED=7 cargo test --release --test fuzz`.
+
+mod common;
+
+use raylab::params::Params;
+use raylab::render::{Sidecar, check_size, render};
+use raylab::scene::{Scene, load_obj};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+/// SplitMix64: the fuzzer's own deterministic stream.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        raylab::math::rng::mix64(self.0)
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+    fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}
+
+/// Values that have broken parsers and renderers before.
+const NUMBERS: &[&str] = &[
+    "0",
+    "-0",
+    "-1",
+    "1e20",
+    "-1e20",
+    "3e38",
+    "1e-40",
+    "nan",
+    "inf",
+    "-inf",
+    "NaN",
+    "16385",
+    "4294967295",
+    "18446744073709551616",
+    "0.5",
+    "180",
+    "1e6",
+    "999999",
+    "65",
+    "\"x\"",
+    "",
+    "[]",
+    "[1, 2]",
+    "{}",
+    "true",
+];
+
+/// Pieces of each format, spliced in as lines.
+const LINES: &[&str] = &[
+    "[[sphere]]",
+    "[[quad]]",
+    "[[plane]]",
+    "[[box]]",
+    "[[mesh]]",
+    "[camera]",
+    "[params]",
+    "[image]",
+    "radius = 1e30",
+    "center = [0, 0, 0]",
+    "file = \"models/prism.obj\"",
+    "file = \"/dev/zero\"",
+    "scale = 1e30",
+    "velocity = [3e38, 0, 0]",
+    "width = 0",
+    "max_depth = 64",
+    "min_weight = 0",
+    "aperture = 100",
+    "focus_distance = 3e38",
+    "v 1e20 0 0",
+    "v nan 0 0",
+    "f 1 2 99",
+    "f -9 1 2",
+    "vt 0",
+    "vn 0 0",
+    "mtllib m.mtl",
+    "usemtl a",
+    "newmtl a",
+    "Kd 1",
+    "Kd",
+    "Ke 1 2",
+    "Ns",
+    "illum",
+    "\"samples\": 0,",
+    "\"width\": 0,",
+    "\"camera\": {\"position\": [0,0,0], \"look_at\": [0,0,0], \"up\": [0,1,0], \"fov_deg\": 0},",
+];
+
+fn mutate(text: &str, rng: &mut Rng) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for _ in 0..1 + rng.below(4) {
+        let i = rng.below(lines.len());
+        match rng.below(7) {
+            0 if !lines.is_empty() => {
+                lines.remove(i);
+            }
+            1 if !lines.is_empty() => {
+                let line = lines[i].clone();
+                lines.insert(rng.below(lines.len()), line);
+            }
+            2 => lines.insert(i.min(lines.len()), rng.pick(LINES).to_string()),
+            3 if !lines.is_empty() => lines[i] = replace_a_number(&lines[i], rng),
+            4 if !lines.is_empty() => {
+                // Cut a line short, or drop a character from it.
+                let chars: Vec<char> = lines[i].chars().collect();
+                let cut = rng.below(chars.len() + 1);
+                lines[i] = chars[..cut].iter().collect();
+            }
+            5 => lines.truncate(i),
+            _ if !lines.is_empty() => {
+                let junk = *rng.pick(&['"', '[', ']', '{', '}', '=', ',', '\n', '\0', 'é', '#']);
+                let at = rng.below(lines[i].chars().count() + 1);
+                let mut chars: Vec<char> = lines[i].chars().collect();
+                chars.insert(at, junk);
+                lines[i] = chars.into_iter().collect();
+            }
+            _ => lines.push(rng.pick(LINES).to_string()),
+        }
+    }
+    lines.join("\n")
+}
+
+/// The line with one of its numbers replaced by an interesting value.
+fn replace_a_number(line: &str, rng: &mut Rng) -> String {
+    let spans: Vec<(usize, usize)> = {
+        let b = line.as_bytes();
+        let mut spans = Vec::new();
+        let mut i = 0;
+        while i < b.len() {
+            if b[i].is_ascii_digit() || b[i] == b'-' {
+                let start = i;
+                while i < b.len() && (b[i].is_ascii_alphanumeric() || b"-+.".contains(&b[i])) {
+                    i += 1;
+                }
+                spans.push((start, i));
+            } else {
+                i += 1;
+            }
+        }
+        spans
+    };
+    if spans.is_empty() {
+        return format!("{line} {}", rng.pick(NUMBERS));
+    }
+    let (s, e) = *rng.pick(&spans);
+    format!("{}{}{}", &line[..s], rng.pick(NUMBERS), &line[e..])
+}
+
+/// The kinds of input, each with its seeds and how a case is run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Target {
+    Scene,
+    Obj,
+    Mtl,
+    Sidecar,
+    Params,
+}
+
+const TARGETS: [Target; 5] = [
+    Target::Scene,
+    Target::Obj,
+    Target::Mtl,
+    Target::Sidecar,
+    Target::Params,
+];
+
+impl Target {
+    fn extension(self) -> &'static str {
+        match self {
+            Target::Scene => "toml",
+            Target::Obj => "obj",
+            Target::Mtl => "mtl",
+            Target::Sidecar => "json",
+            Target::Params => "set",
+        }
+    }
+
+    fn from_extension(ext: &str) -> Option<Target> {
+        TARGETS.into_iter().find(|t| t.extension() == ext)
+    }
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The unmutated inputs of each target.
+fn seeds(target: Target) -> Vec<String> {
+    let read_dir = |dir: &str, ext: &str| -> Vec<String> {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(repo().join(dir))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.to_string_lossy().ends_with(ext))
+            .collect();
+        files.sort();
+        files
+            .iter()
+            .map(|p| std::fs::read_to_string(p).unwrap())
+            .collect()
+    };
+    match target {
+        Target::Scene => read_dir("scenes", ".toml"),
+        Target::Obj => read_dir("scenes/models", ".obj"),
+        Target::Mtl => vec!["newmtl a\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\nNs 40\nillum 2\nnewmtl b\nKe 1 1 1\n".into()],
+        Target::Sidecar => read_dir("screenshots", ".png.json"),
+        Target::Params => vec![
+            "spp=4\nmax_depth=3\nmin_weight=0.01\nior=1.5\naperture=0.1\nfocus_distance=5\nshutter_open=0\nshutter=1\npattern=sobol\ntree=split\nsize=64x36".into(),
+        ],
+    }
+}
+
+/// Runs one case: Ok(true) if the input was accepted (and rendered, where it makes an
+/// image), Ok(false) if it was refused; Err says what went wrong. Refusals are fine: only
+/// panics (caught by the caller) and non-finite pixels fail.
+fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
+    let check_render = |scene: &Scene, params: &Params| -> Result<(), String> {
+        // Small and cheap, whatever the input asked for; the budget bounds the tree.
+        let params = Params {
+            spp: params.spp.min(2),
+            ..params.clone()
+        };
+        let (film, _) = render(scene, &params, 6, 4, &()).map_err(|e| e.to_string())?;
+        match film.pixels().find(|c| !c.is_finite()) {
+            Some(c) => Err(format!("non-finite pixel {c}")),
+            None => Ok(()),
+        }
+    };
+    let accepted = match target {
+        Target::Scene => {
+            let scene = Scene::from_toml_str(input, "fuzz.toml", &repo().join("scenes"));
+            if let Ok(scene) = &scene {
+                check_render(scene, &scene.params)?;
+            }
+            scene.is_ok()
+        }
+        Target::Obj | Target::Mtl => {
+            let (obj, mtl) = match target {
+                Target::Obj => (input.to_string(), seeds(Target::Mtl)[0].clone()),
+                _ => (
+                    "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n".to_string(),
+                    input.to_string(),
+                ),
+            };
+            let read_mtl = |_: &str| Some(mtl.as_bytes().to_vec());
+            load_obj(obj.as_bytes(), "fuzz.obj", &read_mtl).is_ok()
+        }
+        Target::Sidecar => {
+            let path = dir.join("fuzz.png.json");
+            std::fs::write(&path, input).map_err(|e| e.to_string())?;
+            let sidecar = Sidecar::read(&path);
+            if let Ok(sidecar) = &sidecar {
+                check_size(sidecar.width, sidecar.height)?;
+            }
+            sidecar.is_ok()
+        }
+        Target::Params => {
+            let mut params = Params::default();
+            let (sizes, sets): (Vec<&str>, Vec<&str>) =
+                input.lines().partition(|l| l.starts_with("size="));
+            for size in sizes {
+                if let Some((w, h)) = size[5..].split_once('x') {
+                    let (w, h) = (w.parse().unwrap_or(0), h.parse().unwrap_or(0));
+                    let _ = check_size(w, h);
+                }
+            }
+            let set = params.set_all(&sets);
+            if set.is_ok() {
+                params
+                    .validate()
+                    .map_err(|e| format!("accepted, then invalid: {e}"))?;
+                check_render(&Scene::load("glass").map_err(|e| e.to_string())?, &params)?;
+            }
+            set.is_ok()
+        }
+    };
+    Ok(accepted)
+}
+
+/// Panics seen anywhere in this test binary, and the last one's message: raylab catches a
+/// dependency's panic as a last line of defence, but the fuzzer counts it as a failure.
+static PANICS: AtomicU64 = AtomicU64::new(0);
+static LAST_PANIC: Mutex<String> = Mutex::new(String::new());
+
+/// Runs a case with panics caught and counted: whether it was accepted, or what happened.
+fn outcome(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        std::panic::set_hook(Box::new(|info| {
+            PANICS.fetch_add(1, Ordering::SeqCst);
+            if let Ok(mut last) = LAST_PANIC.lock() {
+                *last = info.to_string();
+            }
+        }))
+    });
+    let before = PANICS.load(Ordering::SeqCst);
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        run_case(target, input, dir)
+    }));
+    if PANICS.load(Ordering::SeqCst) != before || result.is_err() {
+        let last = LAST_PANIC.lock().map(|s| s.clone()).unwrap_or_default();
+        return Err(format!("panicked: {last}"));
+    }
+    result.unwrap_or(Ok(false))
+}
+
+/// The failing input with as many lines removed as still fail.
+fn shrink(target: Target, input: &str, dir: &Path) -> String {
+    let mut lines: Vec<&str> = input.lines().collect();
+    let mut i = 0;
+    while i < lines.len() {
+        let mut fewer = lines.clone();
+        fewer.remove(i);
+        if outcome(target, &fewer.join("\n"), dir).is_err() {
+            lines = fewer;
+        } else {
+            i += 1;
+        }
+    }
+    lines.join("\n")
+}
+
+fn regressions() -> PathBuf {
+    repo().join("tests/fuzz-regressions")
+}
+
+/// Every kept failing input, replayed: none may fail again.
+#[test]
+fn kept_failures_stay_fixed() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(regressions())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    let mut replayed = 0;
+    for file in files {
+        let Some(target) = file
+            .extension()
+            .and_then(|e| Target::from_extension(&e.to_string_lossy()))
+        else {
+            continue;
+        };
+        let input = std::fs::read_to_string(&file).unwrap();
+        if let Err(e) = outcome(target, &input, dir.path()) {
+            panic!("{}: {e}", file.display());
+        }
+        replayed += 1;
+    }
+    assert!(replayed >= 8, "only {replayed} kept inputs replayed");
+}
+
+#[test]
+fn thousands_of_mutated_inputs_neither_panic_nor_hang_nor_render_nan() {
+    let cases: u64 = std::env::var("RAYLAB_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(10_000);
+    let seed: u64 = std::env::var("RAYLAB_FUZZ_SEED")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1);
+    // A watchdog: a case that runs for a minute is a hang; say which and end the run.
+    static CASE: AtomicU64 = AtomicU64::new(0);
+    static CURRENT: Mutex<String> = Mutex::new(String::new());
+    std::thread::spawn(|| {
+        let mut last = (u64::MAX, Instant::now());
+        loop {
+            std::thread::sleep(Duration::from_secs(1));
+            let case = CASE.load(Ordering::Relaxed);
+            if case != last.0 {
+                last = (case, Instant::now());
+            } else if last.1.elapsed() > Duration::from_secs(60) {
+                let input = CURRENT.lock().map(|s| s.clone()).unwrap_or_default();
+                eprintln!("fuzz case {case} hangs:\n{input}");
+                std::process::abort();
+            }
+        }
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let seeds: Vec<(Target, Vec<String>)> = TARGETS.iter().map(|&t| (t, seeds(t))).collect();
+    let mut rng = Rng(seed);
+    // Per target: inputs accepted, inputs refused.
+    let mut counts = [[0u64; 2]; 5];
+    let start = Instant::now();
+    for case in 0..cases {
+        let (target, inputs) = &seeds[case as usize % seeds.len()];
+        let input = mutate(&inputs[rng.below(inputs.len())], &mut rng);
+        if let Ok(mut current) = CURRENT.lock() {
+            current.clone_from(&input);
+        }
+        CASE.store(case, Ordering::Relaxed);
+        let result = outcome(*target, &input, dir.path());
+        if let Err(e) = result {
+            let small = shrink(*target, &input, dir.path());
+            let name = format!(
+                "{:?}-{:016x}.{}",
+                target,
+                raylab::math::rng::mix64(case ^ seed << 32),
+                target.extension()
+            )
+            .to_lowercase();
+            let kept = regressions().join(name);
+            let _ = std::fs::write(&kept, &small);
+            panic!(
+                "case {case} ({target:?}): {e}\nshrunk input kept in {}:\n{small}",
+                kept.display()
+            );
+        }
+        counts[case as usize % 5][usize::from(result == Ok(false))] += 1;
+    }
+    let per_target: Vec<String> = TARGETS
+        .iter()
+        .zip(counts)
+        .map(|(t, [ok, refused])| format!("{t:?} {ok} accepted, {refused} refused"))
+        .collect();
+    eprintln!(
+        "fuzz: {cases} cases (seed {seed}) in {:.1} s, none failed: {}",
+        start.elapsed().as_secs_f64(),
+        per_target.join("; ")
+    );
+    // Mutations that never get past the parsers would test little.
+    for (t, [ok, refused]) in TARGETS.iter().zip(counts) {
+        assert!(
+            ok > 0 && refused > 0,
+            "{t:?}: {ok} accepted, {refused} refused"
+        );
+    }
+}
+
+/// The command line, through the binary: every run ends with status 0, 1 or 2, and any
+/// error is one line.
+#[test]
+fn mutated_command_lines_exit_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = "render\nglass\n-o\nx.png\n--size\n8x6\n--spp\n1\n--set\nmax_depth=3\n--seed\n5";
+    let mut rng = Rng(99);
+    for case in 0..150 {
+        let line = mutate(base, &mut rng);
+        // An argument cannot hold a NUL byte: no shell can pass one.
+        let args: Vec<&str> = line.lines().filter(|a| !a.contains('\0')).collect();
+        let o = common::raylab(&args, dir.path());
+        let err = common::stderr(&o);
+        let code = o.status.code();
+        assert!(
+            matches!(code, Some(0..=2)),
+            "case {case} {args:?}: {code:?} {err}"
+        );
+        assert!(!err.contains("panicked"), "case {case} {args:?}: {err}");
+        if code == Some(1) {
+            assert_eq!(err.lines().count(), 1, "case {case} {args:?}: {err}");
+        }
+    }
+}
