@@ -24,6 +24,7 @@
 pub mod app;
 pub mod camera;
 pub mod geometry;
+pub mod guard;
 pub mod input;
 pub mod light;
 pub mod material;

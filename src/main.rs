@@ -4,7 +4,6 @@
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use raylab::params::Params;
 use raylab::render::{Film, PassObserver, Sidecar, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use std::io::IsTerminal;
@@ -32,6 +31,10 @@ macro_rules! say_raw {
         }
     }};
 }
+
+mod cli;
+
+use cli::bench::{BenchArgs, bench_command};
 
 /// A failure while working (a file that cannot be written, threads that cannot start), as
 /// against bad input: the program exits with status 1, not 2.
@@ -111,22 +114,6 @@ struct SweepArgs {
     /// Set other parameters for every image (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
-}
-
-#[derive(clap::Args)]
-struct BenchArgs {
-    /// A scene file or built-in name.
-    #[arg(default_value = "default")]
-    scene: String,
-    /// Image size.
-    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "960x540")]
-    size: (u32, u32),
-    /// Parameter changes to time.
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(1..=100_000))]
-    changes: u32,
-    /// Worker threads [default: all cores but one, as with the window].
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    threads: Option<u32>,
 }
 
 #[derive(clap::Args)]
@@ -230,7 +217,19 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let result = match cli.command {
+    // A panic (a bug) is reported once, as one line, by `caught` below; RUST_BACKTRACE
+    // keeps the full report for debugging.
+    if std::env::var_os("RUST_BACKTRACE").is_none() {
+        std::panic::set_hook(Box::new(|_| {}));
+    }
+    let result = raylab::guard::caught(|| run(cli))
+        .unwrap_or_else(|failure| Err(runtime(anyhow::anyhow!(failure))));
+    exit_code(result)
+}
+
+/// Runs the command, or opens the window.
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
         Some(Command::Render(args)) => render_command(args),
         Some(Command::Scenes) => scenes_command(),
         Some(Command::Params { markdown }) => {
@@ -248,7 +247,10 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
         None => window(cli.scene, cli.threads),
-    };
+    }
+}
+
+fn exit_code(result: Result<()>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output has gone (`raylab fresnel | head`): nothing went wrong.
@@ -460,112 +462,6 @@ fn sweep_command(args: &SweepArgs) -> Result<()> {
         values.len(),
         start.elapsed().as_secs_f64(),
         args.output.display()
-    );
-    Ok(())
-}
-
-fn bench_command(args: &BenchArgs) -> Result<()> {
-    use raylab::render::{Engine, EngineConfig, Film, render_pass};
-    use std::sync::Arc;
-    use std::time::Duration;
-    let scene = Arc::new(Scene::load(&args.scene)?);
-    let (width, height) = args.size;
-    let config = match args.threads {
-        Some(t) => EngineConfig {
-            threads: t as usize,
-        },
-        None => EngineConfig::with_ui(),
-    };
-    let params = Params {
-        spp: 1 << 16,
-        ..scene.params.clone()
-    };
-    say!(
-        "raylab bench: {} at {width}x{height}, {} worker thread{}, {} cores",
-        scene.name,
-        config.threads,
-        if config.threads == 1 { "" } else { "s" },
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    );
-
-    // Latency: change a parameter at a random moment of a pass, time the first frame of the
-    // new generation (the coarse preview).
-    let mut engine = Engine::new(
-        Arc::clone(&scene),
-        params.clone(),
-        width,
-        height,
-        config,
-        || {},
-    )?;
-    let wait_for = |engine: &Engine, generation: u64| -> Result<()> {
-        loop {
-            let frame = engine.frames().recv_timeout(Duration::from_secs(60))?;
-            if frame.generation == generation {
-                return Ok(());
-            }
-        }
-    };
-    wait_for(&engine, 1)?;
-    let mut latencies = Vec::with_capacity(args.changes as usize);
-    let mut rng = raylab::math::SampleStream::new(7, 0, 0);
-    for i in 0..args.changes {
-        std::thread::sleep(Duration::from_secs_f32(0.05 * rng.next_1d()));
-        let start = Instant::now();
-        engine.set_params(Params {
-            ior: Some(1.2 + 0.5 * (i % 2) as f32),
-            ..params.clone()
-        });
-        wait_for(&engine, engine.generation())?;
-        latencies.push(start.elapsed().as_secs_f64() * 1e3);
-    }
-    // A drag: a change every 16 ms for 2 s, as a slider moved at 60 Hz.
-    let drag = raylab::render::simulate_drag(
-        &mut engine,
-        Duration::from_millis(16),
-        Duration::from_secs(2),
-        |i| Params {
-            ior: Some(1.2 + 0.02 * (i % 40) as f32),
-            ..params.clone()
-        },
-    );
-    // Shutdown in the middle of a pass: the workers stop at their next pixel.
-    let start = Instant::now();
-    engine.shutdown();
-    let shutdown_ms = start.elapsed().as_secs_f64() * 1e3;
-    latencies.sort_by(f64::total_cmp);
-    let at = |q: f64| latencies[((latencies.len() - 1) as f64 * q).round() as usize];
-    say!(
-        "change -> first frame: median {:.2} ms, p95 {:.2} ms, max {:.2} ms ({} changes)",
-        at(0.5),
-        at(0.95),
-        at(1.0),
-        latencies.len()
-    );
-    say!("{}", drag.summary());
-    say!("shutdown mid-pass: {shutdown_ms:.1} ms");
-
-    // A full-resolution pass of one sample per pixel, on the same number of threads.
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(config.threads)
-        .build()?;
-    let mut times = Vec::new();
-    let mut rays = 0;
-    for _ in 0..5 {
-        let mut film = Film::new(width, height);
-        let start = Instant::now();
-        let stats =
-            pool.install(|| render_pass(&scene, &scene.camera, &params, &mut film, 1, &()))?;
-        times.push(start.elapsed().as_secs_f64());
-        rays = stats.total_rays();
-    }
-    times.sort_by(f64::total_cmp);
-    let pass = times[times.len() / 2];
-    say!(
-        "1-spp pass: {:.1} ms (median of 5), {:.2} M rays, {:.2} M rays/s",
-        pass * 1e3,
-        rays as f64 / 1e6,
-        rays as f64 / pass / 1e6
     );
     Ok(())
 }

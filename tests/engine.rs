@@ -265,3 +265,42 @@ fn shutdown_mid_pass_leaves_no_thread() {
     }
     assert_eq!(left, 0, "threads left behind");
 }
+
+#[test]
+fn a_pass_that_panics_stops_its_generation_with_a_message_and_the_engine_goes_on() {
+    use raylab::camera::Camera;
+    use raylab::geometry::{Shape, Sphere};
+    use raylab::math::Vec3;
+    use raylab::scene::{Object, SceneDesc};
+    // Only code can build this broken scene (files are checked): an object whose material
+    // does not exist, which the tracer indexes and panics on.
+    let mut desc = SceneDesc::empty(Camera::looking_at(
+        Vec3::new(0.0, 0.0, 5.0),
+        Vec3::ZERO,
+        Vec3::Y,
+        40.0,
+    ));
+    desc.objects.push(Object {
+        name: "broken".into(),
+        shape: Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0)),
+        material: 99,
+    });
+    let scene = Arc::new(desc.build());
+    let mut e = engine(&scene, Params::default());
+    let limit = Duration::from_secs(30);
+    let failed = frames_until(&e, limit, |f| f.progress.failure.is_some());
+    let failure = failed.last().unwrap().progress.failure.clone().unwrap();
+    assert!(
+        failure.contains("a bug in raylab") && failure.contains("index out of bounds"),
+        "{failure}"
+    );
+    // The engine still takes commands: a new generation tries again (and fails again).
+    e.set_params(Params {
+        spp: 2,
+        ..Params::default()
+    });
+    let again = frames_until(&e, limit, |f| {
+        f.progress.failure.is_some() && f.generation == e.generation()
+    });
+    assert!(again.last().unwrap().progress.failure.is_some());
+}

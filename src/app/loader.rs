@@ -88,7 +88,12 @@ impl Loader {
         let wake = self.ctx.clone();
         self.loading += 1;
         std::thread::spawn(move || {
-            let result = Scene::load(&reference);
+            let result = crate::guard::caught(|| Scene::load(&reference)).unwrap_or_else(|e| {
+                Err(crate::scene::SceneError::new(
+                    crate::scene::Location::file(&reference),
+                    e,
+                ))
+            });
             let _ = tx.send(Loaded { purpose, result });
             wake.request_repaint();
         });

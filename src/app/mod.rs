@@ -300,7 +300,13 @@ impl eframe::App for RaylabApp {
         let told = self.told();
         let params = &self.settings.params;
         self.main.sync(&told, params);
-        self.main.receive();
+        // A pass that failed inside raylab stops its generation: the banner says so (once
+        // a frame, so that Dismiss holds until the next failure).
+        if self.main.receive()
+            && let Some(failure) = self.main.frame().and_then(|f| f.progress.failure.clone())
+        {
+            self.error = Some(format!("The render stopped: {failure}"));
+        }
         if let Some(c) = &mut self.compare {
             c.side.sync(&told, &c.kind.side_b(params));
             c.side.receive();

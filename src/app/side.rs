@@ -93,14 +93,16 @@ impl Side {
         }
     }
 
-    /// Takes the newest frame the engine sent, dropping older ones.
-    pub(crate) fn receive(&mut self) {
-        if let Some(frame) = self.engine.frames().try_iter().last() {
-            self.paused = frame.progress.paused;
-            self.cost_range = (!frame.cost.is_empty()).then(|| cost_range(&frame.cost));
-            self.frame = Some(frame);
-            self.shown = None;
-        }
+    /// Takes the newest frame the engine sent, dropping older ones; whether there was one.
+    pub(crate) fn receive(&mut self) -> bool {
+        let Some(frame) = self.engine.frames().try_iter().last() else {
+            return false;
+        };
+        self.paused = frame.progress.paused;
+        self.cost_range = (!frame.cost.is_empty()).then(|| cost_range(&frame.cost));
+        self.frame = Some(frame);
+        self.shown = None;
+        true
     }
 
     /// Brings the texture up to date with the newest frame, shown at `exposure`, or as the

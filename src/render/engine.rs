@@ -140,6 +140,7 @@ impl Engine {
                 pending: None,
             },
             wake: Box::new(wake),
+            failure: None,
         };
         let controller = std::thread::Builder::new()
             .name(format!("rl{id}c"))
@@ -315,6 +316,8 @@ struct Controller {
     requested: Arc<AtomicU64>,
     outbox: Outbox,
     wake: Box<dyn Fn() + Send + Sync>,
+    // Why this generation stopped, if a pass panicked.
+    failure: Option<String>,
 }
 
 impl Controller {
@@ -327,7 +330,8 @@ impl Controller {
         'outer: loop {
             // Take every command that waits; wait for one when there is nothing to do.
             loop {
-                let idle = !self.needs_preview() && (self.paused || self.target_reached());
+                let idle = self.failure.is_some()
+                    || (!self.needs_preview() && (self.paused || self.target_reached()));
                 let next = if idle {
                     if self.outbox.pending.is_some() {
                         match commands.recv_timeout(Duration::from_millis(10)) {
@@ -356,7 +360,9 @@ impl Controller {
                     break 'outer;
                 }
             }
-            if self.needs_preview() {
+            if self.failure.is_some() {
+                continue;
+            } else if self.needs_preview() {
                 self.preview(&pool);
             } else if !self.paused && !self.target_reached() {
                 self.pass(&pool);
@@ -413,6 +419,7 @@ impl Controller {
             self.passes = 0;
             self.pass_rays = 0;
             self.stats = Stats::default();
+            self.failure = None;
         }
         true
     }
@@ -433,20 +440,26 @@ impl Controller {
     fn preview(&mut self, pool: &rayon::ThreadPool) {
         let (w, h) = (self.film.width(), self.film.height());
         let block = PREVIEW_LEVELS[self.preview_level];
-        let result = pool.install(|| {
-            render_preview(
-                &self.scene,
-                &self.camera,
-                &self.params,
-                w,
-                h,
-                block,
-                &Watch {
-                    requested: &self.requested,
-                    generation: self.generation,
-                },
-            )
+        let result = crate::guard::caught(|| {
+            pool.install(|| {
+                render_preview(
+                    &self.scene,
+                    &self.camera,
+                    &self.params,
+                    w,
+                    h,
+                    block,
+                    &Watch {
+                        requested: &self.requested,
+                        generation: self.generation,
+                    },
+                )
+            })
         });
+        let result = match result {
+            Ok(result) => result,
+            Err(failure) => return self.fail(failure),
+        };
         if let Ok((pixels, stats)) = result {
             self.preview_level += 1;
             self.stats += stats;
@@ -482,16 +495,22 @@ impl Controller {
             requested: &self.requested,
             generation: self.generation,
         };
-        let result = pool.install(|| {
-            render_pass(
-                &self.scene,
-                &self.camera,
-                &self.params,
-                &mut self.film,
-                n,
-                &watch,
-            )
+        let result = crate::guard::caught(|| {
+            pool.install(|| {
+                render_pass(
+                    &self.scene,
+                    &self.camera,
+                    &self.params,
+                    &mut self.film,
+                    n,
+                    &watch,
+                )
+            })
         });
+        let result = match result {
+            Ok(result) => result,
+            Err(failure) => return self.fail(failure),
+        };
         // Cancelled means a newer generation was requested: its command waits, and restarts.
         if let Ok(stats) = result {
             self.pass_time += start.elapsed();
@@ -528,10 +547,23 @@ impl Controller {
             noise: self.film.noise(),
             stats: self.stats,
             paused: self.paused,
+            failure: self.failure.clone(),
         }
     }
 
     /// Sends the film as it is (or, before any pass, nothing new: progress only).
+    /// Stops the generation after a pass panicked, and says why in a frame of what the
+    /// film holds (cleared: a pass may have stopped half-way).
+    fn fail(&mut self, failure: String) {
+        self.failure = Some(failure);
+        self.film.clear();
+        let pixels = Arc::new(vec![
+            Color::ZERO;
+            self.film.width() as usize * self.film.height() as usize
+        ]);
+        self.emit(pixels, Arc::new(Vec::new()), 1);
+    }
+
     fn send_frame(&mut self) {
         if self.film.spp() == 0 {
             return;

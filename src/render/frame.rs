@@ -24,6 +24,9 @@ pub struct Progress {
     pub stats: Stats,
     /// Whether refinement is paused.
     pub paused: bool,
+    /// Why this generation stopped, if a pass failed inside raylab (a bug): the window
+    /// shows it; a new generation tries again.
+    pub failure: Option<String>,
 }
 
 impl Progress {

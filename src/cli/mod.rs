@@ -1,0 +1,3 @@
+//! The `raylab` command's larger subcommands, one file each.
+
+pub mod bench;
