@@ -37,7 +37,7 @@ fn geometry_beyond_what_the_bvh_handles_is_refused_where_it_is_written() {
         &format!("{CAMERA}[[sphere]]\nname = \"far\"\ncenter = [999999, 1, 0]\nradius = 100\n"),
         dir,
     );
-    assert_starts(&e, "t.toml: ", "object `far` reaches beyond");
+    assert_starts(&e, "t.toml:4:1: ", "object `far` reaches beyond");
     std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     let e = scene_error(
         &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\nscale = 1e30\n"),
@@ -145,7 +145,7 @@ fn sidecar_fields_are_checked_like_the_scene_files() {
         fails(
             &["render", "--params", &name, "-o", "x.png"],
             dir,
-            &format!("{name}: "),
+            &format!("{name}:1:"),
         );
         fails(&["render", "--params", &name, "-o", "x.png"], dir, words);
     }

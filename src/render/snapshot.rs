@@ -1,6 +1,7 @@
 //! Snapshot sidecars: the JSON beside an image that holds all it takes to render it again.
 
 use crate::camera::Camera;
+use crate::params::ParamError;
 use crate::params::Params;
 use crate::tracer::Stats;
 use serde::{Deserialize, Serialize};
@@ -54,7 +55,7 @@ pub enum SidecarError {
         /// Why.
         error: std::io::Error,
     },
-    /// The JSON is malformed or does not match.
+    /// The JSON is malformed or does not match, or a value in it is out of range.
     #[error("{path}:{line}:{column}: {message}")]
     Parse {
         /// The file.
@@ -159,17 +160,32 @@ impl Sidecar {
                     e.to_string().split(" at line").next().unwrap_or_default(),
                 ),
             })?;
-        sidecar
-            .params
-            .validate()
-            .map_err(|error| SidecarError::Param {
+        // Where a field is written, for a message that names its line and column.
+        let at = |key: &str, message: String| match text.find(&format!("\"{key}\"")) {
+            Some(offset) => {
+                let (line, column) = crate::scene::line_col(&text, offset);
+                SidecarError::Parse {
+                    path: name.clone(),
+                    line,
+                    column,
+                    message,
+                }
+            }
+            None => SidecarError::Invalid {
+                path: name.clone(),
+                message,
+            },
+        };
+        sidecar.params.validate().map_err(|error| match &error {
+            ParamError::Invalid { name, .. } | ParamError::Unknown { name, .. } => {
+                at(&name.clone(), error.to_string())
+            }
+            ParamError::Syntax(_) => SidecarError::Param {
                 path: name.clone(),
                 error,
-            })?;
-        sidecar.check().map_err(|message| SidecarError::Invalid {
-            path: name,
-            message,
+            },
         })?;
+        sidecar.check().map_err(|(key, message)| at(key, message))?;
         // A scene path relative to the sidecar's folder (a bare built-in name stays).
         if let Some(folder) = path.parent() {
             let beside = folder.join(&sidecar.scene);
@@ -183,16 +199,25 @@ impl Sidecar {
     /// Checks the fields besides the parameters, as the scene loader checks its own: the
     /// size within the film's limits, a sample count the renderer takes, a camera that
     /// makes a view.
-    fn check(&self) -> Result<(), String> {
-        super::check_size(self.width, self.height)?;
+    /// An error names the field it is about.
+    fn check(&self) -> Result<(), (&'static str, String)> {
+        let size = |w, h, key| super::check_size(w, h).map_err(|e| (key, e));
+        size(self.width, 1, "width")?;
+        size(1, self.height, "height")?;
+        size(self.width, self.height, "height")?;
         if let Some(n) = self.samples {
             let max = crate::params::MAX_SPP;
             if !(1..=max).contains(&n) {
-                return Err(format!("`samples` must be between 1 and {max}, got {n}"));
+                return Err((
+                    "samples",
+                    format!("`samples` must be between 1 and {max}, got {n}"),
+                ));
             }
         }
         if let Some(camera) = &self.camera {
-            camera.check().map_err(|e| format!("camera: {e}"))?;
+            camera
+                .check()
+                .map_err(|e| ("camera", format!("camera: {e}")))?;
         }
         Ok(())
     }

@@ -92,9 +92,9 @@ struct SceneFile {
     #[serde(default)]
     material: BTreeMap<String, MaterialDef>,
     #[serde(default)]
-    sphere: Vec<SphereDef>,
+    sphere: Vec<Spanned<SphereDef>>,
     #[serde(default)]
-    plane: Vec<PlaneDef>,
+    plane: Vec<Spanned<PlaneDef>>,
     #[serde(default)]
     quad: Vec<Spanned<QuadDef>>,
     #[serde(default)]
@@ -271,7 +271,11 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     let name_or = |name: Option<String>, kind: &str, n: usize| {
         name.unwrap_or_else(|| format!("{kind} {}", n + 1))
     };
+    // Where each object is written, for the check of its extent below.
+    let mut spans = Vec::new();
     for (n, s) in f.sphere.into_iter().enumerate() {
+        spans.push(s.span());
+        let s = s.into_inner();
         let material = resolve(&s.material, &mut materials)?;
         objects.push(Object {
             name: name_or(s.name, "sphere", n),
@@ -283,6 +287,8 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         });
     }
     for (n, p) in f.plane.into_iter().enumerate() {
+        spans.push(p.span());
+        let p = p.into_inner();
         let material = resolve(&p.material, &mut materials)?;
         objects.push(Object {
             name: name_or(p.name, "plane", n),
@@ -301,6 +307,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
             ));
         }
         let material = resolve(&q.material, &mut materials)?;
+        spans.push(span.clone());
         objects.push(Object {
             name: name_or(q.name, "quad", n),
             shape: Shape::Quad(Quad::new(q.corner.0, q.edge_u.0, q.edge_v.0)),
@@ -323,9 +330,10 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
             * glam::Affine3A::from_translation((-center).into());
         let mut mesh = Mesh::cuboid(lo, hi)
             .and_then(|m| m.transformed(&rotate, false))
-            .map_err(|e| SceneError::new(at(span), e.to_string()))?;
+            .map_err(|e| SceneError::new(at(span.clone()), e.to_string()))?;
         mesh.velocity = b.velocity.map_or(Vec3::ZERO, |v| v.0);
         let material = resolve(&b.material, &mut materials)?;
+        spans.push(span);
         objects.push(Object {
             name: name_or(b.name, "box", n),
             shape: Shape::Mesh(mesh),
@@ -367,6 +375,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
                     beyond_limits("the mesh"),
                 ));
             }
+            spans.push(m.file.span());
             objects.push(Object {
                 name: if single {
                     base.clone()
@@ -379,9 +388,13 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         }
     }
     // Points and lengths were checked as they were read; what they make may still reach out.
-    if let Some(o) = objects.iter().find(|o| !o.shape.within_limits()) {
+    if let Some((o, span)) = objects
+        .iter()
+        .zip(spans)
+        .find(|(o, _)| !o.shape.within_limits())
+    {
         return Err(SceneError::new(
-            Location::file(file),
+            at(span),
             beyond_limits(&format!("object `{}`", o.name)),
         ));
     }
