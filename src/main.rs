@@ -453,7 +453,7 @@ fn sweep_command(args: &SweepArgs) -> Result<()> {
     let start = Instant::now();
     let sheet =
         raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
-    raylab::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
+    raylab::render::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
         .with_context(|| format!("{}: cannot write the sheet", args.output.display()))
         .map_err(runtime)?;
     eprintln!(
@@ -480,7 +480,7 @@ fn scenes_command() -> Result<()> {
         .collect();
     files.sort();
     for f in files {
-        let description = match raylab::input::read_text(&f) {
+        let description = match raylab::scene::input::read_text(&f) {
             Ok(text) => raylab::scene::describe(&text).unwrap_or_else(|| "(no description)".into()),
             Err(e) => format!("(unreadable: {e})"),
         };

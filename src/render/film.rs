@@ -1,7 +1,7 @@
 //! The film: per-pixel sums of radiance samples, resolved to PNG (8-bit sRGB) or EXR (linear).
 
 use crate::math::Color;
-use crate::output::save_image;
+use crate::render::output::save_image;
 use std::path::Path;
 
 /// The longest image side accepted, in pixels.

@@ -6,6 +6,7 @@ mod engine;
 mod film;
 mod frame;
 mod kernel;
+pub mod output;
 mod sheet;
 mod snapshot;
 

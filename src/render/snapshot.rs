@@ -106,7 +106,7 @@ impl Sidecar {
             .unwrap_or(Path::new("."));
         let relative = std::fs::canonicalize(folder)
             .ok()
-            .and_then(|folder| crate::output::relative_path(scene, &folder));
+            .and_then(|folder| crate::render::output::relative_path(scene, &folder));
         match relative {
             Some(rel) => rel
                 .components()
@@ -135,7 +135,7 @@ impl Sidecar {
                 "is the sidecar this render reads; not replaced (write the image under another name)",
             );
         }
-        let ours = crate::input::read_text(path)
+        let ours = crate::scene::input::read_text(path)
             .ok()
             .is_some_and(|text| serde_json::from_str::<Sidecar>(&text).is_ok());
         if !ours {
@@ -147,7 +147,7 @@ impl Sidecar {
     /// Reads and checks a sidecar.
     pub fn read(path: &Path) -> Result<Sidecar, SidecarError> {
         let name = path.display().to_string();
-        let text = crate::input::read_text(path).map_err(|error| SidecarError::Io {
+        let text = crate::scene::input::read_text(path).map_err(|error| SidecarError::Io {
             path: name.clone(),
             error,
         })?;
@@ -229,6 +229,6 @@ impl Sidecar {
             error,
         };
         let json = serde_json::to_string_pretty(self).map_err(|e| io(std::io::Error::other(e)))?;
-        crate::output::write_atomic(path, (json + "\n").as_bytes()).map_err(io)
+        crate::render::output::write_atomic(path, (json + "\n").as_bytes()).map_err(io)
     }
 }

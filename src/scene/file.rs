@@ -35,11 +35,11 @@ impl Assets for FsAssets {
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
         let limit = if is_obj {
-            crate::input::MAX_MESH_BYTES
+            crate::scene::input::MAX_MESH_BYTES
         } else {
-            crate::input::MAX_TEXT_BYTES
+            crate::scene::input::MAX_TEXT_BYTES
         };
-        crate::input::read_limited(&path, limit).map_err(|e| e.to_string())
+        crate::scene::input::read_limited(&path, limit).map_err(|e| e.to_string())
     }
     fn label(&self, rel: &str) -> String {
         self.0.join(rel).display().to_string()
@@ -49,7 +49,7 @@ impl Assets for FsAssets {
 /// Reads and parses a scene file; OBJ paths resolve against its folder.
 pub(crate) fn load_file(path: &Path) -> Result<Scene, SceneError> {
     let label = path.display().to_string();
-    let text = crate::input::read_text(path).map_err(|e| {
+    let text = crate::scene::input::read_text(path).map_err(|e| {
         SceneError::new(
             Location::file(&label),
             format!("cannot read the scene file: {e}"),

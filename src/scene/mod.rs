@@ -3,6 +3,7 @@
 mod builtin;
 mod error;
 mod file;
+pub mod input;
 mod materials;
 mod obj;
 mod values;
