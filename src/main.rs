@@ -349,6 +349,12 @@ fn render_command(args: RenderArgs) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
+    // Replacing the file named by -o is what was asked; the summary still says so.
+    let replaced = if args.output.exists() {
+        " (replacing the file there)"
+    } else {
+        ""
+    };
     film.save(&args.output, params.exposure).map_err(runtime)?;
     Sidecar {
         raylab_version: raylab::VERSION.to_string(),
@@ -372,7 +378,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         let pixels = (width as u64 * height as u64) as f64;
         let rays = stats.total_rays();
         eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped; wrote {} and {}",
+            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped; wrote {}{replaced} and {}",
             scene.name,
             width,
             height,

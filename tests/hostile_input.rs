@@ -270,6 +270,16 @@ fn nothing_the_user_has_is_replaced_or_lost() {
             "keep.png.json"
         ]
     );
+    // Writing over the image -o names is what was asked, and the summary says so.
+    let o = raylab(
+        &["render", "-o", "keep.png", "--size", "8x8", "--spp", "1"],
+        dir,
+    );
+    assert!(
+        stderr(&o).contains("wrote keep.png (replacing the file there)"),
+        "{}",
+        stderr(&o)
+    );
     // The sidecar being read is never overwritten, nor a file that is not a sidecar.
     let input = std::fs::read(dir.join("keep.png.json")).unwrap();
     fails(
