@@ -382,6 +382,17 @@ fn devices_pipes_and_folders_are_refused_without_blocking() {
             dir,
             "mesh.toml:5:8: cannot read OBJ file",
         );
+        // A material library that cannot be read is left out, as a missing one is.
+        std::fs::write(
+            dir.join("m.obj"),
+            format!("mtllib {path}\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        )
+        .unwrap();
+        let o = raylab(
+            &["render", "m.obj", "-o", "m.png", "--size", "8x8", "-q"],
+            dir,
+        );
+        assert!(o.status.success(), "{path}: {}", stderr(&o));
     }
 }
 
