@@ -211,7 +211,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .map_err(|_| format!("`{v}` is not a whole number of pixels"))
     };
     let (w, h) = (side(w)?, side(h)?);
-    raylab::render::check_size(w, h)?;
+    raylab::scene::check_size(w, h)?;
     Ok((w, h))
 }
 

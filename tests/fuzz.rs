@@ -10,8 +10,8 @@
 mod common;
 
 use raylab::params::Params;
-use raylab::render::{Sidecar, check_size, render};
-use raylab::scene::{Scene, load_obj};
+use raylab::render::{Sidecar, render};
+use raylab::scene::{Scene, check_size, load_obj};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};

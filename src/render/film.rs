@@ -4,33 +4,6 @@ use crate::math::Color;
 use crate::render::output::save_image;
 use std::path::Path;
 
-/// The longest image side accepted, in pixels.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-
-/// The most pixels an image may have (4096 × 4096): the film keeps 64 bytes a pixel (f64
-/// sums, for refinement that stays exact over millions of samples), so this caps it at
-/// 1 GiB.
-pub const MAX_PIXELS: u64 = 1 << 24;
-
-/// Checks an image size against [`MAX_IMAGE_SIDE`] and [`MAX_PIXELS`], before anything is
-/// allocated.
-pub fn check_size(width: u32, height: u32) -> Result<(), String> {
-    for (name, side) in [("width", width), ("height", height)] {
-        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
-            return Err(format!(
-                "the {name} must be between 1 and {MAX_IMAGE_SIDE} pixels, got {side}"
-            ));
-        }
-    }
-    let pixels = width as u64 * height as u64;
-    if pixels > MAX_PIXELS {
-        return Err(format!(
-            "{width}x{height} is {pixels} pixels, more than the {MAX_PIXELS} (4096x4096) the film holds in 1 GiB"
-        ));
-    }
-    Ok(())
-}
-
 /// What a pixel has accumulated: the sum and count of its samples, and the same for its
 /// odd-numbered samples alone (the two halves give the noise estimate).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -46,6 +19,9 @@ pub struct Accum {
     /// Rays traced for this pixel's samples, of every kind: its cost.
     pub rays: u32,
 }
+
+// The size scene::MAX_PIXELS budgets for.
+const _: () = assert!(std::mem::size_of::<Accum>() == 64);
 
 impl Accum {
     /// Adds sample number `index` with radiance `c`.

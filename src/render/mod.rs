@@ -12,10 +12,7 @@ mod snapshot;
 
 pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
-pub use film::{
-    Accum, Film, FilmError, MAX_IMAGE_SIDE, MAX_PIXELS, check_size, srgb_encode, srgb8, to_srgba8,
-    write_image,
-};
+pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image};
 pub use frame::{Frame, Progress};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
 pub use sheet::{SheetError, contact_sheet, parse_sweep};

@@ -201,7 +201,7 @@ impl Sidecar {
     /// makes a view.
     /// An error names the field it is about.
     fn check(&self) -> Result<(), (&'static str, String)> {
-        let size = |w, h, key| super::check_size(w, h).map_err(|e| (key, e));
+        let size = |w, h, key| crate::scene::check_size(w, h).map_err(|e| (key, e));
         size(self.width, 1, "width")?;
         size(1, self.height, "height")?;
         size(self.width, self.height, "height")?;

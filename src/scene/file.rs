@@ -510,7 +510,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         Some(i) => {
             let span = i.span();
             let i = i.into_inner();
-            crate::render::check_size(i.width.0, i.height.0)
+            super::check_size(i.width.0, i.height.0)
                 .map_err(|e| SceneError::new(at(span), format!("[image]: {e}")))?;
             (i.width.0, i.height.0)
         }

@@ -13,6 +13,7 @@ pub(crate) use error::one_line;
 pub use error::{Location, SceneError, line_col};
 pub use file::describe;
 pub use obj::{ObjPart, load_obj};
+pub use values::{MAX_IMAGE_SIDE, MAX_PIXELS, check_size};
 
 use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};

@@ -4,7 +4,6 @@
 use crate::geometry::{MAX_COORDINATE, within_limits};
 use crate::math::{Color, Vec3};
 use crate::params::IOR_RANGE;
-use crate::render::MAX_IMAGE_SIDE;
 use serde::Deserialize;
 
 /// A finite number.
@@ -163,6 +162,33 @@ impl TryFrom<[f64; 3]> for Reflectance {
             Err(format!("reflectance {v:?} must be between 0 and 1"))
         }
     }
+}
+
+/// The longest image side accepted, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The most pixels an image may have (4096 × 4096): the film keeps 64 bytes a pixel
+/// ([`crate::render::Accum`]: f64 sums, for refinement that stays exact over millions of
+/// samples), so this caps it at 1 GiB.
+pub const MAX_PIXELS: u64 = 1 << 24;
+
+/// Checks an image size against [`MAX_IMAGE_SIDE`] and [`MAX_PIXELS`], before anything is
+/// allocated.
+pub fn check_size(width: u32, height: u32) -> Result<(), String> {
+    for (name, side) in [("width", width), ("height", height)] {
+        if !(1..=MAX_IMAGE_SIDE).contains(&side) {
+            return Err(format!(
+                "the {name} must be between 1 and {MAX_IMAGE_SIDE} pixels, got {side}"
+            ));
+        }
+    }
+    let pixels = width as u64 * height as u64;
+    if pixels > MAX_PIXELS {
+        return Err(format!(
+            "{width}x{height} is {pixels} pixels, more than the {MAX_PIXELS} (4096x4096) the film holds in 1 GiB"
+        ));
+    }
+    Ok(())
 }
 
 /// An image dimension in pixels.
