@@ -127,6 +127,30 @@ struct FresnelArgs {
     /// Angle step in degrees; rows run from 0 to 90 inclusive.
     #[arg(long, default_value_t = 1.0, value_parser = parse_step)]
     step: f64,
+    /// A conductor instead of a dielectric: the real part η of its complex index per
+    /// channel, R,G,B (with --k). Prints R, R_s and R_p per channel.
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, requires = "k", conflicts_with = "n2")]
+    eta: Option<[f32; 3]>,
+    /// The conductor's extinction coefficient κ per channel, R,G,B (with --eta).
+    #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, requires = "eta")]
+    k: Option<[f32; 3]>,
+}
+
+/// Three comma-separated numbers from 0 to 100: a conductor's η or κ per channel.
+fn parse_rgb(s: &str) -> Result<[f32; 3], String> {
+    let values: Vec<f32> = s
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("`{v}` is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    match values[..] {
+        [r, g, b] if values.iter().all(|v| (0.0..=100.0).contains(v)) => Ok([r, g, b]),
+        [_, _, _] => Err(format!("`{s}`: each value must be between 0 and 100")),
+        _ => Err(format!("`{s}` is not three numbers R,G,B")),
+    }
 }
 
 fn parse_ior(s: &str) -> Result<f32, String> {
@@ -425,6 +449,22 @@ fn check_output(path: &Path) -> Result<()> {
 fn fresnel_command(args: &FresnelArgs) -> Result<()> {
     use std::io::Write;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    if let (Some(eta), Some(k)) = (args.eta, args.k) {
+        writeln!(
+            out,
+            "theta_i_deg,r_exact_r,r_exact_g,r_exact_b,r_s_r,r_s_g,r_s_b,r_p_r,r_p_g,r_p_b"
+        )?;
+        for row in raylab::optics::conductor_table(args.n1, eta, k, args.step) {
+            let cells: Vec<String> = [row.r, row.r_s, row.r_p]
+                .iter()
+                .flatten()
+                .map(|v| format!("{v:.6}"))
+                .collect();
+            writeln!(out, "{},{}", row.theta_i, cells.join(","))?;
+        }
+        out.flush()?;
+        return Ok(());
+    }
     writeln!(
         out,
         "theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive"

@@ -59,6 +59,40 @@ pub fn fresnel_exact(cos_i: f32, n1: f32, n2: f32) -> (f32, f32, f32) {
     (f_s, f_p, 0.5 * (f_s * f_s + f_p * f_p))
 }
 
+/// The exact Fresnel reflectances of a conductor (a metal) of complex index η + iκ, seen
+/// from a dielectric of index `n1`, for one wavelength (one colour channel). With the
+/// relative η' = η/n1, κ' = κ/n1 and θ = θi:
+///
+/// a² + b² = √((η'² − κ'² − sin²θ)² + 4η'²κ'²),  a = √((a² + b² + η'² − κ'² − sin²θ) / 2),
+/// R_s = (a² + b² − 2a cos θ + cos²θ) / (a² + b² + 2a cos θ + cos²θ),
+/// R_p = R_s (cos²θ (a² + b²) − 2a cos θ sin²θ + sin⁴θ) / (cos²θ (a² + b²) + 2a cos θ sin²θ + sin⁴θ),
+/// R = (R_s + R_p) / 2 for unpolarized light.
+///
+/// Returns (R_s, R_p, R): reflectances (squared amplitudes; a metal's amplitudes are
+/// complex). At normal incidence R = ((η' − 1)² + κ'²) / ((η' + 1)² + κ'²); at grazing
+/// incidence R = 1; with κ = 0 these are a dielectric's F_s², F_p² and R.
+pub fn fresnel_conductor(cos_i: f32, n1: f32, eta: f32, k: f32) -> (f32, f32, f32) {
+    // In f64: a² + b² − 2a cos θ + cos²θ cancels badly near normal incidence in f32.
+    let cos = cos_i.clamp(0.0, 1.0) as f64;
+    let (eta, k) = (eta as f64 / n1 as f64, k as f64 / n1 as f64);
+    let cos2 = cos * cos;
+    let sin2 = 1.0 - cos2;
+    let t0 = eta * eta - k * k - sin2;
+    let a2_plus_b2 = (t0 * t0 + 4.0 * eta * eta * k * k).sqrt();
+    let a = (0.5 * (a2_plus_b2 + t0)).max(0.0).sqrt();
+    let r_s = (a2_plus_b2 - 2.0 * a * cos + cos2) / (a2_plus_b2 + 2.0 * a * cos + cos2);
+    let t1 = cos2 * a2_plus_b2 + sin2 * sin2;
+    let t2 = 2.0 * a * cos * sin2;
+    let r_p = r_s * (t1 - t2) / (t1 + t2);
+    // At grazing incidence both are 0/0 in the limit 1.
+    let (r_s, r_p) = if r_s.is_finite() && r_p.is_finite() {
+        (r_s, r_p)
+    } else {
+        (1.0, 1.0)
+    };
+    (r_s as f32, r_p as f32, (0.5 * (r_s + r_p)) as f32)
+}
+
 /// Reflectance at normal incidence, R0 = ((n1 − n2) / (n1 + n2))².
 #[inline]
 pub fn r0(n1: f32, n2: f32) -> f32 {
@@ -128,12 +162,7 @@ pub struct FresnelRow {
 /// The Fresnel curves from `n1` into `n2` at every `step` degrees from 0 to 90, with 90
 /// itself always included.
 pub fn fresnel_table(n1: f32, n2: f32, step: f64) -> Vec<FresnelRow> {
-    let steps = (90.0 / step + 1e-9).floor() as usize;
-    let mut angles: Vec<f64> = (0..=steps).map(|i| i as f64 * step).collect();
-    if angles.last().is_some_and(|&a| (a - 90.0).abs() > 1e-9) {
-        angles.push(90.0);
-    }
-    angles
+    table_angles(step)
         .into_iter()
         .map(|theta| {
             let cos_i = (theta.to_radians().cos() as f32).max(0.0);
@@ -147,6 +176,48 @@ pub fn fresnel_table(n1: f32, n2: f32, step: f64) -> Vec<FresnelRow> {
                 r_exact,
                 r_schlick: schlick(cos_i, n1, n2),
                 r_schlick_naive: schlick_naive(cos_i, n1, n2),
+            }
+        })
+        .collect()
+}
+
+/// Every `step` degrees from 0 to 90, with 90 itself always included.
+fn table_angles(step: f64) -> Vec<f64> {
+    let steps = (90.0 / step + 1e-9).floor() as usize;
+    let mut angles: Vec<f64> = (0..=steps).map(|i| i as f64 * step).collect();
+    if angles.last().is_some_and(|&a| (a - 90.0).abs() > 1e-9) {
+        angles.push(90.0);
+    }
+    angles
+}
+
+/// One row of a conductor's Fresnel table: reflectances per colour channel (R, G, B).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConductorRow {
+    /// Angle of incidence, degrees.
+    pub theta_i: f32,
+    /// Unpolarized reflectance.
+    pub r: [f32; 3],
+    /// Reflectance of s-polarized light.
+    pub r_s: [f32; 3],
+    /// Reflectance of p-polarized light.
+    pub r_p: [f32; 3],
+}
+
+/// A conductor's Fresnel curves ([`fresnel_conductor`]) seen from a dielectric of index
+/// `n1`, per channel of `eta` + i`k`, at every `step` degrees from 0 to 90.
+pub fn conductor_table(n1: f32, eta: [f32; 3], k: [f32; 3], step: f64) -> Vec<ConductorRow> {
+    table_angles(step)
+        .into_iter()
+        .map(|theta| {
+            let cos_i = (theta.to_radians().cos() as f32).max(0.0);
+            let channels: [(f32, f32, f32); 3] =
+                std::array::from_fn(|c| fresnel_conductor(cos_i, n1, eta[c], k[c]));
+            ConductorRow {
+                theta_i: theta as f32,
+                r: channels.map(|c| c.2),
+                r_s: channels.map(|c| c.0),
+                r_p: channels.map(|c| c.1),
             }
         })
         .collect()
@@ -207,6 +278,101 @@ impl FresnelMode {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Complex numbers, for the textbook form of the conductor Fresnel equations.
+    #[derive(Clone, Copy)]
+    struct C(f64, f64);
+
+    impl C {
+        fn add(self, o: C) -> C {
+            C(self.0 + o.0, self.1 + o.1)
+        }
+        fn sub(self, o: C) -> C {
+            C(self.0 - o.0, self.1 - o.1)
+        }
+        fn mul(self, o: C) -> C {
+            C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
+        }
+        fn div(self, o: C) -> C {
+            let d = o.0 * o.0 + o.1 * o.1;
+            C(
+                (self.0 * o.0 + self.1 * o.1) / d,
+                (self.1 * o.0 - self.0 * o.1) / d,
+            )
+        }
+        fn sqrt(self) -> C {
+            let r = (self.0 * self.0 + self.1 * self.1).sqrt();
+            let re = (0.5 * (r + self.0)).max(0.0).sqrt();
+            let im = (0.5 * (r - self.0)).max(0.0).sqrt().copysign(self.1);
+            C(re, im)
+        }
+        fn norm2(self) -> f64 {
+            self.0 * self.0 + self.1 * self.1
+        }
+    }
+
+    /// |r_s|² and |r_p|² from the amplitude equations with the complex index n = (η + iκ)/n1
+    /// and the complex cos θt = √(1 − sin²θi / n²).
+    fn conductor_by_amplitudes(theta_deg: f64, n1: f64, eta: f64, k: f64) -> (f64, f64) {
+        let t = theta_deg.to_radians();
+        let (cos_i, sin_i) = (C(t.cos(), 0.0), t.sin());
+        let n = C(eta / n1, k / n1);
+        let cos_t = C(1.0, 0.0).sub(C(sin_i * sin_i, 0.0).div(n.mul(n))).sqrt();
+        let r_s = cos_i.sub(n.mul(cos_t)).div(cos_i.add(n.mul(cos_t)));
+        let r_p = n.mul(cos_i).sub(cos_t).div(n.mul(cos_i).add(cos_t));
+        (r_s.norm2(), r_p.norm2())
+    }
+
+    #[test]
+    fn conductor_fresnel_matches_the_amplitude_equations_and_its_limits() {
+        // Gold-, silver- and aluminium-like constants, and a dielectric (κ = 0), from air
+        // and from water.
+        for (eta, k) in [
+            (0.18, 3.42),
+            (0.05, 4.2),
+            (1.35, 7.5),
+            (1.5, 0.0),
+            (2.4, 0.0),
+        ] {
+            for n1 in [1.0, 1.33] {
+                let normal = ((eta / n1 - 1.0f64).powi(2) + (k / n1).powi(2))
+                    / ((eta / n1 + 1.0f64).powi(2) + (k / n1).powi(2));
+                let (_, _, r) = fresnel_conductor(1.0, n1 as f32, eta as f32, k as f32);
+                assert!((r as f64 - normal).abs() < 1e-6, "R(0) {r} vs {normal}");
+                for deg in 0..90 {
+                    let theta = deg as f64;
+                    let (r_s, r_p, r) = fresnel_conductor(
+                        theta.to_radians().cos() as f32,
+                        n1 as f32,
+                        eta as f32,
+                        k as f32,
+                    );
+                    let (e_s, e_p) = conductor_by_amplitudes(theta, n1, eta, k);
+                    assert!(
+                        (r_s as f64 - e_s).abs() < 1e-6,
+                        "R_s at {deg}°: {r_s} vs {e_s}"
+                    );
+                    assert!(
+                        (r_p as f64 - e_p).abs() < 1e-6,
+                        "R_p at {deg}°: {r_p} vs {e_p}"
+                    );
+                    assert!((r - 0.5 * (r_s + r_p)).abs() < 1e-7);
+                    if k == 0.0 && eta > n1 {
+                        let (f_s, f_p, r_d) =
+                            fresnel_exact(theta.to_radians().cos() as f32, n1 as f32, eta as f32);
+                        assert!((r_s - f_s * f_s).abs() < 1e-6 && (r_p - f_p * f_p).abs() < 1e-6);
+                        assert!((r - r_d).abs() < 1e-6);
+                    }
+                }
+                assert_eq!(
+                    fresnel_conductor(0.0, n1 as f32, eta as f32, k as f32).2,
+                    1.0
+                );
+                let near_grazing = fresnel_conductor(1e-4, n1 as f32, eta as f32, k as f32).2;
+                assert!(near_grazing > 0.99, "R near grazing {near_grazing}");
+            }
+        }
+    }
     use std::f32::consts::FRAC_PI_2;
 
     fn deg(a: f32) -> f32 {

@@ -234,17 +234,61 @@ fn scenes_lists_builtins_and_files_and_help_documents_everything() {
 }
 
 fn fresnel_rows(args: &[&str]) -> Vec<Vec<String>> {
+    csv_rows(
+        args,
+        "theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive",
+    )
+}
+
+/// The rows of the CSV `raylab args` prints under `header`.
+fn csv_rows(args: &[&str], header: &str) -> Vec<Vec<String>> {
     let o = raylab(args, Path::new("."));
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
     let mut lines = text.lines();
-    assert_eq!(
-        lines.next(),
-        Some("theta_i_deg,theta_t_deg,f_s,f_p,r_exact,r_schlick,r_schlick_naive")
-    );
+    assert_eq!(lines.next(), Some(header));
     lines
         .map(|l| l.split(',').map(str::to_string).collect())
         .collect()
+}
+
+#[test]
+fn fresnel_prints_a_conductors_curves_per_channel() {
+    let (eta, k) = ([0.18f64, 0.42, 1.37], [3.42f64, 2.35, 1.77]);
+    let rows = csv_rows(
+        &[
+            "fresnel",
+            "--eta",
+            "0.18,0.42,1.37",
+            "--k",
+            "3.42,2.35,1.77",
+            "--step",
+            "5",
+        ],
+        "theta_i_deg,r_exact_r,r_exact_g,r_exact_b,r_s_r,r_s_g,r_s_b,r_p_r,r_p_g,r_p_b",
+    );
+    assert_eq!(rows.len(), 19);
+    let value = |row: &[String], i: usize| row[i].parse::<f64>().unwrap();
+    for c in 0..3 {
+        // Head-on: ((η − 1)² + κ²) / ((η + 1)² + κ²), and s = p.
+        let r0 = ((eta[c] - 1.0).powi(2) + k[c] * k[c]) / ((eta[c] + 1.0).powi(2) + k[c] * k[c]);
+        for i in [1 + c, 4 + c, 7 + c] {
+            assert!((value(&rows[0], i) - r0).abs() < 2e-6, "{:?}", rows[0]);
+        }
+        // Grazing: everything reflected; in between R_p ≤ R ≤ R_s.
+        assert_eq!(value(&rows[18], 1 + c), 1.0);
+        for row in &rows[1..18] {
+            assert!(
+                value(row, 7 + c) <= value(row, 1 + c) && value(row, 1 + c) <= value(row, 4 + c)
+            );
+        }
+    }
+    fails(
+        &["fresnel", "--eta", "1,2", "--k", "1,1,1"],
+        Path::new("."),
+        "three numbers",
+    );
+    fails(&["fresnel", "--eta", "1,2,3"], Path::new("."), "--k");
 }
 
 #[test]
