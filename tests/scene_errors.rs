@@ -220,3 +220,18 @@ fn an_obj_file_opens_as_a_framed_scene() {
     let e = Scene::load(dir.path().join("bad.obj").to_str().unwrap()).unwrap_err();
     assert!(e.to_string().contains("bad.obj:1"), "{e}");
 }
+
+#[test]
+fn a_conductor_material_loads_and_needs_both_parts_of_its_index() {
+    let metal = "[material.gold]\ntype = \"conductor\"\neta = [0.18, 0.42, 1.37]\n";
+    let sphere = "[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"gold\"\n";
+    let good = format!("{CAMERA}{metal}k = [3.42, 2.35, 1.77]\nexponent = 40\n{sphere}");
+    let scene = Scene::from_toml_str(&good, "t.toml", Path::new(".")).unwrap();
+    assert_eq!(scene.materials[0].kind(), "conductor");
+    assert_eq!(scene.materials[0].phong_exponent(), Some(40.0));
+    let e = err(&format!("{CAMERA}{metal}{sphere}"));
+    assert!(
+        e.starts_with("t.toml:4:1: ") && e.contains("missing field `k`"),
+        "{e}"
+    );
+}

@@ -14,7 +14,7 @@ mod texture;
 
 pub use dielectric::{Dielectric, Glazed};
 pub use diffuse::{Brdf, Diffuse};
-pub use specular::{Glossy, Mirror};
+pub use specular::{Conductor, Glossy, Mirror};
 pub use texture::Texture;
 
 use crate::math::{Color, Uniform, Vec3};
@@ -31,6 +31,8 @@ pub enum Material {
     Mirror(Mirror),
     /// A glossy metal: the mirror direction jittered over a Phong lobe.
     Glossy(Glossy),
+    /// A metal of complex index η + iκ: reflectance by the conductor Fresnel equations.
+    Conductor(Conductor),
     /// A surface that emits light (and reflects none).
     Emissive(Emissive),
     /// A clear or coloured dielectric: reflected and refracted rays weighted by Fresnel.
@@ -168,6 +170,7 @@ impl Material {
             Material::Diffuse(_) => "diffuse",
             Material::Mirror(_) => "mirror",
             Material::Glossy(_) => "glossy",
+            Material::Conductor(_) => "conductor",
             Material::Emissive(_) => "emissive",
             Material::Dielectric(_) => "dielectric",
             Material::Glazed(_) => "glazed",
@@ -181,6 +184,7 @@ impl Material {
             Material::Diffuse(m) => m.scatter(hit),
             Material::Mirror(m) => m.scatter(hit),
             Material::Glossy(m) => m.scatter(hit, u),
+            Material::Conductor(m) => m.scatter(hit, u),
             Material::Emissive(m) => Scatter {
                 emitted: Some(m.radiance.eval(hit.uv)),
                 ..Scatter::default()
@@ -204,6 +208,10 @@ impl Material {
                 reflectance: g.reflectance,
                 exponent: params.phong_exponent.unwrap_or(g.exponent),
             }),
+            Material::Conductor(c) => Material::Conductor(Conductor {
+                exponent: c.exponent.map(|n| params.phong_exponent.unwrap_or(n)),
+                ..c.clone()
+            }),
             other => other.clone(),
         }
     }
@@ -224,7 +232,10 @@ impl Material {
             Material::Diffuse(d) => textured(&d.albedo),
             Material::Glazed(g) => textured(&g.base),
             Material::Emissive(e) => textured(&e.radiance),
-            Material::Mirror(_) | Material::Glossy(_) | Material::Dielectric(_) => false,
+            Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Dielectric(_) => false,
         }
     }
 
@@ -232,6 +243,7 @@ impl Material {
     pub fn phong_exponent(&self) -> Option<f32> {
         match self {
             Material::Glossy(g) => Some(g.exponent),
+            Material::Conductor(c) => c.exponent,
             _ => None,
         }
     }

@@ -1,9 +1,11 @@
-//! Metals in the lecture's two guises: the ideal mirror, and glossy reflection by jittering
-//! the mirror ray over a Phong lobe.
+//! Metals in the lecture's two guises, the ideal mirror and glossy reflection by jittering
+//! the mirror ray over a Phong lobe; and the physical metal, a conductor whose reflectance
+//! follows the Fresnel equations for its complex index of refraction.
 
 use super::{Interaction, Lobe, Scatter, Side};
 use crate::math::sampling::{phong_lobe, to_world};
-use crate::math::{Color, Uniform};
+use crate::math::{Color, Uniform, Vec3};
+use crate::optics::fresnel_conductor;
 
 /// An ideal mirror or polished metal: the reflected ray, scaled by a constant reflectance
 /// (metals reflect strongly at every angle, with a colour).
@@ -22,6 +24,55 @@ pub struct Glossy {
     pub reflectance: Color,
     /// Phong exponent n.
     pub exponent: f32,
+}
+
+/// A conductor: a metal of complex index of refraction η + iκ per channel. Its reflectance
+/// follows the exact conductor Fresnel equations: high at every angle, coloured, rising to
+/// 1 at grazing ("it does depend on angle, but not much"). Polished, or glossy with a Phong
+/// exponent.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Conductor {
+    /// Real part of the index of refraction, per channel.
+    pub eta: Color,
+    /// Extinction coefficient (imaginary part), per channel.
+    pub k: Color,
+    /// A Phong exponent for a brushed or glossy metal; `None` is polished.
+    pub exponent: Option<f32>,
+}
+
+impl Conductor {
+    pub(super) fn scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {
+        let cos_i = hit.cos_i();
+        let r = |c: usize| fresnel_conductor(cos_i, hit.outside_ior, self.eta[c], self.k[c]).2;
+        let dir = match self.exponent {
+            Some(n) => jittered(hit, n, u),
+            None => hit.mirror_dir(),
+        };
+        Scatter {
+            lobes: [
+                Some(Lobe {
+                    side: Side::Reflect,
+                    dir,
+                    weight: Color::new(r(0), r(1), r(2)),
+                }),
+                None,
+            ],
+            ..Scatter::default()
+        }
+    }
+}
+
+/// The mirror direction jittered over the Phong lobe cos^n α; directions below the surface
+/// are folded back above it (mirrored in the tangent plane): no energy lost, no black
+/// speckles at grazing angles.
+fn jittered(hit: &Interaction, exponent: f32, u: &mut impl Uniform) -> Vec3 {
+    let dir = to_world(phong_lobe(u.next_2d(), exponent), hit.mirror_dir());
+    let below = dir.dot(hit.n_geom);
+    if below <= 0.0 {
+        (dir - 2.0 * below * hit.n_geom).normalize()
+    } else {
+        dir
+    }
 }
 
 impl Mirror {
@@ -43,13 +94,7 @@ impl Mirror {
 impl Glossy {
     pub(super) fn scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {
         // Sampling the normalized lobe exactly, each jittered ray carries the reflectance.
-        let mut dir = to_world(phong_lobe(u.next_2d(), self.exponent), hit.mirror_dir());
-        // Lobe directions below the surface are folded back above it (mirrored in the
-        // tangent plane): no energy lost, no black speckles at grazing angles.
-        let below = dir.dot(hit.n_geom);
-        if below <= 0.0 {
-            dir = (dir - 2.0 * below * hit.n_geom).normalize();
-        }
+        let dir = jittered(hit, self.exponent, u);
         Scatter {
             lobes: [
                 Some(Lobe {
@@ -113,5 +158,49 @@ mod tests {
         };
         let folded = dirs(&wide, &hit_at(89.0));
         assert!(folded.iter().all(|d| d.dot(Vec3::Y) >= 0.0));
+    }
+
+    #[test]
+    fn a_conductor_reflects_by_the_fresnel_equations_of_its_complex_index() {
+        let gold = Conductor {
+            eta: Color::new(0.18, 0.42, 1.37),
+            k: Color::new(3.42, 2.35, 1.77),
+            exponent: None,
+        };
+        let head_on = gold.scatter(&hit_at(0.0), &mut Fixed(vec![]));
+        let lobe = head_on.lobes().next().unwrap();
+        for c in 0..3 {
+            let (eta, k) = (gold.eta[c], gold.k[c]);
+            let r0 = ((eta - 1.0).powi(2) + k * k) / ((eta + 1.0).powi(2) + k * k);
+            assert!(
+                (lobe.weight[c] - r0).abs() < 1e-6,
+                "{c}: {} vs {r0}",
+                lobe.weight[c]
+            );
+        }
+        assert!((lobe.dir - Vec3::Y).length() < 1e-6);
+        // At 70° under water: the equations with n1 = 1.33, and yellow stays yellow.
+        let mut wet = hit_at(70.0);
+        wet.outside_ior = 1.33;
+        let w = gold
+            .scatter(&wet, &mut Fixed(vec![]))
+            .lobes()
+            .next()
+            .unwrap()
+            .weight;
+        let cos = 70f32.to_radians().cos();
+        for c in 0..3 {
+            let r = fresnel_conductor(cos, 1.33, gold.eta[c], gold.k[c]).2;
+            assert_eq!(w[c], r);
+        }
+        assert!(w.x > w.y && w.y > w.z);
+        // Glossy: a jittered direction, above the surface.
+        let brushed = Conductor {
+            exponent: Some(20.0),
+            ..gold
+        };
+        let s = brushed.scatter(&hit_at(80.0), &mut Fixed(vec![0.3, 0.9]));
+        let dir = s.lobes().next().unwrap().dir;
+        assert!(dir.y > 0.0 && (dir - hit_at(80.0).mirror_dir()).length() > 1e-3);
     }
 }

@@ -1,7 +1,9 @@
 //! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
 
 use super::values::{Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit};
-use crate::material::{Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture};
+use crate::material::{
+    Conductor, Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture,
+};
 use crate::math::Color;
 use crate::optics::FresnelMode;
 use serde::Deserialize;
@@ -22,6 +24,11 @@ pub(super) enum MaterialDef {
     Glossy {
         reflectance: Reflectance,
         exponent: Exponent,
+    },
+    Conductor {
+        eta: Rgb,
+        k: Rgb,
+        exponent: Option<Exponent>,
     },
     Emissive {
         color: Rgb,
@@ -118,6 +125,11 @@ pub(super) fn material(def: MaterialDef) -> Material {
         } => Material::Glossy(Glossy {
             reflectance: reflectance.0,
             exponent: exponent.0,
+        }),
+        MaterialDef::Conductor { eta, k, exponent } => Material::Conductor(Conductor {
+            eta: eta.0,
+            k: k.0,
+            exponent: exponent.map(|e| e.0),
         }),
         MaterialDef::Emissive {
             color,
