@@ -292,28 +292,39 @@ fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
     Ok(accepted)
 }
 
-/// Panics seen anywhere in this test binary, and the last one's message: raylab catches a
-/// dependency's panic as a last line of defence, but the fuzzer counts it as a failure.
-static PANICS: AtomicU64 = AtomicU64::new(0);
-static LAST_PANIC: Mutex<String> = Mutex::new(String::new());
+thread_local! {
+    /// Whether this thread is running a fuzz case, and the panics seen while it was, with
+    /// the last one's message: raylab catches a dependency's panic as a last line of
+    /// defence, but the fuzzer counts it as a failure.
+    static IN_CASE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    static CAUGHT: std::cell::RefCell<(u64, String)> = const { std::cell::RefCell::new((0, String::new())) };
+}
 
 /// Runs a case with panics caught and counted: whether it was accepted, or what happened.
 fn outcome(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
     static HOOK: std::sync::Once = std::sync::Once::new();
     HOOK.call_once(|| {
-        std::panic::set_hook(Box::new(|info| {
-            PANICS.fetch_add(1, Ordering::SeqCst);
-            if let Ok(mut last) = LAST_PANIC.lock() {
-                *last = info.to_string();
+        let default = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if IN_CASE.get() {
+                CAUGHT.with_borrow_mut(|(n, last)| {
+                    *n += 1;
+                    *last = info.to_string();
+                });
+            } else {
+                // Any other thread's panic (a failing assertion) is reported as usual.
+                default(info);
             }
         }))
     });
-    let before = PANICS.load(Ordering::SeqCst);
+    let before = CAUGHT.with_borrow(|(n, _)| *n);
+    IN_CASE.set(true);
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         run_case(target, input, dir)
     }));
-    if PANICS.load(Ordering::SeqCst) != before || result.is_err() {
-        let last = LAST_PANIC.lock().map(|s| s.clone()).unwrap_or_default();
+    IN_CASE.set(false);
+    let (after, last) = CAUGHT.with_borrow(|(n, last)| (*n, last.clone()));
+    if after != before || result.is_err() {
         return Err(format!("panicked: {last}"));
     }
     result.unwrap_or(Ok(false))
