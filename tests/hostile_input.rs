@@ -22,33 +22,41 @@ fn geometry_beyond_what_the_bvh_handles_is_refused_where_it_is_written() {
     let d = tempfile::tempdir().unwrap();
     let dir = d.path();
     // Each of these once panicked inside the BVH builder.
-    let e = scene_error(
-        &format!("{CAMERA}[[sphere]]\ncenter = [0, 1, 0]\nradius = 1e20\n"),
-        dir,
-    );
-    assert_starts(&e, "t.toml:6:10: ", "at most 1e6");
-    let e = scene_error(
-        &format!("{CAMERA}[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nvelocity = [3e38, 0, 0]\n"),
-        dir,
-    );
-    assert_starts(&e, "t.toml:7:12: ", "largest coordinate");
-    // Within the limits point by point, beyond them as a whole: named by the object.
-    let e = scene_error(
-        &format!("{CAMERA}[[sphere]]\nname = \"far\"\ncenter = [999999, 1, 0]\nradius = 100\n"),
-        dir,
-    );
-    assert_starts(&e, "t.toml:4:1: ", "object `far` reaches beyond");
     std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
-    let e = scene_error(
-        &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\nscale = 1e30\n"),
-        dir,
-    );
-    assert_starts(&e, "t.toml:6:9: ", "at most 1e6");
-    let e = scene_error(
-        &format!("{CAMERA}[[mesh]]\nfile = \"tri.obj\"\nscale = 1e6\ntranslate = [1e6, 0, 0]\n"),
-        dir,
-    );
-    assert_starts(&e, "t.toml:5:8: ", "the mesh reaches beyond");
+    // (objects after the camera, where the error is, what it says); the first four once
+    // panicked inside the BVH builder.
+    let cases = [
+        (
+            "[[sphere]]\ncenter = [0, 1, 0]\nradius = 1e20\n",
+            "6:10",
+            "at most 1e6",
+        ),
+        (
+            "[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nvelocity = [3e38, 0, 0]\n",
+            "7:12",
+            "largest coordinate",
+        ),
+        (
+            "[[mesh]]\nfile = \"tri.obj\"\nscale = 1e30\n",
+            "6:9",
+            "at most 1e6",
+        ),
+        (
+            "[[mesh]]\nfile = \"tri.obj\"\nscale = 1e6\ntranslate = [1e6, 0, 0]\n",
+            "5:8",
+            "the mesh reaches beyond",
+        ),
+        // Within the limits point by point, beyond them as a whole: named by the object.
+        (
+            "[[sphere]]\nname = \"far\"\ncenter = [999999, 1, 0]\nradius = 100\n",
+            "4:1",
+            "object `far` reaches beyond",
+        ),
+    ];
+    for (objects, at, words) in cases {
+        let e = scene_error(&format!("{CAMERA}{objects}"), dir);
+        assert_starts(&e, &format!("t.toml:{at}: "), words);
+    }
     // An OBJ vertex far out or not a number: the OBJ's own line and column.
     std::fs::write(
         dir.join("far.obj"),

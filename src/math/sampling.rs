@@ -32,7 +32,7 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 ///
 /// sin φ ≈ φ + φ³(s₁ + φ²(s₂ + φ² s₃)),  cos φ ≈ 1 − φ²/2 + φ⁴(c₁ + φ²(c₂ + φ² c₃)).
 #[inline]
-pub fn sin_cos_quarter(phi: f32) -> (f32, f32) {
+fn sin_cos_quarter(phi: f32) -> (f32, f32) {
     let z = phi * phi;
     let sin = phi + phi * z * (-1.666_665_5e-1 + z * (8.332_161e-3 + z * -1.951_529_6e-4));
     let cos = 1.0 - 0.5 * z + z * z * (4.166_664_6e-2 + z * (-1.388_731_6e-3 + z * 2.443_315_7e-5));

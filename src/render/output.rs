@@ -49,7 +49,7 @@ where
 
 /// `target` written relative to the folder `base` (`../scenes/glass.toml`), when both are
 /// absolute paths on the same root; `None` otherwise (then the absolute path is kept).
-pub fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {
+pub(crate) fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {
     let (t, b): (Vec<Component>, Vec<Component>) =
         (target.components().collect(), base.components().collect());
     let rooted =

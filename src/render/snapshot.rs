@@ -75,14 +75,6 @@ pub enum SidecarError {
         /// What is wrong.
         message: String,
     },
-    /// A parameter in it is out of range.
-    #[error("{path}: {error}")]
-    Param {
-        /// The file.
-        path: String,
-        /// Which and why.
-        error: crate::params::ParamError,
-    },
 }
 
 /// The sidecar of an image: its whole name with `.json` added (`a.png.json`), so that two
@@ -176,14 +168,12 @@ impl Sidecar {
                 message,
             },
         };
-        sidecar.params.validate().map_err(|error| match &error {
-            ParamError::Invalid { name, .. } | ParamError::Unknown { name, .. } => {
-                at(&name.clone(), error.to_string())
-            }
-            ParamError::Syntax(_) => SidecarError::Param {
-                path: name.clone(),
-                error,
-            },
+        sidecar.params.validate().map_err(|error| {
+            let key = match &error {
+                ParamError::Invalid { name, .. } | ParamError::Unknown { name, .. } => name,
+                ParamError::Syntax(_) => "params",
+            };
+            at(key, error.to_string())
         })?;
         sidecar.check().map_err(|(key, message)| at(key, message))?;
         // A scene path relative to the sidecar's folder (a bare built-in name stays).
