@@ -189,7 +189,11 @@ impl SampleStream {
             sample,
             sample_reversed: sample.reverse_bits(),
             pixel_key,
-            sample_key: mix64(pixel_key ^ (sample as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03)),
+            // Sobol points need no per-sample key (their sample number is scrambled).
+            sample_key: match pattern {
+                Pattern::Sobol => 0,
+                _ => mix64(pixel_key ^ (sample as u64 + 1).wrapping_mul(0xd1b5_4a32_d192_ed03)),
+            },
             dim: 0,
         }
     }
