@@ -134,6 +134,19 @@ struct FresnelArgs {
     /// The conductor's extinction coefficient κ per channel, R,G,B (with --eta).
     #[arg(long, value_name = "R,G,B", value_parser = parse_rgb, requires = "eta")]
     k: Option<[f32; 3]>,
+    /// A measured metal instead of --eta and --k: gold, silver, copper, aluminium,
+    /// chromium, nickel or tungsten.
+    #[arg(long, value_name = "NAME", value_parser = parse_metal, conflicts_with_all = ["n2", "eta", "k"])]
+    metal: Option<&'static raylab::material::Metal>,
+}
+
+fn parse_metal(s: &str) -> Result<&'static raylab::material::Metal, String> {
+    raylab::material::metal(s).ok_or_else(|| {
+        format!(
+            "unknown metal `{s}` (known: {})",
+            raylab::material::metal_names()
+        )
+    })
 }
 
 /// Three comma-separated numbers from 0 to 100: a conductor's η or κ per channel.
@@ -449,7 +462,12 @@ fn check_output(path: &Path) -> Result<()> {
 fn fresnel_command(args: &FresnelArgs) -> Result<()> {
     use std::io::Write;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    if let (Some(eta), Some(k)) = (args.eta, args.k) {
+    let conductor = match (args.metal, args.eta, args.k) {
+        (Some(m), _, _) => Some((m.eta, m.k)),
+        (None, Some(eta), Some(k)) => Some((eta, k)),
+        _ => None,
+    };
+    if let Some((eta, k)) = conductor {
         writeln!(
             out,
             "theta_i_deg,r_exact_r,r_exact_g,r_exact_b,r_s_r,r_s_g,r_s_b,r_p_r,r_p_g,r_p_b"

@@ -292,6 +292,37 @@ fn fresnel_prints_a_conductors_curves_per_channel() {
 }
 
 #[test]
+fn fresnel_prints_a_measured_metal_by_name() {
+    let header = "theta_i_deg,r_exact_r,r_exact_g,r_exact_b,r_s_r,r_s_g,r_s_b,r_p_r,r_p_g,r_p_b";
+    let copper = raylab::material::metal("copper").unwrap();
+    let by_name = csv_rows(&["fresnel", "--metal", "copper", "--step", "10"], header);
+    let fmt = |v: [f32; 3]| v.map(|x| x.to_string()).join(",");
+    let by_index = csv_rows(
+        &[
+            "fresnel",
+            "--eta",
+            &fmt(copper.eta),
+            "--k",
+            &fmt(copper.k),
+            "--step",
+            "10",
+        ],
+        header,
+    );
+    assert_eq!(by_name, by_index);
+    fails(
+        &["fresnel", "--metal", "brass"],
+        Path::new("."),
+        "unknown metal `brass` (known: gold, silver, copper",
+    );
+    fails(
+        &["fresnel", "--metal", "gold", "--eta", "1,1,1", "--k", "1,1,1"],
+        Path::new("."),
+        "cannot be used with",
+    );
+}
+
+#[test]
 fn fresnel_prints_the_curves_as_csv() {
     let rows = fresnel_rows(&["fresnel", "--n1", "1.0", "--n2", "1.5"]);
     assert_eq!(

@@ -222,16 +222,31 @@ fn an_obj_file_opens_as_a_framed_scene() {
 }
 
 #[test]
-fn a_conductor_material_loads_and_needs_both_parts_of_its_index() {
-    let metal = "[material.gold]\ntype = \"conductor\"\neta = [0.18, 0.42, 1.37]\n";
+fn a_conductor_is_a_named_metal_or_its_own_index_and_nothing_in_between() {
+    let metal = "[material.gold]\ntype = \"conductor\"\n";
     let sphere = "[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"gold\"\n";
-    let good = format!("{CAMERA}{metal}k = [3.42, 2.35, 1.77]\nexponent = 40\n{sphere}");
-    let scene = Scene::from_toml_str(&good, "t.toml", Path::new(".")).unwrap();
+    let load = |keys: &str| {
+        Scene::from_toml_str(&format!("{CAMERA}{metal}{keys}{sphere}"), "t.toml", Path::new("."))
+    };
+    let scene = load("eta = [0.18, 0.42, 1.37]\nk = [3.42, 2.35, 1.77]\nexponent = 40\n").unwrap();
     assert_eq!(scene.materials[0].kind(), "conductor");
     assert_eq!(scene.materials[0].phong_exponent(), Some(40.0));
-    let e = err(&format!("{CAMERA}{metal}{sphere}"));
-    assert!(
-        e.starts_with("t.toml:4:1: ") && e.contains("missing field `k`"),
-        "{e}"
-    );
+    // A measured metal carries its table's constants exactly.
+    let gold = raylab::material::metal("gold").unwrap();
+    let expected = raylab::material::Material::Conductor(raylab::material::Conductor {
+        eta: gold.eta(),
+        k: gold.k(),
+        exponent: None,
+    });
+    assert_eq!(load("metal = \"Gold\"\n").unwrap().materials[0], expected);
+    // Every refusal names the material's table.
+    for (keys, words) in [
+        ("eta = [0.18, 0.42, 1.37]\n", "or both `eta` and `k`"),
+        ("", "a conductor needs `metal` (gold, silver, copper, aluminium"),
+        ("metal = \"brass\"\n", "unknown metal `brass` (known: gold, silver"),
+        ("metal = \"gold\"\nk = [1, 1, 1]\n", "either `metal` or `eta` and `k`"),
+    ] {
+        let e = err(&format!("{CAMERA}{metal}{keys}{sphere}"));
+        assert_at(&e, "t.toml:4:1", words);
+    }
 }

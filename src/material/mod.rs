@@ -9,11 +9,13 @@
 
 mod dielectric;
 mod diffuse;
+mod metals;
 mod specular;
 mod texture;
 
 pub use dielectric::{Dielectric, Glazed};
 pub use diffuse::{Brdf, Diffuse};
+pub use metals::{METALS, Metal, metal, metal_names};
 pub use specular::{Conductor, Glossy, Mirror};
 pub use texture::Texture;
 

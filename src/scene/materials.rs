@@ -25,11 +25,7 @@ pub(super) enum MaterialDef {
         reflectance: Reflectance,
         exponent: Exponent,
     },
-    Conductor {
-        eta: Rgb,
-        k: Rgb,
-        exponent: Option<Exponent>,
-    },
+    Conductor(ConductorDef),
     Emissive {
         color: Rgb,
         checker: Option<EmissiveCheckerDef>,
@@ -52,6 +48,53 @@ pub(super) enum MaterialDef {
         fresnel: Option<FresnelMode>,
         constant_reflectance: Option<Unit>,
     },
+}
+
+/// A conductor's keys as written: a measured `metal`, or its own `eta` and `k`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ConductorKeys {
+    metal: Option<String>,
+    eta: Option<Rgb>,
+    k: Option<Rgb>,
+    exponent: Option<Exponent>,
+}
+
+/// A conductor's optical constants, from a measured metal or given.
+#[derive(Deserialize)]
+#[serde(try_from = "ConductorKeys")]
+pub(super) struct ConductorDef(Conductor);
+
+impl TryFrom<ConductorKeys> for ConductorDef {
+    type Error = String;
+    fn try_from(c: ConductorKeys) -> Result<Self, String> {
+        let (eta, k) = match (c.metal, c.eta, c.k) {
+            (Some(name), None, None) => {
+                let m = crate::material::metal(&name).ok_or_else(|| {
+                    format!(
+                        "unknown metal `{name}` (known: {})",
+                        crate::material::metal_names()
+                    )
+                })?;
+                (m.eta(), m.k())
+            }
+            (None, Some(eta), Some(k)) => (eta.0, k.0),
+            (Some(_), _, _) => {
+                return Err("give either `metal` or `eta` and `k`, not both".into());
+            }
+            (None, _, _) => {
+                return Err(format!(
+                    "a conductor needs `metal` ({}) or both `eta` and `k`",
+                    crate::material::metal_names()
+                ));
+            }
+        };
+        Ok(ConductorDef(Conductor {
+            eta,
+            k,
+            exponent: c.exponent.map(|e| e.0),
+        }))
+    }
 }
 
 /// The checker of an emitter: its second colour is a radiance (any value ≥ 0).
@@ -126,11 +169,7 @@ pub(super) fn material(def: MaterialDef) -> Material {
             reflectance: reflectance.0,
             exponent: exponent.0,
         }),
-        MaterialDef::Conductor { eta, k, exponent } => Material::Conductor(Conductor {
-            eta: eta.0,
-            k: k.0,
-            exponent: exponent.map(|e| e.0),
-        }),
+        MaterialDef::Conductor(c) => Material::Conductor(c.0),
         MaterialDef::Emissive {
             color,
             checker,
