@@ -2,7 +2,7 @@
 
 use super::{Location, SceneError};
 use crate::geometry::Mesh;
-use crate::material::{Diffuse, Emissive, Material, Mirror, Texture};
+use crate::material::{Conductor, Diffuse, Emissive, Material, Mirror, Texture};
 use crate::math::{Color, Vec3};
 use glam::Vec2;
 use std::cell::RefCell;
@@ -150,8 +150,11 @@ fn triples(v: &[f32]) -> Vec<Vec3> {
         .collect()
 }
 
-/// Maps a .mtl material to raylab's: emissive if Ke is set, a mirror for the
-/// ray-traced reflection models (illum 3 and 5), otherwise diffuse with a Phong highlight.
+/// Maps a .mtl material to raylab's: emissive if Ke is set; a metal if the PBR extension's
+/// metallic `Pm` (which Blender writes) is at least 0.5: the measured conductor its name
+/// contains (`Gold`, `brushed_copper`), else a mirror of its base colour `Kd`; a mirror
+/// for the ray-traced reflection models (illum 3 and 5); otherwise diffuse with a Phong
+/// highlight.
 fn map_material(m: &tobj::Material) -> Material {
     let rgb = |c: Option<[f32; 3]>, default: f32| {
         let c = c.map_or(Color::splat(default), Color::from);
@@ -164,6 +167,23 @@ fn map_material(m: &tobj::Material) -> Material {
     let emissive = rgb(m.emissive, 0.0);
     if emissive.max_element() > 0.0 {
         return Material::Emissive(Emissive::solid(emissive));
+    }
+    let metallic = m
+        .unknown_param
+        .get("Pm")
+        .and_then(|v| v.trim().parse::<f32>().ok())
+        .is_some_and(|pm| pm >= 0.5);
+    if metallic {
+        return match metal_named_in(&m.name) {
+            Some(metal) => Material::Conductor(Conductor {
+                eta: metal.eta(),
+                k: metal.k(),
+                exponent: None,
+            }),
+            None => Material::Mirror(Mirror {
+                reflectance: rgb(m.diffuse, 0.9),
+            }),
+        };
     }
     match m.illumination_model {
         Some(3) | Some(5) => Material::Mirror(Mirror {
@@ -178,6 +198,15 @@ fn map_material(m: &tobj::Material) -> Material {
                 .unwrap_or(1.0),
         }),
     }
+}
+
+/// The measured metal whose full name a material's name contains, ignoring case
+/// ("aluminum" too); chemical symbols are not matched ("Cu" is in "Cube").
+fn metal_named_in(name: &str) -> Option<&'static crate::material::Metal> {
+    let name = name.to_ascii_lowercase().replace("aluminum", "aluminium");
+    crate::material::METALS
+        .iter()
+        .find(|m| name.contains(m.name))
 }
 
 /// Turns a tobj error into one that names the line. tobj reads one line at a time and
@@ -346,6 +375,31 @@ mod tests {
 
     fn no_mtl(_: &str) -> Option<Vec<u8>> {
         None
+    }
+
+    #[test]
+    fn metallic_mtl_materials_become_the_metal_they_name() {
+        let mtl = b"newmtl Brushed_Gold\nKd 1 0.8 0.3\nPm 1.0\n\
+                    newmtl chrome\nKd 0.6 0.6 0.6\nPm 0.9\n\
+                    newmtl copper_paint\nKd 0.7 0.3 0.2\nPm 0.2\n";
+        let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\
+                    usemtl Brushed_Gold\nf 1 2 3\nusemtl chrome\nf 1 2 3\n\
+                    usemtl copper_paint\nf 1 2 3\n";
+        let parts = load_obj(obj, "m.obj", &|_: &str| Some(mtl.to_vec())).unwrap();
+        let kinds: Vec<_> = parts
+            .iter()
+            .map(|p| p.material.as_ref().map(|(_, m)| m.kind()))
+            .collect();
+        assert_eq!(
+            kinds,
+            [Some("conductor"), Some("mirror"), Some("diffuse")],
+            "gold by name; metallic with no metal's name a mirror of Kd; Pm < 0.5 not metal"
+        );
+        let gold = crate::material::metal("gold").unwrap();
+        assert!(matches!(
+            &parts[0].material.as_ref().unwrap().1,
+            Material::Conductor(c) if c.eta == gold.eta() && c.k == gold.k()
+        ));
     }
 
     #[test]
