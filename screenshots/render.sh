@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 cargo build --release --quiet
 render() { ./target/release/raylab render "$@"; }
 render default -o screenshots/default.png --spp 64
-# Dielectrics.
+# Metals and dielectrics.
+render metals -o screenshots/metals.png --spp 64
 render glazed -o screenshots/glazed.png --spp 64
 render glass -o screenshots/glass.png --spp 64
 render tir -o screenshots/tir.png --spp 64

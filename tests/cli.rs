@@ -316,7 +316,9 @@ fn fresnel_prints_a_measured_metal_by_name() {
         "unknown metal `brass` (known: gold, silver, copper",
     );
     fails(
-        &["fresnel", "--metal", "gold", "--eta", "1,1,1", "--k", "1,1,1"],
+        &[
+            "fresnel", "--metal", "gold", "--eta", "1,1,1", "--k", "1,1,1",
+        ],
         Path::new("."),
         "cannot be used with",
     );

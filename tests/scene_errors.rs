@@ -226,7 +226,11 @@ fn a_conductor_is_a_named_metal_or_its_own_index_and_nothing_in_between() {
     let metal = "[material.gold]\ntype = \"conductor\"\n";
     let sphere = "[[sphere]]\ncenter = [0, 1, 0]\nradius = 1\nmaterial = \"gold\"\n";
     let load = |keys: &str| {
-        Scene::from_toml_str(&format!("{CAMERA}{metal}{keys}{sphere}"), "t.toml", Path::new("."))
+        Scene::from_toml_str(
+            &format!("{CAMERA}{metal}{keys}{sphere}"),
+            "t.toml",
+            Path::new("."),
+        )
     };
     let scene = load("eta = [0.18, 0.42, 1.37]\nk = [3.42, 2.35, 1.77]\nexponent = 40\n").unwrap();
     assert_eq!(scene.materials[0].kind(), "conductor");
@@ -242,9 +246,18 @@ fn a_conductor_is_a_named_metal_or_its_own_index_and_nothing_in_between() {
     // Every refusal names the material's table.
     for (keys, words) in [
         ("eta = [0.18, 0.42, 1.37]\n", "or both `eta` and `k`"),
-        ("", "a conductor needs `metal` (gold, silver, copper, aluminium"),
-        ("metal = \"brass\"\n", "unknown metal `brass` (known: gold, silver"),
-        ("metal = \"gold\"\nk = [1, 1, 1]\n", "either `metal` or `eta` and `k`"),
+        (
+            "",
+            "a conductor needs `metal` (gold, silver, copper, aluminium",
+        ),
+        (
+            "metal = \"brass\"\n",
+            "unknown metal `brass` (known: gold, silver",
+        ),
+        (
+            "metal = \"gold\"\nk = [1, 1, 1]\n",
+            "either `metal` or `eta` and `k`",
+        ),
     ] {
         let e = err(&format!("{CAMERA}{metal}{keys}{sphere}"));
         assert_at(&e, "t.toml:4:1", words);

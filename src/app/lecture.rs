@@ -21,6 +21,12 @@ pub(crate) struct Slide {
 /// The lecture, slide by slide.
 pub(crate) const LECTURE: &[Slide] = &[
     Slide {
+        title: "Metals vs dielectrics",
+        scene: "metals",
+        params: &[],
+        caption: "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. Instruments > Fresnel plot > Compare with a metal.",
+    },
+    Slide {
         title: "Fresnel reflection on the black glazed sphere",
         scene: "glazed",
         params: &[],

@@ -24,6 +24,10 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/glazed.toml"),
     },
     BuiltinScene {
+        name: "metals",
+        text: include_str!("../../scenes/metals.toml"),
+    },
+    BuiltinScene {
         name: "glass",
         text: include_str!("../../scenes/glass.toml"),
     },

@@ -17,6 +17,8 @@ use inspector::Inspection;
 #[derive(Default)]
 pub(crate) struct Instruments {
     pub(crate) show_fresnel: bool,
+    /// The measured metal (an index into `METALS`) the Fresnel plot compares, if any.
+    pub(crate) fresnel_metal: Option<usize>,
     /// A click on the image inspects a pixel.
     pub(crate) inspect_mode: bool,
     pub(crate) inspection: Option<Inspection>,
@@ -107,7 +109,7 @@ impl RaylabApp {
                 .open(&mut i.show_fresnel)
                 .default_width(520.0)
                 .show(ctx, |ui| {
-                    fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker)
+                    fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal)
                 });
         }
         if i.inspect_mode || i.inspection.is_some() {
