@@ -22,5 +22,7 @@ render soft-shadows -o screenshots/soft-shadows-point.png --spp 64 --set light_s
 render glossy -o screenshots/glossy.png --spp 64
 render depth-of-field -o screenshots/depth-of-field.png --spp 64
 render motion-blur -o screenshots/motion-blur.png --spp 64
+# Beyond the slides.
+render dispersion -o screenshots/dispersion.png --spp 256
 # A real mesh.
 render bunny -o screenshots/bunny.png --spp 64

@@ -235,7 +235,11 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
         ("Exposure (stops)", "2^exposure"),
         ("Absorption ×", "exp(−σ d)"),
         ("Max depth", "Pruning by depth"),
+        ("Abbe number", "n(λ) = A + B/λ²"),
     ] {
+        // The panel scrolls on a small window: bring the slider into view, as a user would.
+        h.get_by_role_and_label(Role::Slider, slider).scroll_to_me();
+        h.run_steps(3);
         h.get_by_role_and_label(Role::Slider, slider).hover();
         tooltip(&mut h, phrase);
     }

@@ -20,6 +20,7 @@ fn glass(ior: f32, absorption: Color) -> Material {
         fresnel: FresnelMode::Exact,
         constant_reflectance: 0.04,
         absorption,
+        abbe: 0.0,
     })
 }
 

@@ -32,6 +32,7 @@ fn case(
         "pattern" => ("default", &[], "random", "sobol"),
         "seed" => ("soft-shadows", &[], "0", "1"),
         "ior" => ("glass", &[], "1.2", "1.8"),
+        "abbe" => ("dispersion", &[], "0", "20"),
         "fresnel" => ("glazed", &[], "constant", "exact"),
         "constant_reflectance" => ("glazed", &[("fresnel", "constant")], "0.1", "0.5"),
         "absorption_scale" => ("glass", &[], "0", "3"),

@@ -33,6 +33,14 @@ fn scene_ior(scene: &Scene) -> Option<f32> {
     })
 }
 
+/// The Abbe number the `abbe` parameter replaces: the scene's first dielectric's.
+fn scene_abbe(scene: &Scene) -> Option<f32> {
+    scene.materials.iter().find_map(|m| match m {
+        Material::Dielectric(d) if !d.ior_fixed => Some(d.abbe),
+        _ => None,
+    })
+}
+
 fn scene_exponent(scene: &Scene) -> Option<f32> {
     scene.materials.iter().find_map(Material::phong_exponent)
 }
@@ -145,6 +153,19 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         }
         ui.add(param_slider(&mut p.absorption_scale, "absorption_scale"))
             .on_hover_text(tip("absorption_scale"));
+        let mut abbe = p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0);
+        if ui
+            .add(param_slider(&mut abbe, "abbe").fixed_decimals(1))
+            .on_hover_text(tip("abbe"))
+            .changed()
+        {
+            p.abbe = Some(abbe);
+        }
+        if abbe > 0.0 {
+            let n = |lambda| crate::optics::dispersion::ior_at(ior, abbe, lambda);
+            ui.label(format!("n = {:.4} at 450 nm, {:.4} at 650 nm", n(450.0), n(650.0)))
+                .on_hover_text("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
+        }
     });
 
     CollapsingHeader::new("Ray tree").default_open(true).show(ui, |ui| {

@@ -80,6 +80,12 @@ pub(crate) const LECTURE: &[Slide] = &[
         params: &[],
         caption: "Each sample has a time in the shutter interval; moving spheres smear over their travel. Set the shutter interval to 0 to freeze them.",
     },
+    Slide {
+        title: "Dispersion",
+        scene: "dispersion",
+        params: &[],
+        caption: "n depends on the wavelength: n(λ) = A + B/λ² through n_d and the Abbe number. Through the flint prism the white slit spreads into its spectrum, blue bent most; the lamps seen in the diamond fringe with colour. Drag the Abbe number (0: none).",
+    },
 ];
 
 impl Slide {

@@ -3,6 +3,7 @@
 
 use super::{Brdf, Direct, Interaction, Interface, Lobe, Scatter, Side, Texture};
 use crate::math::Color;
+use crate::optics::dispersion::ior_at;
 use crate::optics::{FresnelMode, refract};
 use crate::params::Params;
 
@@ -22,6 +23,9 @@ pub struct Dielectric {
     pub constant_reflectance: f32,
     /// Absorption coefficient σ per unit length, per channel (0: clear).
     pub absorption: Color,
+    /// Abbe number V_d: how much the index varies with the wavelength, `ior` being n_d at
+    /// 587.6 nm (lower is more dispersive; 0: none). Glazes ignore it.
+    pub abbe: f32,
 }
 
 /// The lecture's glazed surface: a clear coat over a base colour. The coat reflects R
@@ -50,7 +54,21 @@ impl Dielectric {
                 .constant_reflectance
                 .unwrap_or(self.constant_reflectance),
             absorption: self.absorption * params.absorption_scale,
+            abbe: match params.abbe {
+                Some(abbe) if !self.ior_fixed => abbe,
+                _ => self.abbe,
+            },
         }
+    }
+
+    /// Whether its index depends on the wavelength.
+    pub fn disperses(&self) -> bool {
+        self.abbe > 0.0
+    }
+
+    /// The index of refraction at `wavelength` (nm), or n_d for a sample without one.
+    pub fn ior_at(&self, wavelength: Option<f32>) -> f32 {
+        wavelength.map_or(self.ior, |l| ior_at(self.ior, self.abbe, l))
     }
 
     /// The reflectance R from `n1` into `n2` at cos θi, by this interface's Fresnel mode.
@@ -60,10 +78,11 @@ impl Dielectric {
     }
 
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
+        let ior = self.ior_at(hit.wavelength);
         let (n1, n2) = if hit.entering {
-            (hit.outside_ior, self.ior)
+            (hit.outside_ior, ior)
         } else {
-            (self.ior, hit.outside_ior)
+            (ior, hit.outside_ior)
         };
         let cos_i = hit.cos_i();
         // Snell's law; the refracted ray must cross the geometric surface.
@@ -136,6 +155,7 @@ mod tests {
             fresnel,
             constant_reflectance: 0.1,
             absorption: Color::new(0.0, 0.5, 1.0),
+            abbe: 0.0,
         }
     }
 
@@ -204,5 +224,35 @@ mod tests {
             ..glass(FresnelMode::Exact)
         };
         assert_eq!(fixed.with_params(&params).ior, 1.5);
+    }
+
+    #[test]
+    fn a_dispersive_glass_refracts_each_wavelength_by_its_own_index() {
+        let flint = Dielectric {
+            abbe: 30.0,
+            ..glass(FresnelMode::Exact)
+        };
+        for lambda in [450.0f32, 587.56, 650.0] {
+            let n = crate::optics::dispersion::ior_at(1.5, 30.0, lambda);
+            let hit = Interaction {
+                wavelength: Some(lambda),
+                ..hit_at(50.0)
+            };
+            let t = flint.scatter(&hit).lobes().nth(1).unwrap().dir;
+            // Snell's law with n(λ): sin θi = n(λ) sin θt.
+            let sin_t = (1.0 - t.y * t.y).sqrt();
+            assert!(
+                (50f32.to_radians().sin() - n * sin_t).abs() < 1e-5,
+                "{lambda} nm"
+            );
+        }
+        // Without a wavelength, n_d; with dispersion off, every wavelength sees n_d.
+        assert_eq!(flint.ior_at(None), 1.5);
+        assert_eq!(glass(FresnelMode::Exact).ior_at(Some(450.0)), 1.5);
+        let params = Params {
+            abbe: Some(0.0),
+            ..Params::default()
+        };
+        assert!(!flint.with_params(&params).disperses());
     }
 }

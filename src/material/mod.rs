@@ -74,8 +74,10 @@ pub struct Interaction {
     /// Whether the ray arrived from the surface's outside (against its own normal).
     pub entering: bool,
     /// The index of refraction on the surface's outer side: the medium an entering ray
-    /// travels in, or the one a leaving ray goes out to.
+    /// travels in, or the one a leaving ray goes out to (at `wavelength`).
     pub outside_ior: f32,
+    /// The wavelength (nm) the ray carries since it met a dispersive surface, if it has.
+    pub wavelength: Option<f32>,
 }
 
 impl Interaction {
@@ -227,6 +229,12 @@ impl Material {
         }
     }
 
+    /// Whether its index of refraction depends on the wavelength: a sample that meets it
+    /// must carry one.
+    pub fn disperses(&self) -> bool {
+        matches!(self, Material::Dielectric(d) if d.disperses())
+    }
+
     /// Whether its scattering reads surface coordinates (a checker texture).
     pub fn uses_uv(&self) -> bool {
         let textured = |t: &Texture| !matches!(t, Texture::Solid(_));
@@ -278,6 +286,7 @@ pub(crate) mod test_util {
             n_shade: Vec3::Y,
             entering: true,
             outside_ior: 1.0,
+            wavelength: None,
         }
     }
 }

@@ -8,7 +8,8 @@ pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
 pub use table::{
-    IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec, TABLE, spec,
+    ABBE_RANGE, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec, TABLE,
+    spec,
 };
 
 /// How the ray tree branches at a dielectric.
@@ -36,6 +37,9 @@ pub struct Params {
     /// Index of refraction of every dielectric and glazed material (except those with
     /// `ior_fixed`); `None` keeps each material's own. 1.0 to 3.0.
     pub ior: Option<f32>,
+    /// Abbe number V_d of every dielectric (except those with `ior_fixed`): 0 is no
+    /// dispersion; `None` keeps each material's own. 0 to 100.
+    pub abbe: Option<f32>,
     /// Reflectance model of every dielectric and glazed material; `None` keeps each
     /// material's own.
     pub fresnel: Option<FresnelMode>,
@@ -77,6 +81,7 @@ impl Default for Params {
             pattern: Pattern::Sobol,
             seed: 0,
             ior: None,
+            abbe: None,
             fresnel: None,
             constant_reflectance: None,
             absorption_scale: 1.0,
@@ -354,6 +359,7 @@ mod tests {
             "shutter",
             "seed",
             "ior",
+            "abbe",
             "fresnel",
             "constant_reflectance",
             "absorption_scale",

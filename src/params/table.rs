@@ -89,6 +89,8 @@ pub const MAX_DEPTH: u32 = 64;
 pub const MAX_PHONG_EXPONENT: f32 = 100_000.0;
 /// The indices of refraction accepted, for the parameter and for scene files.
 pub const IOR_RANGE: (f32, f32) = (1.0, 3.0);
+/// The Abbe numbers accepted, for the parameter and for scene files (0: no dispersion).
+pub const ABBE_RANGE: (f32, f32) = (0.0, 100.0);
 
 /// Every parameter, in the order of [`super::Params`]'s fields.
 pub const TABLE: &[Spec] = &[
@@ -136,6 +138,16 @@ pub const TABLE: &[Spec] = &[
         doc: "index of refraction of the dielectric and glazed materials (not those with ior_fixed)",
         explain: "Index of refraction n of the glass, water or glaze. Snell's law bends the refracted ray: n1 sin θi = n2 sin θt. Higher n bends more and reflects more (R0 = ((n−1)/(n+1))²).",
         slider: slider(1.0, 2.5),
+        display_only: false,
+    },
+    Spec {
+        name: "abbe",
+        label: "Abbe number",
+        kind: number(ABBE_RANGE.0 as f64, ABBE_RANGE.1 as f64),
+        unit: "",
+        doc: "Abbe number V_d of the dielectric materials (not those with ior_fixed): dispersion, lower is stronger, 0 none",
+        explain: "Dispersion: the index of refraction depends on the wavelength, n(λ) = A + B/λ² (Cauchy) with n_d = IOR at 587.6 nm and V_d = (n_d − 1)/(n_F − n_C). Lower V disperses more: crown glass 64, flint 36, diamond 55 (its fire is its high n). 0: no dispersion.",
+        slider: slider(0.0, 100.0),
         display_only: false,
     },
     Spec {

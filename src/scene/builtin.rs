@@ -60,6 +60,10 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/motion-blur.toml"),
     },
     BuiltinScene {
+        name: "dispersion",
+        text: include_str!("../../scenes/dispersion.toml"),
+    },
+    BuiltinScene {
         name: "bunny",
         text: include_str!("../../scenes/bunny.toml"),
     },
@@ -74,6 +78,10 @@ static ASSETS: &[(&str, &[u8])] = &[
     (
         "models/prism.obj",
         include_bytes!("../../scenes/models/prism.obj"),
+    ),
+    (
+        "models/prism-60.obj",
+        include_bytes!("../../scenes/models/prism-60.obj"),
     ),
 ];
 

@@ -1,6 +1,6 @@
 //! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
 
-use super::values::{Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit};
+use super::values::{Abbe, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit};
 use crate::material::{
     Conductor, Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture,
 };
@@ -38,6 +38,7 @@ pub(super) enum MaterialDef {
         fresnel: Option<FresnelMode>,
         constant_reflectance: Option<Unit>,
         absorption: Option<Rgb>,
+        abbe: Option<Abbe>,
     },
     Glazed {
         color: Reflectance,
@@ -193,12 +194,14 @@ pub(super) fn material(def: MaterialDef) -> Material {
             fresnel,
             constant_reflectance,
             absorption,
+            abbe,
         } => Material::Dielectric(Dielectric {
             ior: ior.0,
             ior_fixed,
             fresnel: fresnel.unwrap_or(FresnelMode::Exact),
             constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
             absorption: absorption.map_or(Color::ZERO, |a| a.0),
+            abbe: abbe.map_or(0.0, |a| a.0),
         }),
         MaterialDef::Glazed {
             color,
@@ -214,6 +217,7 @@ pub(super) fn material(def: MaterialDef) -> Material {
                 fresnel: fresnel.unwrap_or(FresnelMode::Exact),
                 constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
                 absorption: Color::ZERO,
+                abbe: 0.0,
             },
             base: texture(color, checker),
         }),

@@ -3,7 +3,7 @@
 
 use crate::geometry::{MAX_COORDINATE, within_limits};
 use crate::math::{Color, Vec3};
-use crate::params::IOR_RANGE;
+use crate::params::{ABBE_RANGE, IOR_RANGE};
 use serde::Deserialize;
 
 /// A finite number.
@@ -74,6 +74,11 @@ checked_number!(
     /// An index of refraction, 1 to 3.
     Ior, |v, f| (IOR_RANGE.0..=IOR_RANGE.1).contains(&f),
     "an index of refraction must be between {} and {}, got {v}", IOR_RANGE.0, IOR_RANGE.1
+);
+checked_number!(
+    /// An Abbe number, 0 (no dispersion) to 100.
+    Abbe, |v, f| (ABBE_RANGE.0..=ABBE_RANGE.1).contains(&f),
+    "an Abbe number must be between {} (no dispersion) and {}, got {v}", ABBE_RANGE.0, ABBE_RANGE.1
 );
 checked_number!(
     /// A Phong exponent, 1 to 100,000.

@@ -16,6 +16,7 @@ use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
 use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
+use crate::optics::dispersion;
 use crate::params::{Params, TreeMode};
 use crate::scene::{Hit, Scene};
 use glam::Vec2;
@@ -120,6 +121,8 @@ struct Branch {
     kind: RayKind,
     parent: Option<usize>,
     factor: f32,
+    // The wavelength (nm) this branch carries since its first dispersive surface.
+    wavelength: Option<f32>,
 }
 
 impl Branch {
@@ -238,16 +241,17 @@ impl<'a> Tracer<'a> {
             kind: RayKind::Camera,
             parent: None,
             factor: 1.0,
+            wavelength: None,
         };
         self.trace_in(&ray, root, &Media::default(), &mut walk)
     }
 
-    /// The index of refraction of the medium whose innermost dielectric is `innermost` (a
-    /// material), or of the scene's surrounding medium.
-    fn ior_of(&self, innermost: Option<u32>) -> f32 {
+    /// The index of refraction at `wavelength` of the medium whose innermost dielectric is
+    /// `innermost` (a material), or of the scene's surrounding medium.
+    fn ior_of(&self, innermost: Option<u32>, wavelength: Option<f32>) -> f32 {
         innermost
             .and_then(|m| self.materials[m as usize].dielectric())
-            .map_or(self.scene.medium_ior, |d| d.ior)
+            .map_or(self.scene.medium_ior, |d| d.ior_at(wavelength))
     }
 
     /// Radiance arriving along `ray` at tree level `depth`, reached with path weight
@@ -268,6 +272,7 @@ impl<'a> Tracer<'a> {
             kind: RayKind::Camera,
             parent: None,
             factor: 1.0,
+            wavelength: None,
         };
         self.trace_in(
             ray,
@@ -303,12 +308,24 @@ impl<'a> Tracer<'a> {
         } else if let Some(hit) = &hit {
             // Beer–Lambert along the segment just travelled.
             let tr = transmittance(sigma, hit.surface.t);
-            let b = Branch {
+            let mut b = Branch {
                 weight: b.weight * tr.max_element(),
                 ..b
             };
+            // The first dispersive surface on a branch picks the one wavelength it carries
+            // from there on (see optics::dispersion): only that wavelength's channel, times
+            // 3. Other branches are left as they are, so without dispersion nothing changes.
+            let mut spectral = None;
+            if b.wavelength.is_none() && self.materials[hit.material as usize].disperses() {
+                let lambda = dispersion::wavelength(w.rng.next_1d());
+                b.wavelength = Some(lambda);
+                spectral = Some(dispersion::channel_weight(lambda));
+            }
             let (l, end) = self.shade(ray, hit, b, id, media, w);
-            (tr * l, end)
+            match spectral {
+                Some(s) => (tr * s * l, end),
+                None => (tr * l, end),
+            }
         } else {
             let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
             (l, End::Miss)
@@ -359,7 +376,8 @@ impl<'a> Tracer<'a> {
             n_geom,
             n_shade,
             entering,
-            outside_ior: self.ior_of(outside),
+            outside_ior: self.ior_of(outside, b.wavelength),
+            wavelength: b.wavelength,
         };
         if w.rec.on() {
             let node_hit = NodeHit {
@@ -443,6 +461,7 @@ impl<'a> Tracer<'a> {
                 kind,
                 parent: Some(id),
                 factor,
+                wavelength: b.wavelength,
             };
             self.child(child, &child_ray(lobe), media, w)
         };

@@ -4,6 +4,8 @@
 //! Angles are measured from the normal; `n1` is the index of refraction on the side the
 //! light arrives from, `n2` the other side's.
 
+pub mod dispersion;
+
 use crate::math::Vec3;
 
 /// Ideal mirror reflection of the incoming direction `d` about the unit normal `n`:
