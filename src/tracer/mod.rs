@@ -119,18 +119,22 @@ struct Branch {
     depth: u32,
     weight: f32,
     kind: RayKind,
-    parent: Option<usize>,
+    // The parent's node in the recorded tree. 32 bits, not a usize: with the wavelength
+    // the branch stays within the 32 bytes that are copied down every level.
+    parent: Option<u32>,
     factor: f32,
     // The wavelength (nm) this branch carries since its first dispersive surface.
     wavelength: Option<f32>,
 }
+
+const _: () = assert!(std::mem::size_of::<Branch>() <= 32);
 
 impl Branch {
     /// The record of `ray` at this place in the tree, ending at `end_point` for `end`
     /// (amended once its hit and radiance are known).
     fn node(&self, ray: &Ray, end_point: Vec3, end: End) -> TreeNode {
         TreeNode {
-            parent: self.parent,
+            parent: self.parent.map(|p| p as usize),
             kind: self.kind,
             ray: *ray,
             depth: self.depth,
@@ -150,6 +154,8 @@ pub struct Tracer<'a> {
     params: &'a Params,
     // The scene's materials with the parameters' overrides (ior, fresnel, ...) applied.
     materials: Vec<Material>,
+    // Whether any of them disperses: without, no hit needs to ask.
+    dispersive: bool,
     // The scene's lights at the parameters' light size, prepared once.
     lights: Vec<PreparedLight>,
     frame: CameraFrame,
@@ -171,14 +177,16 @@ impl<'a> Tracer<'a> {
         width: u32,
         height: u32,
     ) -> Self {
+        let materials: Vec<Material> = scene
+            .materials
+            .iter()
+            .map(|m| m.with_params(params))
+            .collect();
         Tracer {
             scene,
             params,
-            materials: scene
-                .materials
-                .iter()
-                .map(|m| m.with_params(params))
-                .collect(),
+            dispersive: materials.iter().any(Material::disperses),
+            materials,
             lights: scene
                 .lights
                 .iter()
@@ -316,7 +324,10 @@ impl<'a> Tracer<'a> {
             // from there on (see optics::dispersion): only that wavelength's channel, times
             // 3. Other branches are left as they are, so without dispersion nothing changes.
             let mut spectral = None;
-            if b.wavelength.is_none() && self.materials[hit.material as usize].disperses() {
+            if self.dispersive
+                && b.wavelength.is_none()
+                && self.materials[hit.material as usize].disperses()
+            {
                 let lambda = dispersion::wavelength(w.rng.next_1d());
                 b.wavelength = Some(lambda);
                 spectral = Some(dispersion::channel_weight(lambda));
@@ -459,7 +470,7 @@ impl<'a> Tracer<'a> {
                 depth: b.depth + 1,
                 weight,
                 kind,
-                parent: Some(id),
+                parent: Some(id as u32),
                 factor,
                 wavelength: b.wavelength,
             };
