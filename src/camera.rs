@@ -200,6 +200,18 @@ impl CameraFrame {
         Ray::new(origin, focus_point - origin, time)
     }
 
+    /// The transmission axis of a linear polariser in front of the lens at `angle_deg`
+    /// from the image's horizontal (towards its up), for the ray along `dir`: the angle is
+    /// taken in the plane across the ray, from the image's horizontal squared up to the ray,
+    /// so that polarisers 90° apart are crossed for every ray, as ideal ones are.
+    pub fn polarizer_axis(&self, angle_deg: f32, dir: Vec3) -> Vec3 {
+        let (sin, cos) = angle_deg.to_radians().sin_cos();
+        let x = (self.lens_u - self.lens_u.dot(dir) * dir).normalize_or(self.lens_u);
+        let y = dir.cross(x);
+        // Up in the image is −(dir × right): the axis turns from right towards up.
+        (cos * x - sin * y).normalize_or(x)
+    }
+
     /// The unit view direction.
     pub fn forward(&self) -> Vec3 {
         self.forward

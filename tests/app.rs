@@ -206,7 +206,14 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("glossy", dir.path());
     h.step();
-    for section in ["Soft shadows", "Glossy reflection", "Motion blur"] {
+    for section in [
+        "Soft shadows",
+        "Glossy reflection",
+        "Polariser",
+        "Motion blur",
+    ] {
+        h.get_by_label(section).scroll_to_me();
+        h.run_steps(3);
         h.get_by_label(section).click();
         h.step();
     }

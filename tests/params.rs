@@ -45,6 +45,7 @@ fn case(
         "focus_distance" => ("depth-of-field", &[("aperture", "0.2")], "3", "9"),
         "shutter_open" => ("motion-blur", &[("shutter", "0")], "0", "0.8"),
         "shutter" => ("motion-blur", &[], "0", "0.5"),
+        "polarizer" => ("glazed", &[], "none", "90"),
         "exposure" => ("default", &[], "0", "2"),
         other => panic!("no scene shows parameter `{other}`: add a case here"),
     }
@@ -143,6 +144,21 @@ fn set_accepts_each_range_and_refuses_just_outside_it() {
                     assert_eq!(p.value_text(spec.name).as_deref(), Some(*w));
                 }
                 assert!(p.set(spec.name, "nonsense").is_err(), "{}", spec.name);
+            }
+            Kind::WordOrNumber { word, min, max } => {
+                p.set(spec.name, &min.to_string()).unwrap();
+                p.set(spec.name, &max.to_string()).unwrap();
+                assert_eq!(p.value_text(spec.name), Some(max.to_string()));
+                p.set(spec.name, word).unwrap();
+                assert_eq!(p.value_text(spec.name).as_deref(), Some(word));
+                for bad in [
+                    &(max + 1.0).to_string(),
+                    &(min - 1.0).to_string(),
+                    "nonsense",
+                ] {
+                    let err = p.set(spec.name, bad).unwrap_err();
+                    assert!(err.to_string().contains(spec.name), "{err}");
+                }
             }
         }
     }

@@ -259,6 +259,43 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         ui.label("Orbit: right-drag. Dolly: Ctrl + wheel.");
     });
 
+    CollapsingHeader::new("Polariser")
+        .default_open(false)
+        // Kept open while a polariser is on, so the image never hides why it changed.
+        .open(p.polarizer.is_some().then_some(true))
+        .show(ui, |ui| {
+            let mut on = p.polarizer.is_some();
+            if ui
+                .checkbox(&mut on, "Linear polariser in front of the lens")
+                .on_hover_text(tip("polarizer"))
+                .changed()
+            {
+                p.polarizer = on.then_some(90.0);
+            }
+            let mut angle = p.polarizer.unwrap_or(90.0);
+            let slider = ui
+                .add_enabled(on, param_slider(&mut angle, "polarizer").fixed_decimals(0))
+                .on_hover_text(tip("polarizer"));
+            if slider.changed() {
+                p.polarizer = Some(angle);
+            }
+            ui.horizontal(|ui| {
+                for (label, a, hint) in [
+                    ("Horizontal", 0.0, "Passes horizontally polarised light: the glare off a floor or water stays."),
+                    ("Vertical", 90.0, "Passes vertically polarised light: the s-polarised glare off a floor or water at Brewster's angle is cut."),
+                ] {
+                    if ui.add_enabled(on, egui::Button::selectable(p.polarizer == Some(a), label)).on_hover_text(hint).clicked() {
+                        p.polarizer = Some(a);
+                    }
+                }
+            });
+            ui.label(format!(
+                "Brewster: {:.1}° on water, {:.1}° on glass",
+                brewster_angle(1.0, 1.33).to_degrees(),
+                brewster_angle(1.0, 1.5).to_degrees()
+            ));
+        });
+
     CollapsingHeader::new("Motion blur")
         .default_open(false)
         .show(ui, |ui| {

@@ -81,6 +81,12 @@ pub(crate) const LECTURE: &[Slide] = &[
         caption: "Each sample has a time in the shutter interval; moving spheres smear over their travel. Set the shutter interval to 0 to freeze them.",
     },
     Slide {
+        title: "F_s and F_p: polarisation at Brewster's angle",
+        scene: "polarization",
+        params: &[("polarizer", "90")],
+        caption: "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, so the reflection is s only, along the surface. A vertical polariser cuts it: the glare on the pond fades and the tiles show; a dark band crosses the sphere. Polariser > Horizontal brings it back.",
+    },
+    Slide {
         title: "Dispersion",
         scene: "dispersion",
         params: &[],

@@ -4,6 +4,7 @@
 use super::{Brdf, Direct, Interaction, Interface, Lobe, Scatter, Side, Texture};
 use crate::math::Color;
 use crate::optics::dispersion::ior_at;
+use crate::optics::polarization::{Mueller, fresnel_amplitudes};
 use crate::optics::{FresnelMode, refract};
 use crate::params::Params;
 
@@ -77,13 +78,43 @@ impl Dielectric {
             .reflectance(cos_i, n1, n2, self.constant_reflectance)
     }
 
-    pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
+    /// The indices (n1, n2) on the side the ray comes from and the other, at the ray's
+    /// wavelength.
+    fn sides(&self, hit: &Interaction) -> (f32, f32) {
         let ior = self.ior_at(hit.wavelength);
-        let (n1, n2) = if hit.entering {
+        if hit.entering {
             (hit.outside_ior, ior)
         } else {
             (ior, hit.outside_ior)
-        };
+        }
+    }
+
+    /// The Mueller matrix of the reflected or refracted ray from `n1` into `n2`: the
+    /// Fresnel amplitudes with the exact model; the others do not polarise.
+    pub(super) fn mueller(&self, hit: &Interaction, n1: f32, n2: f32, side: Side) -> Mueller {
+        let cos_i = hit.cos_i();
+        if self.fresnel != FresnelMode::Exact {
+            let r = Color::splat(self.reflectance(cos_i, n1, n2));
+            return match side {
+                Side::Reflect => Mueller::neutral_reflection(r),
+                Side::Transmit => Mueller::neutral_transmission(Color::ONE - r),
+            };
+        }
+        let (r_s, r_p) = fresnel_amplitudes(cos_i, n1, n2, 0.0);
+        match side {
+            Side::Reflect => Mueller::reflection([(r_s, r_p); 3]),
+            Side::Transmit => Mueller::transmission(r_s.norm2() as f32, r_p.norm2() as f32),
+        }
+    }
+
+    /// The Mueller matrix of a child ray on `side` of this interface at `hit`.
+    pub(super) fn child_mueller(&self, hit: &Interaction, side: Side) -> Mueller {
+        let (n1, n2) = self.sides(hit);
+        self.mueller(hit, n1, n2, side)
+    }
+
+    pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
+        let (n1, n2) = self.sides(hit);
         let cos_i = hit.cos_i();
         // Snell's law; the refracted ray must cross the geometric surface.
         let refracted = refract(hit.dir, hit.n_shade, n1, n2)
@@ -114,6 +145,12 @@ impl Dielectric {
 }
 
 impl Glazed {
+    /// The coat's Mueller matrix: its reflection, or for `Transmit` the way the base's
+    /// light comes out through it.
+    pub(super) fn mueller(&self, hit: &Interaction, side: Side) -> Mueller {
+        self.coat.mueller(hit, hit.outside_ior, self.coat.ior, side)
+    }
+
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
         // The coat is seen from the medium the ray travels in; nothing enters it.
         let (n1, n2) = (hit.outside_ior, self.coat.ior);

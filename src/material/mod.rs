@@ -20,6 +20,7 @@ pub use specular::{Conductor, Glossy, Mirror};
 pub use texture::Texture;
 
 use crate::math::{Color, Uniform, Vec3};
+use crate::optics::polarization::Mueller;
 use crate::optics::reflect;
 use crate::params::Params;
 use glam::Vec2;
@@ -195,6 +196,21 @@ impl Material {
             },
             Material::Dielectric(m) => m.scatter(hit),
             Material::Glazed(m) => m.scatter(hit),
+        }
+    }
+
+    /// The Mueller matrix (in the s/p frame of `hit`) of the child ray on `side`, or for a
+    /// glaze's `Transmit` the way its base's light comes out through the coat. Mirrors and
+    /// glossy metals reflect without polarising; materials without that lobe, `None`.
+    pub fn mueller(&self, hit: &Interaction, lobe: Option<&Lobe>, side: Side) -> Option<Mueller> {
+        match (self, side) {
+            (Material::Dielectric(d), _) => Some(d.child_mueller(hit, side)),
+            (Material::Glazed(g), _) => Some(g.mueller(hit, side)),
+            (Material::Conductor(c), Side::Reflect) => Some(c.mueller(hit)),
+            (Material::Mirror(_) | Material::Glossy(_), Side::Reflect) => {
+                lobe.map(|l| Mueller::neutral_reflection(l.weight))
+            }
+            _ => None,
         }
     }
 

@@ -6,6 +6,7 @@ use super::{Interaction, Lobe, Scatter, Side};
 use crate::math::sampling::{phong_lobe, to_world};
 use crate::math::{Color, Uniform, Vec3};
 use crate::optics::fresnel_conductor;
+use crate::optics::polarization::{Mueller, fresnel_amplitudes};
 
 /// An ideal mirror or polished metal: the reflected ray, scaled by a constant reflectance
 /// (metals reflect strongly at every angle, with a colour).
@@ -59,6 +60,17 @@ impl Conductor {
             ],
             ..Scatter::default()
         }
+    }
+}
+
+impl Conductor {
+    /// The Mueller matrix of its reflection at `hit`, per channel: a metal shifts the phase
+    /// between s and p, turning linear polarisation elliptical.
+    pub(super) fn mueller(&self, hit: &Interaction) -> Mueller {
+        let cos_i = hit.cos_i();
+        Mueller::reflection(std::array::from_fn(|c| {
+            fresnel_amplitudes(cos_i, hit.outside_ior, self.eta[c], self.k[c])
+        }))
     }
 }
 

@@ -70,8 +70,43 @@ pub struct Params {
     pub shutter_open: f32,
     /// How long the shutter stays open, in frame time; 0 freezes motion.
     pub shutter: f32,
+    /// A linear polariser in front of the lens, its transmission axis at this angle
+    /// (degrees) from the image's horizontal; `None`: no polariser. 0 to 180.
+    #[serde(with = "polarizer_value")]
+    pub polarizer: Option<f32>,
     /// Display exposure in stops: pixel values are scaled by 2^exposure before display.
     pub exposure: f32,
+}
+
+/// `polarizer` in files and on the command line: `"none"` or an angle.
+mod polarizer_value {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    #[derive(Serialize, Deserialize)]
+    #[serde(untagged)]
+    enum Value {
+        Angle(f32),
+        Word(String),
+    }
+
+    pub fn serialize<S: Serializer>(v: &Option<f32>, s: S) -> Result<S::Ok, S::Error> {
+        match v {
+            Some(a) => Value::Angle(*a),
+            None => Value::Word("none".into()),
+        }
+        .serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
+        match Option::<Value>::deserialize(d)? {
+            Some(Value::Angle(a)) => Ok(Some(a)),
+            Some(Value::Word(w)) if w == "none" => Ok(None),
+            None => Ok(None),
+            Some(Value::Word(w)) => Err(serde::de::Error::custom(format!(
+                "must be none or an angle in degrees, got \"{w}\""
+            ))),
+        }
+    }
 }
 
 impl Default for Params {
@@ -94,6 +129,7 @@ impl Default for Params {
             focus_distance: None,
             shutter_open: 0.0,
             shutter: 0.0,
+            polarizer: None,
             exposure: 0.0,
         }
     }
@@ -366,6 +402,7 @@ mod tests {
             "tree",
             "max_depth",
             "min_weight",
+            "polarizer",
             "exposure",
         ] {
             assert!(names.iter().any(|m| m == n), "{n} missing");

@@ -23,6 +23,15 @@ pub enum Kind {
     },
     /// One of these words.
     Choice(&'static [&'static str]),
+    /// A word meaning "off", or a real number from `min` to `max`.
+    WordOrNumber {
+        /// The word.
+        word: &'static str,
+        /// Smallest value.
+        min: f64,
+        /// Largest value.
+        max: f64,
+    },
 }
 
 /// The range a slider offers, within the valid range.
@@ -279,6 +288,20 @@ pub const TABLE: &[Spec] = &[
         display_only: false,
     },
     Spec {
+        name: "polarizer",
+        label: "Polariser angle °",
+        kind: Kind::WordOrNumber {
+            word: "none",
+            min: 0.0,
+            max: 180.0,
+        },
+        unit: "degrees",
+        doc: "a linear polariser in front of the lens, its axis at this angle from the image's horizontal (`none`: no polariser)",
+        explain: "A linear polariser in front of the lens passes the light polarised along its axis. Reflection polarises: at Brewster's angle, tan θ = n2/n1, only s (perpendicular to the plane of incidence) is reflected, so the reflection vanishes where the polariser is crossed with s. Unpolarised light passes half.",
+        slider: slider(0.0, 180.0),
+        display_only: false,
+    },
+    Spec {
         name: "exposure",
         label: "Exposure (stops)",
         kind: number(-20.0, 20.0),
@@ -320,6 +343,7 @@ impl Spec {
             } => format!("> {min}, ≤ {max}{unit}"),
             Kind::Number { min, max, .. } => format!("{min} to {max}{unit}"),
             Kind::Choice(words) => words.join(", "),
+            Kind::WordOrNumber { word, min, max } => format!("{word}, or {min} to {max}{unit}"),
         }
     }
 
@@ -352,6 +376,13 @@ impl Spec {
                 Some(w) if words.contains(&w) => Ok(()),
                 _ => Err(format!("must be one of {}, got {value}", words.join(", "))),
             },
+            (Kind::WordOrNumber { word, min, max }, v) => match (v.as_str(), v.as_f64()) {
+                (Some(w), _) if w == word => Ok(()),
+                (_, Some(x)) if x.is_finite() && (min..=max).contains(&x) => Ok(()),
+                _ => Err(format!(
+                    "must be {word} or a number from {min} to {max}, got {value}"
+                )),
+            },
         }
     }
 
@@ -376,6 +407,9 @@ impl Spec {
             Kind::Count { min, max } => format!("between {min} and {max}{unit}"),
             Kind::Number { min, max, .. } => format!("between {min} and {max}{unit}"),
             Kind::Choice(words) => words.join(", "),
+            Kind::WordOrNumber { word, min, max } => {
+                format!("{word} or between {min} and {max}{unit}")
+            }
         }
     }
 }

@@ -60,6 +60,10 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/motion-blur.toml"),
     },
     BuiltinScene {
+        name: "polarization",
+        text: include_str!("../../scenes/polarization.toml"),
+    },
+    BuiltinScene {
         name: "dispersion",
         text: include_str!("../../scenes/dispersion.toml"),
     },

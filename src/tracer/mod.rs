@@ -7,22 +7,26 @@
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
 mod media;
+mod polarized;
 mod record;
+mod stats;
 
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
+pub use stats::Stats;
 
 use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
 use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
+use crate::optics::polarization::Analyzer;
 use crate::params::{Params, TreeMode};
 use crate::scene::{Hit, Scene};
 use glam::Vec2;
 use media::transmittance;
+use polarized::{Polarization, Unpolarized};
 use record::record_interface;
-use std::ops::AddAssign;
 
 /// The most reflected and refracted rays one camera sample may trace. Depth and weight
 /// prune any tree a lecture draws long before this (a full binary tree of depth 8 has 510
@@ -30,54 +34,6 @@ use std::ops::AddAssign;
 /// 64 would trace millions a sample): beyond the budget the rest of it is pruned, and
 /// counted.
 pub const MAX_TREE_RAYS: u32 = 1024;
-
-/// What the tracer did: rays by kind and branches pruned.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct Stats {
-    /// Camera samples taken.
-    pub samples: u64,
-    /// Eye rays.
-    pub camera_rays: u64,
-    /// Rays towards lights.
-    pub shadow_rays: u64,
-    /// Reflected rays.
-    pub reflection_rays: u64,
-    /// Refracted rays.
-    pub refraction_rays: u64,
-    /// Hits where the refracted ray does not exist: total internal reflection.
-    pub tir_events: u64,
-    /// Branches not traced because they would exceed `max_depth`.
-    pub pruned_by_depth: u64,
-    /// Branches not traced because their path weight fell below `min_weight`.
-    pub pruned_by_weight: u64,
-    /// Branches not traced because their sample had traced [`MAX_TREE_RAYS`] child rays.
-    pub pruned_by_budget: u64,
-    /// Samples dropped because they were NaN or infinite.
-    pub non_finite: u64,
-}
-
-impl Stats {
-    /// All rays traced, of every kind.
-    pub fn total_rays(&self) -> u64 {
-        self.camera_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays
-    }
-}
-
-impl AddAssign for Stats {
-    fn add_assign(&mut self, o: Stats) {
-        self.samples += o.samples;
-        self.camera_rays += o.camera_rays;
-        self.shadow_rays += o.shadow_rays;
-        self.reflection_rays += o.reflection_rays;
-        self.refraction_rays += o.refraction_rays;
-        self.tir_events += o.tir_events;
-        self.pruned_by_depth += o.pruned_by_depth;
-        self.pruned_by_weight += o.pruned_by_weight;
-        self.pruned_by_budget += o.pruned_by_budget;
-        self.non_finite += o.non_finite;
-    }
-}
 
 /// What the pinhole ray through a point of the image meets first.
 #[derive(Clone, Copy, Debug)]
@@ -251,7 +207,15 @@ impl<'a> Tracer<'a> {
             factor: 1.0,
             wavelength: None,
         };
-        self.trace_in(&ray, root, &Media::default(), &mut walk)
+        let media = Media::default();
+        match self.params.polarizer {
+            None => self.trace_in(&ray, root, &media, &mut walk, &Unpolarized),
+            Some(angle) => {
+                let axis = self.frame.polarizer_axis(angle, ray.dir);
+                let analyzer = Analyzer::linear_polarizer(axis);
+                self.trace_in(&ray, root, &media, &mut walk, &analyzer)
+            }
+        }
     }
 
     /// The index of refraction at `wavelength` of the medium whose innermost dielectric is
@@ -292,10 +256,19 @@ impl<'a> Tracer<'a> {
                 rec: &mut NoRecorder,
                 tree_rays: 0,
             },
+            &Unpolarized,
         )
     }
 
-    fn trace_in<R: Recorder>(&self, ray: &Ray, b: Branch, media: &Media, w: &mut Walk<R>) -> Color {
+    /// `pol`: the analyzer of a camera with a polariser, through every interface above.
+    fn trace_in<R: Recorder, P: Polarization>(
+        &self,
+        ray: &Ray,
+        b: Branch,
+        media: &Media,
+        w: &mut Walk<R>,
+        pol: &P,
+    ) -> Color {
         let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
         let sigma = media
             .innermost()
@@ -312,7 +285,8 @@ impl<'a> Tracer<'a> {
             }
         }
         let (radiance, end) = if let Some(radiance) = emitted {
-            (transmittance(sigma, nearest) * radiance, End::LightHit)
+            let l = transmittance(sigma, nearest) * radiance;
+            (pol.seen(l), End::LightHit)
         } else if let Some(hit) = &hit {
             // Beer–Lambert along the segment just travelled.
             let tr = transmittance(sigma, hit.surface.t);
@@ -332,14 +306,14 @@ impl<'a> Tracer<'a> {
                 b.wavelength = Some(lambda);
                 spectral = Some(dispersion::channel_weight(lambda));
             }
-            let (l, end) = self.shade(ray, hit, b, id, media, w);
+            let (l, end) = self.shade(ray, hit, b, id, media, w, pol);
             match spectral {
                 Some(s) => (tr * s * l, end),
                 None => (tr * l, end),
             }
         } else {
             let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
-            (l, End::Miss)
+            (pol.seen(l), End::Miss)
         };
         if w.rec.on() {
             let end_point = if nearest.is_finite() {
@@ -358,7 +332,8 @@ impl<'a> Tracer<'a> {
 
     /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
     /// by the lights, and its child rays, walked as the tree mode says.
-    fn shade<R: Recorder>(
+    #[allow(clippy::too_many_arguments)]
+    fn shade<R: Recorder, P: Polarization>(
         &self,
         ray: &Ray,
         hit: &Hit,
@@ -366,6 +341,7 @@ impl<'a> Tracer<'a> {
         id: usize,
         media: &Media,
         w: &mut Walk<R>,
+        pol: &P,
     ) -> (Color, End) {
         let s = &hit.surface;
         let entering = ray.dir.dot(s.n_geom) < 0.0;
@@ -404,10 +380,13 @@ impl<'a> Tracer<'a> {
             };
             w.rec.finish(id, &|n| n.hit = Some(node_hit));
         }
-        let scatter = self.materials[hit.material as usize].scatter(&at, w.rng);
+        let material = &self.materials[hit.material as usize];
+        let scatter = material.scatter(&at, w.rng);
         if let Some(radiance) = scatter.emitted {
-            return (radiance, End::LightHit);
+            return (pol.seen(radiance), End::LightHit);
         }
+        // The polariser's analyzer in this interface's s/p frame.
+        let s_frame = pol.at_interface(ray.dir, at.n_shade);
         let child_ray = |lobe: &Lobe| Ray {
             origin: offset_ray_origin(
                 s.p,
@@ -444,7 +423,10 @@ impl<'a> Tracer<'a> {
             }
         }
         let mut l = match scatter.direct {
-            Some(direct) => direct.scale * self.direct(ray, hit, &at, &direct, id, w),
+            Some(direct) => {
+                let lit = direct.scale * self.direct(ray, hit, &at, &direct, id, w);
+                s_frame.direct(material, &at, lit)
+            }
             None => Color::ZERO,
         };
         let lobes = scatter.lobes().count();
@@ -474,7 +456,8 @@ impl<'a> Tracer<'a> {
                 factor,
                 wavelength: b.wavelength,
             };
-            self.child(child, &child_ray(lobe), media, w)
+            let child_pol = s_frame.child(material, &at, lobe);
+            self.child(child, &child_ray(lobe), media, w, &child_pol)
         };
         if self.params.tree == TreeMode::Stochastic && lobes > 1 {
             l += self.follow_one(&scatter, b, w, &mut trace_child);
@@ -527,7 +510,14 @@ impl<'a> Tracer<'a> {
     }
 
     /// Traces a child ray if the pruning rules allow, recording why not.
-    fn child<R: Recorder>(&self, b: Branch, ray: &Ray, media: &Media, w: &mut Walk<R>) -> Color {
+    fn child<R: Recorder, P: Polarization>(
+        &self,
+        b: Branch,
+        ray: &Ray,
+        media: &Media,
+        w: &mut Walk<R>,
+        pol: &P,
+    ) -> Color {
         let why = if b.depth > self.params.max_depth {
             w.stats.pruned_by_depth += 1;
             Some(End::DepthLimit)
@@ -551,7 +541,7 @@ impl<'a> Tracer<'a> {
                     RayKind::Refract => w.stats.refraction_rays += 1,
                     _ => w.stats.reflection_rays += 1,
                 }
-                self.trace_in(ray, b, media, w)
+                self.trace_in(ray, b, media, w, pol)
             }
         }
     }
