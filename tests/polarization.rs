@@ -150,3 +150,31 @@ fn crossed_pairs_of_polarisers_see_the_same_total() {
     let change = total_sum / plain_sum - 1.0;
     assert!(change.abs() < 0.01, "the image's total changed by {change}");
 }
+
+#[test]
+fn the_inspector_shows_how_each_ray_is_seen_through_the_polariser() {
+    let scene = glazed_sphere(Color::ONE);
+    let with = |polarizer| {
+        let p = Params {
+            polarizer,
+            ..Params::default()
+        };
+        raylab::tracer::Tracer::with_camera(&scene, &scene.camera, &p, 48, 48).inspect(30, 14, 0)
+    };
+    let (plain, _) = with(None);
+    assert!(plain.nodes.iter().all(|n| n.stokes_weights.is_none()));
+    let (tree, radiance) = with(Some(90.0));
+    // The eye ray: the polariser itself, half of unpolarised light, fully polarising.
+    let [w0, w1, w2, w3] = tree.nodes[0].stokes_weights.unwrap();
+    assert!((w0 - 0.5).abs() < 1e-6 && ((w1 * w1 + w2 * w2).sqrt() - 0.5).abs() < 1e-6);
+    assert_eq!(w3, 0.0);
+    // The reflected ray: what its unpolarised sky light counts, times R, is the pixel.
+    let reflected = &tree.nodes[1];
+    let r = tree.nodes[0].hit.unwrap().r.unwrap();
+    let seen = reflected.stokes_weights.unwrap()[0] * r;
+    assert!(
+        (seen - radiance.y).abs() < 1e-5,
+        "{seen} against {}",
+        radiance.y
+    );
+}

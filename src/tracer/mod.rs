@@ -100,6 +100,7 @@ impl Branch {
             end_point,
             end,
             radiance: Color::ZERO,
+            stokes_weights: None,
         }
     }
 }
@@ -321,10 +322,12 @@ impl<'a> Tracer<'a> {
             } else {
                 ray.at(100.0)
             };
+            let stokes_weights = pol.weights();
             w.rec.finish(id, &|n| {
                 n.end = end;
                 n.radiance = radiance;
                 n.end_point = end_point;
+                n.stokes_weights = stokes_weights;
             });
         }
         radiance
@@ -419,6 +422,7 @@ impl<'a> Tracer<'a> {
                     end_point: s.p,
                     end: End::TotalInternalReflection,
                     radiance: Color::ZERO,
+                    stokes_weights: None,
                 });
             }
         }
@@ -596,6 +600,7 @@ impl<'a> Tracer<'a> {
                     end_point: shadow.at(ls.dist),
                     end: if blocked { End::Occluded } else { End::Lit },
                     radiance: contribution,
+                    stokes_weights: None,
                 });
             }
         }

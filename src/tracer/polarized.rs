@@ -22,6 +22,8 @@ pub(super) trait Polarization: Sized {
     /// at the interface: unpolarised off a diffuse surface, polarised coming out through a
     /// glaze.
     fn direct(&self, material: &Material, at: &Interaction, lit: Color) -> Color;
+    /// For the inspector: the weights per Stokes component, green channel.
+    fn weights(&self) -> Option<[f32; 4]>;
 }
 
 /// No polariser: radiance is seen as it is.
@@ -44,6 +46,9 @@ impl Polarization for Unpolarized {
     #[inline(always)]
     fn direct(&self, _: &Material, _: &Interaction, lit: Color) -> Color {
         lit
+    }
+    fn weights(&self) -> Option<[f32; 4]> {
+        None
     }
 }
 
@@ -85,5 +90,9 @@ impl Polarization for Analyzer {
             Some(coat) => lit * self.through(&coat).unpolarized(),
             None => lit * self.unpolarized(),
         }
+    }
+
+    fn weights(&self) -> Option<[f32; 4]> {
+        Some(self.w.map(|c| c.y))
     }
 }

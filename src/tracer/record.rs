@@ -89,6 +89,11 @@ pub struct TreeNode {
     pub end: End,
     /// The radiance it brought back.
     pub radiance: Color,
+    /// With a polariser: how this ray's light is seen through it and every interface
+    /// above, per Stokes component (I, Q, U, V) in the ray's s/p frame, green channel,
+    /// relative to the unpolarised weights. Unpolarised light counts w₀; light polarised
+    /// along s counts w₀ + w₁, along p w₀ − w₁.
+    pub stokes_weights: Option<[f32; 4]>,
 }
 
 /// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of

@@ -130,9 +130,10 @@ fn node_ui(
                 .num_columns(2)
                 .show(ui, |ui| {
                     let mut row = |k: &str, v: String| {
-                        ui.label(k);
+                        let label = ui.label(k);
                         ui.label(v);
                         ui.end_row();
+                        label
                     };
                     if let Some(h) = n.hit {
                         row("θi", format!("{:.2}°", h.theta_i));
@@ -155,6 +156,13 @@ fn node_ui(
                         if let Some(r) = h.r {
                             row("R used", format!("{r:.4}"));
                         }
+                    }
+                    if let Some([w0, w1, w2, w3]) = n.stokes_weights {
+                        row(
+                            "through the polariser",
+                            format!("I {w0:.3}, Q {w1:+.3}, U {w2:+.3}, V {w3:+.3}"),
+                        )
+                        .on_hover_text("How this ray's light counts through the polariser and the interfaces above (green), per Stokes component in its s/p frame: unpolarised light counts I, light polarised along s I + Q, along p I − Q.");
                     }
                     row("branch weight", format!("{:.4}", n.branch_weight));
                     row("path weight", format!("{:.4}", n.path_weight));
