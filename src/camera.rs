@@ -186,6 +186,7 @@ impl CameraFrame {
     ///
     /// Thin lens: every ray through one film point meets the plane of focus at the point the
     /// pinhole ray meets it, so that plane is sharp and everything else blurs.
+    #[inline]
     pub fn ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> Ray {
         let (x, y) = (2.0 * film.x - 1.0, 1.0 - 2.0 * film.y);
         // The pinhole direction, with unit length along `forward`.

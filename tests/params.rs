@@ -37,6 +37,7 @@ fn case(
         "constant_reflectance" => ("glazed", &[("fresnel", "constant")], "0.1", "0.5"),
         "absorption_scale" => ("glass", &[], "0", "3"),
         "tree" => ("glass", &[], "split", "stochastic"),
+        "transport" => ("default", &[], "whitted", "transmissive_shadows"),
         "max_depth" => ("glass", &[], "1", "8"),
         "min_weight" => ("ray-tree", &[], "0", "0.5"),
         "light_size" => ("soft-shadows", &[], "0", "2"),

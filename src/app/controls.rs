@@ -5,7 +5,7 @@ use crate::camera::Camera;
 use crate::material::Material;
 use crate::math::Pattern;
 use crate::optics::{FresnelMode, brewster_angle, critical_angle};
-use crate::params::{Params, SliderRange, TreeMode, spec};
+use crate::params::{Params, SliderRange, Transport, TreeMode, spec};
 use crate::scene::Scene;
 use egui::{CollapsingHeader, ComboBox, DragValue, Slider, Ui};
 
@@ -43,6 +43,13 @@ fn scene_abbe(scene: &Scene) -> Option<f32> {
 
 fn scene_exponent(scene: &Scene) -> Option<f32> {
     scene.materials.iter().find_map(Material::phong_exponent)
+}
+
+fn transport_label(t: Transport) -> &'static str {
+    match t {
+        Transport::Whitted => "Whitted (the lecture)",
+        Transport::TransmissiveShadows => "transmissive shadows",
+    }
 }
 
 fn fresnel_label(mode: Option<FresnelMode>) -> &'static str {
@@ -179,6 +186,18 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             ui.radio_value(&mut p.tree, TreeMode::Stochastic, "Stochastic")
                 .on_hover_text("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.");
         });
+        ComboBox::from_label("Light transport")
+            .selected_text(transport_label(p.transport))
+            .show_ui(ui, |ui| {
+                for (t, hint) in [
+                    (Transport::Whitted, "The lecture's tracer: a shadow ray stops at glass and water, so they cast black shadows."),
+                    (Transport::TransmissiveShadows, "Shadow rays pass straight through glass and water, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows, though real glass would bend the light into caustics elsewhere."),
+                ] {
+                    ui.selectable_value(&mut p.transport, t, transport_label(t)).on_hover_text(hint);
+                }
+            })
+            .response
+            .on_hover_text(tip("transport"));
     });
 
     CollapsingHeader::new("Sampling and antialiasing")

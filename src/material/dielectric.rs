@@ -68,6 +68,7 @@ impl Dielectric {
     }
 
     /// The index of refraction at `wavelength` (nm), or n_d for a sample without one.
+    #[inline]
     pub fn ior_at(&self, wavelength: Option<f32>) -> f32 {
         wavelength.map_or(self.ior, |l| ior_at(self.ior, self.abbe, l))
     }

@@ -28,6 +28,8 @@ pub const LAMBDA_MAX: f32 = 700.0;
 /// n(λ) = A + B/λ², fitted to both: B = (n_d − 1) / (V_d (1/λ_F² − 1/λ_C²)),
 /// A = n_d − B/λ_d². `abbe` 0 means no dispersion. Never below 1 (a very low Abbe number
 /// would otherwise take the red end of a weak glass under vacuum's index).
+// Out of line: the tracer's hot path only branches to it when a glass disperses.
+#[inline(never)]
 pub fn ior_at(ior: f32, abbe: f32, lambda_nm: f32) -> f32 {
     if abbe <= 0.0 {
         return ior;

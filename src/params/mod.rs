@@ -23,6 +23,18 @@ pub enum TreeMode {
     Stochastic,
 }
 
+/// How light reaches a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Transport {
+    /// The lecture's tracer: shadow rays stop at the first surface, glass included.
+    Whitted,
+    /// Shadow rays pass straight through dielectrics, attenuated by 1 − R at each interface
+    /// and by Beer–Lambert inside: tinted, see-through shadows, though not where real glass
+    /// would focus the light.
+    TransmissiveShadows,
+}
+
 /// Every parameter that shapes the image (and the display exposure).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -50,6 +62,8 @@ pub struct Params {
     pub absorption_scale: f32,
     /// Split (the full ray tree) or stochastic (one branch per hit).
     pub tree: TreeMode,
+    /// How light reaches a surface: the lecture's tracer or transmissive shadows.
+    pub transport: Transport,
     /// Pruning by depth: the deepest ray-tree level traced (camera rays are level 0).
     pub max_depth: u32,
     /// Pruning by attenuation: a branch whose path weight (the product of the
@@ -121,6 +135,7 @@ impl Default for Params {
             constant_reflectance: None,
             absorption_scale: 1.0,
             tree: TreeMode::Split,
+            transport: Transport::Whitted,
             max_depth: 8,
             min_weight: 0.001,
             light_size: 1.0,
@@ -400,6 +415,7 @@ mod tests {
             "constant_reflectance",
             "absorption_scale",
             "tree",
+            "transport",
             "max_depth",
             "min_weight",
             "polarizer",

@@ -200,6 +200,16 @@ pub const TABLE: &[Spec] = &[
         display_only: false,
     },
     Spec {
+        name: "transport",
+        label: "Light transport",
+        kind: Kind::Choice(&["whitted", "transmissive_shadows"]),
+        unit: "",
+        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption",
+        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics.",
+        slider: None,
+        display_only: false,
+    },
+    Spec {
         name: "max_depth",
         label: "Max depth",
         kind: Kind::Count {

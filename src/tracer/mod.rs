@@ -9,6 +9,7 @@
 mod media;
 mod polarized;
 mod record;
+mod shadow;
 mod stats;
 
 pub use media::{MAX_NESTING, Media};
@@ -17,7 +18,7 @@ pub use stats::Stats;
 
 use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
-use crate::material::{Direct, Interaction, Lobe, Material, Scatter, Side};
+use crate::material::{Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
 use crate::optics::polarization::Analyzer;
@@ -336,6 +337,7 @@ impl<'a> Tracer<'a> {
     /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
     /// by the lights, and its child rays, walked as the tree mode says.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn shade<R: Recorder, P: Polarization>(
         &self,
         ray: &Ray,
@@ -428,7 +430,7 @@ impl<'a> Tracer<'a> {
         }
         let mut l = match scatter.direct {
             Some(direct) => {
-                let lit = direct.scale * self.direct(ray, hit, &at, &direct, id, w);
+                let lit = direct.scale * self.direct(ray, hit, &at, &direct, id, media, w);
                 s_frame.direct(material, &at, lit)
             }
             None => Color::ZERO,
@@ -548,62 +550,5 @@ impl<'a> Tracer<'a> {
                 self.trace_in(ray, b, media, w, pol)
             }
         }
-    }
-
-    /// Shading by the lights: ambient plus every light, one shadow ray to one sampled point
-    /// of each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ.
-    fn direct<R: Recorder>(
-        &self,
-        ray: &Ray,
-        hit: &Hit,
-        at: &Interaction,
-        direct: &Direct,
-        id: usize,
-        w: &mut Walk<R>,
-    ) -> Color {
-        let p = hit.surface.p;
-        let (n_geom, n) = (at.n_geom, at.n_shade);
-        let origin = offset_ray_origin(p, n_geom);
-        let view = -ray.dir;
-        let mut sum = self.scene.ambient * direct.brdf.albedo;
-        for light in &self.lights {
-            let u = w.rng.next_2d();
-            let Some(ls) = light.sample(p, u) else {
-                continue;
-            };
-            let cos = n.dot(ls.dir);
-            if cos <= 0.0 || n_geom.dot(ls.dir) <= 0.0 {
-                continue;
-            }
-            w.stats.shadow_rays += 1;
-            let shadow = Ray {
-                origin,
-                dir: ls.dir,
-                time: ray.time,
-            };
-            // Stop just short of the light's surface (it is not in the BVH anyway).
-            let blocked = self.scene.occluded(&shadow, ls.dist * (1.0 - 1e-4));
-            let mut contribution = Color::ZERO;
-            if !blocked {
-                contribution = direct.brdf.eval(n, ls.dir, view) * ls.value * cos;
-                sum += contribution;
-            }
-            if w.rec.on() {
-                w.rec.ray(|| TreeNode {
-                    parent: Some(id),
-                    kind: RayKind::Shadow,
-                    ray: shadow,
-                    depth: 0,
-                    branch_weight: 1.0,
-                    path_weight: 0.0,
-                    hit: None,
-                    end_point: shadow.at(ls.dist),
-                    end: if blocked { End::Occluded } else { End::Lit },
-                    radiance: contribution,
-                    stokes_weights: None,
-                });
-            }
-        }
-        sum
     }
 }
