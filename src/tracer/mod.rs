@@ -106,6 +106,41 @@ impl Branch {
     }
 }
 
+/// How a ray meets a surface.
+struct Arrival {
+    /// It arrives from the surface's outside (against its normal).
+    entering: bool,
+    /// The geometric normal, facing the side the ray arrives from.
+    n_geom: Vec3,
+    /// The shading normal, facing the side the ray arrives from.
+    n_shade: Vec3,
+    /// The medium on the surface's outer side (once left, when inside).
+    outside: Option<u32>,
+}
+
+impl Arrival {
+    fn at(dir: Vec3, hit: &Hit, media: &Media) -> Arrival {
+        let s = &hit.surface;
+        let entering = dir.dot(s.n_geom) < 0.0;
+        let (n_geom, n_shade) = if entering {
+            (s.n_geom, s.n_shade)
+        } else {
+            (-s.n_geom, -s.n_shade)
+        };
+        let outside = if entering {
+            media.innermost()
+        } else {
+            media.innermost_after_leaving(hit.object)
+        };
+        Arrival {
+            entering,
+            n_geom,
+            n_shade,
+            outside,
+        }
+    }
+}
+
 /// Traces the samples of one image of one scene under one set of parameters.
 pub struct Tracer<'a> {
     scene: &'a Scene,
@@ -349,19 +384,12 @@ impl<'a> Tracer<'a> {
         pol: &P,
     ) -> (Color, End) {
         let s = &hit.surface;
-        let entering = ray.dir.dot(s.n_geom) < 0.0;
-        // Normals facing the side the ray arrived from.
-        let (n_geom, n_shade) = if entering {
-            (s.n_geom, s.n_shade)
-        } else {
-            (-s.n_geom, -s.n_shade)
-        };
-        // The medium on the side the ray arrived from (once left, when inside).
-        let outside = if entering {
-            media.innermost()
-        } else {
-            media.innermost_after_leaving(hit.object)
-        };
+        let Arrival {
+            entering,
+            n_geom,
+            n_shade,
+            outside,
+        } = Arrival::at(ray.dir, hit, media);
         let at = Interaction {
             dir: ray.dir,
             uv: s.uv,

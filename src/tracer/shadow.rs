@@ -4,7 +4,7 @@
 //! straight through, attenuated at each interface and along the way.
 
 use super::media::transmittance;
-use super::{End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::{Arrival, End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
 use crate::material::{Direct, Interaction, Material};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::Transport;
@@ -111,17 +111,12 @@ impl Tracer<'_> {
                 return Color::ZERO;
             };
             let s = &hit.surface;
-            let entering = ray.dir.dot(s.n_geom) < 0.0;
-            let (n_geom, n_shade) = if entering {
-                (s.n_geom, s.n_shade)
-            } else {
-                (-s.n_geom, -s.n_shade)
-            };
-            let outside = if entering {
-                media.innermost()
-            } else {
-                media.innermost_after_leaving(hit.object)
-            };
+            let Arrival {
+                entering,
+                n_geom,
+                n_shade,
+                outside,
+            } = Arrival::at(ray.dir, &hit, &media);
             // The ray does not bend, so its angle inside the glass would be the outside
             // angle, and leaving it would meet total internal reflection where the bent
             // ray meets none: R is taken as seen from the outside, going in and out alike
