@@ -110,3 +110,41 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
     }
     assert!(checked > 300, "{checked} floor pixels");
 }
+
+#[test]
+fn a_white_furnace_stays_uniform_in_every_transport() {
+    // A clear sphere in a uniform environment, no lights: every split conserves energy,
+    // so every pixel sees the environment whatever the shadow rays do.
+    let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 32.0);
+    let mut desc = SceneDesc::empty(camera);
+    desc.add(
+        "sphere",
+        Shape::Sphere(raylab::geometry::Sphere::new(Vec3::ZERO, 1.0)),
+        Material::Dielectric(Dielectric {
+            ior: 1.5,
+            ior_fixed: false,
+            fresnel: FresnelMode::Exact,
+            constant_reflectance: 0.04,
+            absorption: Color::ZERO,
+            abbe: 0.0,
+        }),
+    );
+    desc.background = Background::Constant(Color::ONE);
+    let scene = desc.build();
+    for transport in [Transport::Whitted, Transport::TransmissiveShadows] {
+        let params = Params {
+            spp: 4,
+            max_depth: raylab::params::MAX_DEPTH,
+            min_weight: 0.0,
+            transport,
+            ..Params::default()
+        };
+        let (film, _) = render(&scene, &params, 32, 32, &()).unwrap();
+        for (i, c) in film.pixels().enumerate() {
+            assert!(
+                (c - Color::ONE).abs().max_element() < 1e-3,
+                "{transport:?}, pixel {i}: {c}"
+            );
+        }
+    }
+}
