@@ -97,6 +97,12 @@ const LINES: &[&str] = &[
     "Ke 1 2",
     "Ns",
     "illum",
+    "metal = \"gold\"",
+    "abbe = 1e-40",
+    "polarizer = 90",
+    "transport = \"transmissive_shadows\"",
+    "Pm 1.0",
+    "\"polarizer\": 45,",
     "\"samples\": 0,",
     "\"width\": 0,",
     "\"camera\": {\"position\": [0,0,0], \"look_at\": [0,0,0], \"up\": [0,1,0], \"fov_deg\": 0},",
@@ -221,6 +227,7 @@ fn seeds(target: Target) -> Vec<String> {
         Target::Sidecar => read_dir("screenshots", ".png.json"),
         Target::Params => vec![
             "spp=4\nmax_depth=3\nmin_weight=0.01\nior=1.5\naperture=0.1\nfocus_distance=5\nshutter_open=0\nshutter=1\npattern=sobol\ntree=split\nsize=64x36".into(),
+            "abbe=20\npolarizer=45\ntransport=transmissive_shadows\nior=2.4\nsize=64x36".into(),
         ],
     }
 }
