@@ -4,7 +4,7 @@
 use super::RaylabApp;
 use super::side::Side;
 use crate::optics::FresnelMode;
-use crate::params::{Params, Pattern, TreeMode};
+use crate::params::{Params, Pattern, Transport, TreeMode};
 use crate::render::EngineConfig;
 use egui::Color32;
 
@@ -19,18 +19,24 @@ pub(crate) enum CompareKind {
     ConstantFresnel,
     /// The split ray tree against the stochastic one.
     SplitStochastic,
+    /// The lecture's black shadows behind glass against transmissive shadows.
+    WhittedTransmissive,
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
 
 impl CompareKind {
     /// The presets, for the menu.
-    pub fn presets() -> [(&'static str, CompareKind); 4] {
+    pub fn presets() -> [(&'static str, CompareKind); 5] {
         [
             ("Schlick | exact", CompareKind::SchlickExact),
             ("random | jittered", CompareKind::RandomJittered),
             ("constant | Fresnel", CompareKind::ConstantFresnel),
             ("split | stochastic tree", CompareKind::SplitStochastic),
+            (
+                "whitted | transmissive shadows",
+                CompareKind::WhittedTransmissive,
+            ),
         ]
     }
 
@@ -41,6 +47,7 @@ impl CompareKind {
             CompareKind::RandomJittered => ("A: random", "B: jittered"),
             CompareKind::ConstantFresnel => ("A: constant k", "B: exact Fresnel"),
             CompareKind::SplitStochastic => ("A: split tree", "B: stochastic tree"),
+            CompareKind::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
@@ -53,6 +60,7 @@ impl CompareKind {
             CompareKind::RandomJittered => p.pattern = Pattern::Random,
             CompareKind::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
             CompareKind::SplitStochastic => p.tree = TreeMode::Split,
+            CompareKind::WhittedTransmissive => p.transport = Transport::Whitted,
             CompareKind::Frozen(_) => {}
         }
         p
@@ -67,6 +75,7 @@ impl CompareKind {
             }
             CompareKind::RandomJittered => p.pattern = Pattern::Jittered,
             CompareKind::SplitStochastic => p.tree = TreeMode::Stochastic,
+            CompareKind::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
             CompareKind::Frozen(b) => return b.clone(),
         }
         p
@@ -185,5 +194,30 @@ impl RaylabApp {
             egui::pos2(image.max.x - 12.0, image.min.y + 12.0),
             egui::Align2::RIGHT_TOP,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_differs_in_one_setting_and_keeps_the_rest() {
+        let p = Params {
+            max_depth: 3,
+            spp: 7,
+            ..Params::default()
+        };
+        for (label, kind) in CompareKind::presets() {
+            let a = kind.side_a(&p);
+            let b = kind.side_b(&a);
+            assert_ne!(a, b, "{label}: the sides differ");
+            assert_eq!((a.max_depth, a.spp), (3, 7), "{label}: A keeps the rest");
+            assert_eq!((b.max_depth, b.spp), (3, 7), "{label}: B keeps the rest");
+        }
+        let k = CompareKind::WhittedTransmissive;
+        let a = k.side_a(&p);
+        assert_eq!(a.transport, Transport::Whitted);
+        assert_eq!(k.side_b(&a).transport, Transport::TransmissiveShadows);
     }
 }
