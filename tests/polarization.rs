@@ -1,7 +1,8 @@
 //! Polarisation in images: a black glazed sphere seen through a linear polariser against
 //! the closed form of Fresnel reflection, and polarisers that average back to no polariser.
 
-use glam::Vec2;
+mod common;
+
 use raylab::camera::Camera;
 use raylab::geometry::{Shape, Sphere};
 use raylab::light::Background;
@@ -65,11 +66,7 @@ fn a_glazed_sphere_through_a_polariser_follows_the_fresnel_closed_form() {
         let (film, _) = render(&scene, &params, width, height, &()).unwrap();
         for y in 0..height {
             for x in 0..width {
-                let film_pos = Vec2::new(
-                    (x as f32 + 0.5) / width as f32,
-                    (y as f32 + 0.5) / height as f32,
-                );
-                let ray = frame.ray(film_pos, Vec2::ZERO, 0.0);
+                let ray = common::pixel_centre_ray(&frame, (x, y), (width, height));
                 let (o, d) = (ray.origin.as_dvec3(), ray.dir.as_dvec3());
                 // Where the ray meets the unit sphere at the origin, if it does.
                 let b = o.dot(d);

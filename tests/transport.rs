@@ -1,6 +1,8 @@
-//! Light transports against closed forms: transmissive shadows under a glass slab.
+//! Light transports against closed forms: transmissive shadows under a glass slab, and a
+//! white furnace in every transport.
 
-use glam::Vec2;
+mod common;
+
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Shape};
 use raylab::light::{Background, Light};
@@ -70,11 +72,7 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
     let mut checked = 0;
     for y in 0..height {
         for x in 0..width {
-            let film_pos = Vec2::new(
-                (x as f32 + 0.5) / width as f32,
-                (y as f32 + 0.5) / height as f32,
-            );
-            let ray = frame.ray(film_pos, Vec2::ZERO, 0.0);
+            let ray = common::pixel_centre_ray(&frame, (x, y), (width, height));
             if ray.dir.y >= -1e-3 {
                 continue; // above the horizon: no floor
             }

@@ -258,9 +258,19 @@ impl<'a> Tracer<'a> {
     /// The index of refraction at `wavelength` of the medium whose innermost dielectric is
     /// `innermost` (a material), or of the scene's surrounding medium.
     fn ior_of(&self, innermost: Option<u32>, wavelength: Option<f32>) -> f32 {
-        innermost
-            .and_then(|m| self.materials[m as usize].dielectric())
+        self.dielectric_of(innermost)
             .map_or(self.scene.medium_ior, |d| d.ior_at(wavelength))
+    }
+
+    /// The absorption coefficient σ of the innermost of `media` (0 in the surrounding
+    /// medium).
+    fn absorption_in(&self, media: &Media) -> Color {
+        self.dielectric_of(media.innermost())
+            .map_or(Color::ZERO, |d| d.absorption)
+    }
+
+    fn dielectric_of(&self, material: Option<u32>) -> Option<&crate::material::Dielectric> {
+        material.and_then(|m| self.materials[m as usize].dielectric())
     }
 
     /// Radiance arriving along `ray` at tree level `depth`, reached with path weight
@@ -307,10 +317,7 @@ impl<'a> Tracer<'a> {
         pol: &P,
     ) -> Color {
         let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
-        let sigma = media
-            .innermost()
-            .and_then(|m| self.materials[m as usize].dielectric())
-            .map_or(Color::ZERO, |d| d.absorption);
+        let sigma = self.absorption_in(media);
         let hit = self.scene.intersect(ray, f32::INFINITY);
         // Area lights are seen where nothing is in front of them.
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);

@@ -100,10 +100,7 @@ impl Tracer<'_> {
         let mut left = dist;
         let mut t = Color::ONE;
         for _ in 0..MAX_SHADOW_CROSSINGS {
-            let sigma = media
-                .innermost()
-                .and_then(|m| self.materials[m as usize].dielectric())
-                .map_or(Color::ZERO, |d| d.absorption);
+            let sigma = self.absorption_in(&media);
             let Some(hit) = self.scene.intersect(&ray, left) else {
                 return t * transmittance(sigma, left);
             };

@@ -53,3 +53,18 @@ pub fn scene_error(text: &str, dir: &Path) -> String {
         }
     }
 }
+
+/// The pinhole eye ray through the centre of pixel (x, y) of a `width` × `height` image:
+/// where a one-sample render with the regular pattern samples it, so a closed form can be
+/// evaluated there.
+pub fn pixel_centre_ray(
+    frame: &raylab::camera::CameraFrame,
+    (x, y): (u32, u32),
+    (width, height): (u32, u32),
+) -> raylab::math::Ray {
+    let film = glam::Vec2::new(
+        (x as f32 + 0.5) / width as f32,
+        (y as f32 + 0.5) / height as f32,
+    );
+    frame.ray(film, glam::Vec2::ZERO, 0.0)
+}
