@@ -136,17 +136,8 @@ struct FresnelArgs {
     k: Option<[f32; 3]>,
     /// A measured metal instead of --eta and --k: gold, silver, copper, aluminium,
     /// chromium, nickel or tungsten.
-    #[arg(long, value_name = "NAME", value_parser = parse_metal, conflicts_with_all = ["n2", "eta", "k"])]
+    #[arg(long, value_name = "NAME", value_parser = raylab::material::find_metal, conflicts_with_all = ["n2", "eta", "k"])]
     metal: Option<&'static raylab::material::Metal>,
-}
-
-fn parse_metal(s: &str) -> Result<&'static raylab::material::Metal, String> {
-    raylab::material::metal(s).ok_or_else(|| {
-        format!(
-            "unknown metal `{s}` (known: {})",
-            raylab::material::metal_names()
-        )
-    })
 }
 
 /// Three comma-separated numbers from 0 to 100: a conductor's η or κ per channel.

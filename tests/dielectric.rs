@@ -7,7 +7,6 @@ use raylab::geometry::{Mesh, Shape, Sphere};
 use raylab::light::Background;
 use raylab::material::{Dielectric, Emissive, Material};
 use raylab::math::{Color, Ray, SampleStream, Vec3};
-use raylab::optics::FresnelMode;
 use raylab::params::{MAX_DEPTH, Params, TreeMode};
 use raylab::render::{Film, render};
 use raylab::scene::{Scene, SceneDesc};
@@ -15,12 +14,8 @@ use raylab::tracer::{Media, Stats, Tracer};
 
 fn glass(ior: f32, absorption: Color) -> Material {
     Material::Dielectric(Dielectric {
-        ior,
-        ior_fixed: false,
-        fresnel: FresnelMode::Exact,
-        constant_reflectance: 0.04,
         absorption,
-        abbe: 0.0,
+        ..Dielectric::clear(ior)
     })
 }
 

@@ -6,7 +6,6 @@ use raylab::geometry::{Shape, Sphere};
 use raylab::light::Background;
 use raylab::material::{Dielectric, Material};
 use raylab::math::{Color, Vec3};
-use raylab::optics::FresnelMode;
 use raylab::optics::dispersion::ior_at;
 use raylab::params::{MAX_DEPTH, Params};
 use raylab::render::render;
@@ -17,12 +16,8 @@ fn white_furnace_a_dispersive_clear_sphere_in_a_uniform_environment_vanishes() {
     let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 32.0);
     let mut desc = SceneDesc::empty(camera);
     let flint = Dielectric {
-        ior: 1.62,
-        ior_fixed: false,
-        fresnel: FresnelMode::Exact,
-        constant_reflectance: 0.04,
-        absorption: Color::ZERO,
         abbe: 20.0,
+        ..Dielectric::clear(1.62)
     };
     desc.add(
         "sphere",

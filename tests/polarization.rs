@@ -8,7 +8,6 @@ use raylab::geometry::{Shape, Sphere};
 use raylab::light::Background;
 use raylab::material::{Dielectric, Glazed, Material, Texture};
 use raylab::math::{Color, Vec3};
-use raylab::optics::FresnelMode;
 use raylab::params::{Params, Pattern};
 use raylab::render::render;
 use raylab::scene::{Scene, SceneDesc};
@@ -25,14 +24,7 @@ fn reflectances(cos_i: f64, n: f64) -> (f64, f64) {
 fn glazed_sphere(environment: Color) -> Scene {
     let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 30.0);
     let mut desc = SceneDesc::empty(camera);
-    let coat = Dielectric {
-        ior: 1.5,
-        ior_fixed: false,
-        fresnel: FresnelMode::Exact,
-        constant_reflectance: 0.04,
-        absorption: Color::ZERO,
-        abbe: 0.0,
-    };
+    let coat = Dielectric::clear(1.5);
     desc.add(
         "black glazed sphere",
         Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0)),

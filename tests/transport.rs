@@ -8,7 +8,7 @@ use raylab::geometry::{Mesh, Plane, Shape};
 use raylab::light::{Background, Light};
 use raylab::material::{Dielectric, Diffuse, Material};
 use raylab::math::{Color, Vec3};
-use raylab::optics::{FresnelMode, fresnel_exact};
+use raylab::optics::fresnel_exact;
 use raylab::params::{Params, Pattern, Transport};
 use raylab::render::render;
 use raylab::scene::SceneDesc;
@@ -37,12 +37,8 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
         "slab",
         Shape::Mesh(slab),
         Material::Dielectric(Dielectric {
-            ior: n,
-            ior_fixed: false,
-            fresnel: FresnelMode::Exact,
-            constant_reflectance: 0.04,
             absorption: sigma,
-            abbe: 0.0,
+            ..Dielectric::clear(n)
         }),
     );
     desc.lights = vec![Light::point(
@@ -111,21 +107,15 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
 
 #[test]
 fn a_white_furnace_stays_uniform_in_every_transport() {
-    // A clear sphere in a uniform environment, no lights: every split conserves energy,
-    // so every pixel sees the environment whatever the shadow rays do.
+    // A clear sphere in a uniform environment: every split conserves energy, so every
+    // pixel sees the environment. There are no lights, hence no shadow rays: what this
+    // checks of a transport is that it leaves the camera's ray tree as it is.
     let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 32.0);
     let mut desc = SceneDesc::empty(camera);
     desc.add(
         "sphere",
         Shape::Sphere(raylab::geometry::Sphere::new(Vec3::ZERO, 1.0)),
-        Material::Dielectric(Dielectric {
-            ior: 1.5,
-            ior_fixed: false,
-            fresnel: FresnelMode::Exact,
-            constant_reflectance: 0.04,
-            absorption: Color::ZERO,
-            abbe: 0.0,
-        }),
+        Material::Dielectric(Dielectric::clear(1.5)),
     );
     desc.background = Background::Constant(Color::ONE);
     let scene = desc.build();

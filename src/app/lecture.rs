@@ -83,7 +83,8 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "F_s and F_p: polarisation at Brewster's angle",
         scene: "polarization",
-        params: &[("polarizer", "90")],
+        // The scene's own polariser is vertical.
+        params: &[],
         caption: "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, so the reflection is s only, along the surface. A vertical polariser cuts it: the glare on the pond fades and the tiles show; a dark band crosses the sphere. Polariser > Horizontal brings it back.",
     },
     Slide {

@@ -41,6 +41,20 @@ pub struct Glazed {
 }
 
 impl Dielectric {
+    /// Clear glass (or water, ...) of index `ior`: the exact Fresnel equations (k = 0.04,
+    /// glass's R at normal incidence, should the constant model be chosen), no absorption,
+    /// no dispersion. Scene files start from it.
+    pub fn clear(ior: f32) -> Dielectric {
+        Dielectric {
+            ior,
+            ior_fixed: false,
+            fresnel: FresnelMode::Exact,
+            constant_reflectance: 0.04,
+            absorption: Color::ZERO,
+            abbe: 0.0,
+        }
+    }
+
     /// This interface with the parameters' overrides: `ior` (unless fixed), `fresnel`,
     /// `constant_reflectance`, and σ times `absorption_scale`.
     pub(super) fn with_params(&self, params: &Params) -> Dielectric {
@@ -188,12 +202,10 @@ mod tests {
 
     fn glass(fresnel: FresnelMode) -> Dielectric {
         Dielectric {
-            ior: 1.5,
-            ior_fixed: false,
             fresnel,
             constant_reflectance: 0.1,
             absorption: Color::new(0.0, 0.5, 1.0),
-            abbe: 0.0,
+            ..Dielectric::clear(1.5)
         }
     }
 

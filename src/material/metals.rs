@@ -104,6 +104,12 @@ pub fn metal_names() -> String {
     METALS.map(|m| m.name).join(", ")
 }
 
+/// The metal called `name`, or the message refusing it (naming the known metals), as
+/// scene files and the command line give it.
+pub fn find_metal(name: &str) -> Result<&'static Metal, String> {
+    metal(name).ok_or_else(|| format!("unknown metal `{name}` (known: {})", metal_names()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -15,7 +15,7 @@ mod texture;
 
 pub use dielectric::{Dielectric, Glazed};
 pub use diffuse::{Brdf, Diffuse};
-pub use metals::{METALS, Metal, metal, metal_names};
+pub use metals::{METALS, Metal, find_metal, metal, metal_names};
 pub use specular::{Conductor, Glossy, Mirror};
 pub use texture::Texture;
 

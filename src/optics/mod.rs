@@ -282,50 +282,6 @@ impl FresnelMode {
 mod tests {
     use super::*;
 
-    /// Complex numbers, for the textbook form of the conductor Fresnel equations.
-    #[derive(Clone, Copy)]
-    struct C(f64, f64);
-
-    impl C {
-        fn add(self, o: C) -> C {
-            C(self.0 + o.0, self.1 + o.1)
-        }
-        fn sub(self, o: C) -> C {
-            C(self.0 - o.0, self.1 - o.1)
-        }
-        fn mul(self, o: C) -> C {
-            C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
-        }
-        fn div(self, o: C) -> C {
-            let d = o.0 * o.0 + o.1 * o.1;
-            C(
-                (self.0 * o.0 + self.1 * o.1) / d,
-                (self.1 * o.0 - self.0 * o.1) / d,
-            )
-        }
-        fn sqrt(self) -> C {
-            let r = (self.0 * self.0 + self.1 * self.1).sqrt();
-            let re = (0.5 * (r + self.0)).max(0.0).sqrt();
-            let im = (0.5 * (r - self.0)).max(0.0).sqrt().copysign(self.1);
-            C(re, im)
-        }
-        fn norm2(self) -> f64 {
-            self.0 * self.0 + self.1 * self.1
-        }
-    }
-
-    /// |r_s|² and |r_p|² from the amplitude equations with the complex index n = (η + iκ)/n1
-    /// and the complex cos θt = √(1 − sin²θi / n²).
-    fn conductor_by_amplitudes(theta_deg: f64, n1: f64, eta: f64, k: f64) -> (f64, f64) {
-        let t = theta_deg.to_radians();
-        let (cos_i, sin_i) = (C(t.cos(), 0.0), t.sin());
-        let n = C(eta / n1, k / n1);
-        let cos_t = C(1.0, 0.0).sub(C(sin_i * sin_i, 0.0).div(n.mul(n))).sqrt();
-        let r_s = cos_i.sub(n.mul(cos_t)).div(cos_i.add(n.mul(cos_t)));
-        let r_p = n.mul(cos_i).sub(cos_t).div(n.mul(cos_i).add(cos_t));
-        (r_s.norm2(), r_p.norm2())
-    }
-
     #[test]
     fn conductor_fresnel_matches_the_amplitude_equations_and_its_limits() {
         // Gold-, silver- and aluminium-like constants, and a dielectric (κ = 0), from air
@@ -350,7 +306,14 @@ mod tests {
                         eta as f32,
                         k as f32,
                     );
-                    let (e_s, e_p) = conductor_by_amplitudes(theta, n1, eta, k);
+                    // The amplitude equations with the complex index: |r_s|², |r_p|².
+                    let (a_s, a_p) = polarization::fresnel_amplitudes(
+                        theta.to_radians().cos() as f32,
+                        n1 as f32,
+                        eta as f32,
+                        k as f32,
+                    );
+                    let (e_s, e_p) = (a_s.norm2(), a_p.norm2());
                     assert!(
                         (r_s as f64 - e_s).abs() < 1e-6,
                         "R_s at {deg}°: {r_s} vs {e_s}"

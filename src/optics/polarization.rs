@@ -273,25 +273,6 @@ mod tests {
     }
 
     #[test]
-    fn conductor_amplitudes_give_the_conductor_reflectances() {
-        for (eta, k) in [(0.143f32, 3.983f32), (1.6575, 9.2238), (2.0, 1.0)] {
-            for i in 0..=89 {
-                let cos_i = (i as f32).to_radians().cos();
-                let (r_s, r_p) = fresnel_amplitudes(cos_i, 1.0, eta, k);
-                let (e_s, e_p, _) = super::super::fresnel_conductor(cos_i, 1.0, eta, k);
-                assert!(
-                    (r_s.norm2() as f32 - e_s).abs() < 1e-5,
-                    "{eta}+{k}i at {i}°"
-                );
-                assert!(
-                    (r_p.norm2() as f32 - e_p).abs() < 1e-5,
-                    "{eta}+{k}i at {i}°"
-                );
-            }
-        }
-    }
-
-    #[test]
     fn a_polarizer_follows_malus_and_an_interface_polarizes_at_brewster() {
         // Light polarised along x seen through a polariser at θ: cos²θ of it (Malus).
         let d = Vec3::NEG_Z;

@@ -71,12 +71,7 @@ impl TryFrom<ConductorKeys> for ConductorDef {
     fn try_from(c: ConductorKeys) -> Result<Self, String> {
         let (eta, k) = match (c.metal, c.eta, c.k) {
             (Some(name), None, None) => {
-                let m = crate::material::metal(&name).ok_or_else(|| {
-                    format!(
-                        "unknown metal `{name}` (known: {})",
-                        crate::material::metal_names()
-                    )
-                })?;
+                let m = crate::material::find_metal(&name)?;
                 (m.eta(), m.k())
             }
             (None, Some(eta), Some(k)) => (eta.0, k.0),
@@ -195,14 +190,14 @@ pub(super) fn material(def: MaterialDef) -> Material {
             constant_reflectance,
             absorption,
             abbe,
-        } => Material::Dielectric(Dielectric {
-            ior: ior.0,
-            ior_fixed,
-            fresnel: fresnel.unwrap_or(FresnelMode::Exact),
-            constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
-            absorption: absorption.map_or(Color::ZERO, |a| a.0),
-            abbe: abbe.map_or(0.0, |a| a.0),
-        }),
+        } => {
+            let clear = interface(ior.0, ior_fixed, fresnel, constant_reflectance);
+            Material::Dielectric(Dielectric {
+                absorption: absorption.map_or(clear.absorption, |a| a.0),
+                abbe: abbe.map_or(clear.abbe, |a| a.0),
+                ..clear
+            })
+        }
         MaterialDef::Glazed {
             color,
             checker,
@@ -211,21 +206,32 @@ pub(super) fn material(def: MaterialDef) -> Material {
             fresnel,
             constant_reflectance,
         } => Material::Glazed(Glazed {
-            coat: Dielectric {
-                ior: ior.map_or(1.5, |i| i.0),
+            coat: interface(
+                ior.map_or(1.5, |i| i.0),
                 ior_fixed,
-                fresnel: fresnel.unwrap_or(FresnelMode::Exact),
-                constant_reflectance: constant_reflectance.map_or(DEFAULT_K, |k| k.0),
-                absorption: Color::ZERO,
-                abbe: 0.0,
-            },
+                fresnel,
+                constant_reflectance,
+            ),
             base: texture(color, checker),
         }),
     }
 }
 
-/// The default constant reflectance k: glass's reflectance at normal incidence.
-pub(super) const DEFAULT_K: f32 = 0.04;
+/// A clear interface of index `ior` with the keys a dielectric and a glaze share.
+fn interface(
+    ior: f32,
+    ior_fixed: bool,
+    fresnel: Option<FresnelMode>,
+    constant_reflectance: Option<Unit>,
+) -> Dielectric {
+    let clear = Dielectric::clear(ior);
+    Dielectric {
+        ior_fixed,
+        fresnel: fresnel.unwrap_or(clear.fresnel),
+        constant_reflectance: constant_reflectance.map_or(clear.constant_reflectance, |k| k.0),
+        ..clear
+    }
+}
 
 fn texture(color: Reflectance, checker: Option<CheckerDef>) -> Texture {
     match checker {

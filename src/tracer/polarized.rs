@@ -74,7 +74,7 @@ impl Polarization for Analyzer {
     fn child(&self, material: &Material, at: &Interaction, lobe: &Lobe) -> Self {
         let m = material
             .mueller(at, Some(lobe), lobe.side)
-            .unwrap_or(Mueller::neutral_transmission(lobe.weight));
+            .unwrap_or_else(|| Mueller::neutral_transmission(lobe.weight));
         let a = self.through(&m);
         // A jittered glossy ray leaves the plane of incidence a little: square s up to it.
         let x = a.x - a.x.dot(lobe.dir) * lobe.dir;

@@ -70,13 +70,9 @@ fn metal_curves_ui(ui: &mut egui::Ui, index: usize) {
         .include_y(-0.55)
         .show(ui, |p| {
             for (c, (channel, colour)) in channels.into_iter().enumerate() {
-                let series =
-                    |f: &dyn Fn(&crate::optics::ConductorRow) -> f32| -> PlotPoints<'static> {
-                        rows.iter()
-                            .map(|r| [r.theta_i as f64, f(r) as f64])
-                            .collect::<Vec<[f64; 2]>>()
-                            .into()
-                    };
+                let series = |f: &dyn Fn(&crate::optics::ConductorRow) -> f32| {
+                    curve(&rows, |r| (r.theta_i, f(r)))
+                };
                 p.line(
                     Line::new(format!("R {channel}"), series(&|r| r.r[c]))
                         .color(colour)
@@ -94,6 +90,17 @@ fn metal_curves_ui(ui: &mut egui::Ui, index: usize) {
                 );
             }
         });
+}
+
+/// A plot line through `rows`, each giving (θi in degrees, value).
+fn curve<R>(rows: &[R], point: impl Fn(&R) -> (f32, f32)) -> PlotPoints<'static> {
+    rows.iter()
+        .map(|r| {
+            let (x, y) = point(r);
+            [x as f64, y as f64]
+        })
+        .collect::<Vec<[f64; 2]>>()
+        .into()
 }
 
 /// The plot both kinds of curve share: reflectance 0..1 against 0..90 degrees.
@@ -118,12 +125,8 @@ fn reflectance_plot(id: impl std::hash::Hash + std::fmt::Debug) -> Plot<'static>
 /// into `n2`, with Brewster's and the critical angle marked and the error of Schlick.
 fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
     let rows = fresnel_table(n1, n2, 0.25);
-    let series = |f: &dyn Fn(&crate::optics::FresnelRow) -> f32| -> PlotPoints<'static> {
-        rows.iter()
-            .map(|r| [r.theta_i as f64, f(r) as f64])
-            .collect::<Vec<[f64; 2]>>()
-            .into()
-    };
+    let series =
+        |f: &dyn Fn(&crate::optics::FresnelRow) -> f32| curve(&rows, |r| (r.theta_i, f(r)));
     let brewster = brewster_angle(n1, n2).to_degrees();
     let critical = critical_angle(n1, n2).map(f32::to_degrees);
     ui.label(format!(
