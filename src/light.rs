@@ -66,6 +66,9 @@ pub struct LightSample {
     /// Incident radiance divided by the density of `dir` (per solid angle), so that the
     /// shaded point's estimate of reflected light is f · value · cos θ.
     pub value: Color,
+    /// The density of `dir` per unit solid angle; infinite for a point light (a delta),
+    /// which only light sampling can find. Path tracing weighs strategies by it.
+    pub pdf: f32,
 }
 
 impl Light {
@@ -208,12 +211,21 @@ impl PreparedLight {
         }
         let area = self.area;
         // Per solid angle the area density 1/A becomes d² / (A cos θ_l); L A = intensity.
-        let value = if area > 0.0 {
-            self.radiance * (area * cos_l / (dist * dist))
+        let (value, pdf) = if area > 0.0 {
+            let g = area * cos_l / (dist * dist);
+            (self.radiance * g, 1.0 / g)
         } else {
-            self.light.intensity * (cos_l / (dist * dist))
+            (
+                self.light.intensity * (cos_l / (dist * dist)),
+                f32::INFINITY,
+            )
         };
-        Some(LightSample { dir, dist, value })
+        Some(LightSample {
+            dir,
+            dist,
+            value,
+            pdf,
+        })
     }
 
     fn sample_sphere(&self, p: Vec3, center: Vec3, radius: f32, u: Vec2) -> Option<LightSample> {
@@ -234,11 +246,32 @@ impl PreparedLight {
         let dist = Sphere::new(center, radius)
             .intersect_t(&ray, f32::INFINITY)
             .unwrap_or(dc - radius);
+        let solid_angle = 2.0 * PI * (1.0 - cos_max);
         Some(LightSample {
             dir,
             dist,
-            value: self.radiance * (2.0 * PI * (1.0 - cos_max)),
+            value: self.radiance * solid_angle,
+            pdf: 1.0 / solid_angle,
         })
+    }
+
+    /// The density per unit solid angle with which [`PreparedLight::sample`] from `p`
+    /// picks the direction of `ray` (from `p`), which meets the light at distance `t`:
+    /// what a path that found the light by itself weighs its light sample against.
+    pub fn pdf(&self, ray: &Ray, t: f32) -> f32 {
+        match (&self.light.shape, self.normal) {
+            (LightShape::Sphere { center, radius }, _) => {
+                let r = radius * self.light.scale;
+                let dc2 = (*center - ray.origin).length_squared();
+                let cos_max = (1.0 - r * r / dc2).max(0.0).sqrt();
+                1.0 / (2.0 * PI * (1.0 - cos_max))
+            }
+            (_, Some(n)) => {
+                let cos_l = ray.dir.dot(n).abs();
+                t * t / (self.area * cos_l)
+            }
+            (_, None) => 0.0,
+        }
     }
 
     /// Where `ray` meets the light's emitting surface before `t_max`, and the radiance it

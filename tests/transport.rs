@@ -119,7 +119,11 @@ fn a_white_furnace_stays_uniform_in_every_transport() {
     );
     desc.background = Background::Constant(Color::ONE);
     let scene = desc.build();
-    for transport in [Transport::Whitted, Transport::TransmissiveShadows] {
+    for transport in [
+        Transport::Whitted,
+        Transport::TransmissiveShadows,
+        Transport::Path,
+    ] {
         let params = Params {
             spp: 4,
             max_depth: raylab::params::MAX_DEPTH,

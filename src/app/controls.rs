@@ -49,6 +49,7 @@ fn transport_label(t: Transport) -> &'static str {
     match t {
         Transport::Whitted => "Whitted (the lecture)",
         Transport::TransmissiveShadows => "transmissive shadows",
+        Transport::Path => "path tracing (reference)",
     }
 }
 
@@ -192,6 +193,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 for (t, hint) in [
                     (Transport::Whitted, "The lecture's tracer: a shadow ray stops at glass and water, so they cast black shadows."),
                     (Transport::TransmissiveShadows, "Shadow rays pass straight through glass and water, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows, though real glass would bend the light into caustics elsewhere."),
+                    (Transport::Path, "Path tracing: light is gathered at every diffuse or glossy surface, by light samples and by the path itself finding lights (through glass too). Colour bleeding, sky light in shadows, caustics from area lights; not from point lights."),
                 ] {
                     ui.selectable_value(&mut p.transport, t, transport_label(t)).on_hover_text(hint);
                 }

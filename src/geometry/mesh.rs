@@ -187,6 +187,21 @@ impl Mesh {
         Aabb::from_points(&[v0, v0 + e1, v0 + e2, v0 + v, v0 + e1 + v, v0 + e2 + v])
     }
 
+    /// The area of triangle `i`.
+    pub fn triangle_area(&self, i: usize) -> f32 {
+        let [_, e1, e2] = self.edges[i];
+        0.5 * e1.cross(e2).length()
+    }
+
+    /// A point uniform over triangle `i` at frame time `time`: barycentrics (1 − √u₁,
+    /// u₂ √u₁) are uniform in area.
+    pub fn sample_point(&self, i: usize, u: Vec2, time: f32) -> Vec3 {
+        let [v0, e1, e2] = self.edges[i];
+        let s = u.x.sqrt();
+        let (b1, b2) = (s * (1.0 - u.y), s * u.y);
+        v0 + b1 * e1 + b2 * e2 + self.velocity * time
+    }
+
     /// `ray` in the mesh's own frame at the ray's time (the mesh only translates).
     #[inline]
     fn local(&self, ray: &Ray) -> Ray {

@@ -101,6 +101,33 @@ impl Shape {
         }
     }
 
+    /// The surface area of primitive `index` (infinite for a plane).
+    pub fn primitive_area(&self, index: u32) -> f32 {
+        match self {
+            Shape::Sphere(s) => 4.0 * std::f32::consts::PI * s.radius * s.radius,
+            Shape::Quad(q) => q.edge_u.cross(q.edge_v).length(),
+            Shape::Plane(_) => f32::INFINITY,
+            Shape::Mesh(m) => m.triangle_area(index as usize),
+        }
+    }
+
+    /// A point uniform over the area of primitive `index` at frame time `time`, from the
+    /// uniform pair `u`; `None` for a plane, which has no finite area.
+    pub fn sample_point(&self, index: u32, u: Vec2, time: f32) -> Option<Vec3> {
+        match self {
+            Shape::Sphere(s) => {
+                // z uniform in [−1, 1] is uniform in area (Archimedes).
+                let z = 1.0 - 2.0 * u.x;
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = 2.0 * std::f32::consts::PI * u.y;
+                Some(s.center_at(time) + s.radius * Vec3::new(r * phi.cos(), r * phi.sin(), z))
+            }
+            Shape::Quad(q) => Some(q.corner + u.x * q.edge_u + u.y * q.edge_v),
+            Shape::Plane(_) => None,
+            Shape::Mesh(m) => Some(m.sample_point(index as usize, u, time)),
+        }
+    }
+
     /// The full hit record of primitive `index` at distance `t` along `ray`; surface
     /// coordinates only `with_uv` where they cost extra (spheres), else zero.
     pub fn surface_hit(&self, index: u32, ray: &Ray, t: f32, with_uv: bool) -> SurfaceHit {

@@ -1,8 +1,10 @@
 //! Diffuse surfaces: Lambert plus an optional normalized Phong highlight, lit by shadow rays.
 
 use super::{Direct, Interaction, Scatter, Texture};
+use crate::math::sampling::{cosine_hemisphere, phong_lobe, phong_lobe_pdf, to_world};
 use crate::math::{Color, Vec3};
 use crate::optics::reflect;
+use glam::Vec2;
 use std::f32::consts::PI;
 
 /// Lambertian diffuse reflection, with an optional Phong highlight: the basic shading of a
@@ -42,6 +44,39 @@ impl Brdf {
             f += self.specular * (self.exponent + 2.0) / (2.0 * PI) * cos_alpha.powf(self.exponent);
         }
         f
+    }
+}
+
+impl Brdf {
+    /// The probability that [`Brdf::sample`] draws from the Phong lobe rather than the
+    /// cosine: in proportion to the reflectances.
+    fn highlight_share(&self) -> f32 {
+        let (d, s) = (self.albedo.max_element(), self.specular.max_element());
+        if s > 0.0 { s / (d + s) } else { 0.0 }
+    }
+
+    /// A direction to gather light from, seen from `view` about the normal `n`: with
+    /// probability ∝ the diffuse reflectance from the cosine lobe about n, else from the
+    /// Phong lobe about the mirror direction of `view` (`pick` chooses, `u` places it).
+    /// Its density is [`Brdf::pdf`]; it may fall below the surface, where f cos θ is 0.
+    pub fn sample(&self, n: Vec3, view: Vec3, pick: f32, u: Vec2) -> Vec3 {
+        if pick < self.highlight_share() {
+            to_world(phong_lobe(u, self.exponent), reflect(-view, n))
+        } else {
+            to_world(cosine_hemisphere(u), n)
+        }
+    }
+
+    /// The density of `dir` under [`Brdf::sample`]: the mixture
+    /// (1 − s) cos θ / π + s (n+1)/(2π) cos^n α.
+    pub fn pdf(&self, n: Vec3, dir: Vec3, view: Vec3) -> f32 {
+        let s = self.highlight_share();
+        let cosine = (1.0 - s) * n.dot(dir).max(0.0) / PI;
+        if s > 0.0 {
+            cosine + s * phong_lobe_pdf(reflect(-view, n).dot(dir), self.exponent)
+        } else {
+            cosine
+        }
     }
 }
 

@@ -16,7 +16,7 @@ mod texture;
 pub use dielectric::{Dielectric, Glazed};
 pub use diffuse::{Brdf, Diffuse};
 pub use metals::{METALS, Metal, find_metal, metal, metal_names};
-pub use specular::{Conductor, Glossy, Mirror};
+pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
 pub use texture::Texture;
 
 use crate::math::{Color, Uniform, Vec3};
@@ -159,6 +159,10 @@ pub struct Scatter {
     pub interface: Option<Interface>,
     /// The refracted ray does not exist: total internal reflection.
     pub total_internal_reflection: bool,
+    /// The Phong exponent the first lobe's direction was jittered over, if it was: then it
+    /// is one sample of a glossy lobe rather than the one direction of a mirror, and its
+    /// density is [`glossy_pdf`].
+    pub glossy: Option<f32>,
 }
 
 impl Scatter {

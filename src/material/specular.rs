@@ -3,7 +3,7 @@
 //! follows the Fresnel equations for its complex index of refraction.
 
 use super::{Interaction, Lobe, Scatter, Side};
-use crate::math::sampling::{phong_lobe, to_world};
+use crate::math::sampling::{phong_lobe, phong_lobe_pdf, to_world};
 use crate::math::{Color, Uniform, Vec3};
 use crate::optics::fresnel_conductor;
 use crate::optics::polarization::{Mueller, fresnel_amplitudes};
@@ -58,6 +58,7 @@ impl Conductor {
                 }),
                 None,
             ],
+            glossy: self.exponent,
             ..Scatter::default()
         }
     }
@@ -85,6 +86,20 @@ fn jittered(hit: &Interaction, exponent: f32, u: &mut impl Uniform) -> Vec3 {
     } else {
         dir
     }
+}
+
+/// The density per unit solid angle of [`jittered`]'s direction `dir` (above the
+/// surface): the Phong lobe's own density there plus that of its mirror image below the
+/// surface, which folding sends to `dir`. A glossy lobe of weight W then has
+/// f cos θ = W · pdf, which is how path tracing evaluates it towards a light.
+pub fn glossy_pdf(hit: &Interaction, exponent: f32, dir: Vec3) -> f32 {
+    let above = dir.dot(hit.n_geom);
+    if above <= 0.0 {
+        return 0.0;
+    }
+    let mirror = hit.mirror_dir();
+    let folded = dir - 2.0 * above * hit.n_geom;
+    phong_lobe_pdf(dir.dot(mirror), exponent) + phong_lobe_pdf(folded.dot(mirror), exponent)
 }
 
 impl Mirror {
@@ -116,6 +131,7 @@ impl Glossy {
                 }),
                 None,
             ],
+            glossy: Some(self.exponent),
             ..Scatter::default()
         }
     }

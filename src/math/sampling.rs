@@ -58,6 +58,13 @@ pub fn phong_lobe_pdf(cos_a: f32, exponent: f32) -> f32 {
     }
 }
 
+/// A direction from the cosine-weighted hemisphere about the z axis (Malley's method: a
+/// uniform point of the disk, lifted to the hemisphere). Density cos θ / π.
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    Vec3::new(d.x, d.y, (1.0 - d.length_squared()).max(0.0).sqrt())
+}
+
 /// A direction uniform over the cone of half-angle acos(`cos_max`) about the z axis:
 /// the directions towards a sphere light. Density 1 / (2π (1 − cos_max)).
 pub fn uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {

@@ -33,6 +33,11 @@ pub enum Transport {
     /// and by Beer–Lambert inside: tinted, see-through shadows, though not where real glass
     /// would focus the light.
     TransmissiveShadows,
+    /// Unidirectional path tracing: light sampled at every diffuse or glossy vertex and
+    /// found by the path itself, the two weighed by multiple importance sampling; diffuse
+    /// interreflection, and caustics from area lights and emitting surfaces. The reference
+    /// the lecture's tracer is compared with.
+    Path,
 }
 
 /// Every parameter that shapes the image (and the display exposure).
@@ -62,7 +67,8 @@ pub struct Params {
     pub absorption_scale: f32,
     /// Split (the full ray tree) or stochastic (one branch per hit).
     pub tree: TreeMode,
-    /// How light reaches a surface: the lecture's tracer or transmissive shadows.
+    /// How light reaches a surface: the lecture's tracer, transmissive shadows, or path
+    /// tracing.
     pub transport: Transport,
     /// Pruning by depth: the deepest ray-tree level traced (camera rays are level 0).
     pub max_depth: u32,

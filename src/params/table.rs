@@ -202,10 +202,10 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "transport",
         label: "Light transport",
-        kind: Kind::Choice(&["whitted", "transmissive_shadows"]),
+        kind: Kind::Choice(&["whitted", "transmissive_shadows", "path"]),
         unit: "",
-        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption",
-        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics.",
+        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption; `path`, path tracing with light sampling and multiple importance sampling (interreflection, caustics from area lights and emitters; `max_depth` bounds the path, `min_weight` and `tree` do not apply)",
+        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics. Path: each sample follows one path, gathering light at every diffuse or glossy surface and finding lights through glass: colour bleeding, sky light in the shadows, caustics from area lights (not from point lights, which a path can never hit).",
         slider: None,
         display_only: false,
     },

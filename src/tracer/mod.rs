@@ -6,7 +6,9 @@
 //! there too), so the factors of entering and leaving a medium cancel; leaving them out
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
+mod emitters;
 mod media;
+mod path;
 mod polarized;
 mod record;
 mod shadow;
@@ -22,12 +24,13 @@ use crate::material::{Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
 use crate::optics::polarization::Analyzer;
-use crate::params::{Params, TreeMode};
+use crate::params::{Params, Transport, TreeMode};
 use crate::scene::{Hit, Scene};
+use emitters::Emitters;
 use glam::Vec2;
 use media::transmittance;
 use polarized::{Polarization, Unpolarized};
-use record::record_interface;
+use record::{record_hit, record_interface};
 
 /// The most reflected and refracted rays one camera sample may trace. Depth and weight
 /// prune any tree a lecture draws long before this (a full binary tree of depth 8 has 510
@@ -151,6 +154,8 @@ pub struct Tracer<'a> {
     dispersive: bool,
     // The scene's lights at the parameters' light size, prepared once.
     lights: Vec<PreparedLight>,
+    // The emitting surfaces, for path tracing's light samples (empty in other transports).
+    emitters: Emitters,
     frame: CameraFrame,
     width: u32,
     height: u32,
@@ -175,11 +180,16 @@ impl<'a> Tracer<'a> {
             .iter()
             .map(|m| m.with_params(params))
             .collect();
+        let emitters = match params.transport {
+            Transport::Path => Emitters::new(scene, &materials),
+            Transport::Whitted | Transport::TransmissiveShadows => Emitters::default(),
+        };
         Tracer {
             scene,
             params,
             dispersive: materials.iter().any(Material::disperses),
             materials,
+            emitters,
             lights: scene
                 .lights
                 .iter()
@@ -244,6 +254,15 @@ impl<'a> Tracer<'a> {
             factor: 1.0,
             wavelength: None,
         };
+        if p.transport == Transport::Path {
+            return match p.polarizer {
+                None => self.path(&ray, &mut walk, None::<Unpolarized>),
+                Some(angle) => {
+                    let axis = self.frame.polarizer_axis(angle, ray.dir);
+                    self.path(&ray, &mut walk, Some(Analyzer::linear_polarizer(axis)))
+                }
+            };
+        }
         let media = Media::default();
         match self.params.polarizer {
             None => self.trace_in(&ray, root, &media, &mut walk, &Unpolarized),
@@ -406,20 +425,7 @@ impl<'a> Tracer<'a> {
             outside_ior: self.ior_of(outside, b.wavelength),
             wavelength: b.wavelength,
         };
-        if w.rec.on() {
-            let node_hit = NodeHit {
-                object: hit.object,
-                material: hit.material,
-                point: s.p,
-                theta_i: at.cos_i().acos().to_degrees(),
-                theta_t: None,
-                n1_n2: None,
-                f_s_f_p: None,
-                r_exact_schlick: None,
-                r: None,
-            };
-            w.rec.finish(id, &|n| n.hit = Some(node_hit));
-        }
+        record_hit(w.rec, id, hit, &at);
         let material = &self.materials[hit.material as usize];
         let scatter = material.scatter(&at, w.rng);
         if let Some(radiance) = scatter.emitted {

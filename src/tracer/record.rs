@@ -2,8 +2,9 @@
 //! quantities at each interface, and why it ended. The renderer records nothing
 //! ([`NoRecorder`] compiles away); the inspector records a [`RayTree`].
 
-use crate::material::Interface;
+use crate::material::{Interaction, Interface};
 use crate::math::{Color, Ray, Vec3};
+use crate::scene::Hit;
 
 /// The kind of a ray in the tree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -162,4 +163,46 @@ pub(super) fn record_interface<R: Recorder>(rec: &mut R, id: usize, i: Interface
             h.r = Some(r);
         }
     });
+}
+
+/// Records where the ray of node `id` meets a surface, and at what angle.
+pub(super) fn record_hit<R: Recorder>(rec: &mut R, id: usize, hit: &Hit, at: &Interaction) {
+    if rec.on() {
+        let node_hit = NodeHit {
+            object: hit.object,
+            material: hit.material,
+            point: hit.surface.p,
+            theta_i: at.cos_i().acos().to_degrees(),
+            theta_t: None,
+            n1_n2: None,
+            f_s_f_p: None,
+            r_exact_schlick: None,
+            r: None,
+        };
+        rec.finish(id, &|n| n.hit = Some(node_hit));
+    }
+}
+
+/// The record of a shadow ray from node `parent`, reaching `dist` along `shadow`, with the
+/// light it brought.
+pub(super) fn shadow_node(
+    parent: usize,
+    shadow: &Ray,
+    dist: f32,
+    blocked: bool,
+    contribution: Color,
+) -> TreeNode {
+    TreeNode {
+        parent: Some(parent),
+        kind: RayKind::Shadow,
+        ray: *shadow,
+        depth: 0,
+        branch_weight: 1.0,
+        path_weight: 0.0,
+        hit: None,
+        end_point: shadow.at(dist),
+        end: if blocked { End::Occluded } else { End::Lit },
+        radiance: contribution,
+        stokes_weights: None,
+    }
 }

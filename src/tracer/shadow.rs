@@ -4,7 +4,8 @@
 //! straight through, attenuated at each interface and along the way.
 
 use super::media::transmittance;
-use super::{Arrival, End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::record::shadow_node;
+use super::{Arrival, Media, Recorder, Tracer, Walk};
 use crate::material::{Direct, Interaction, Material};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::Transport;
@@ -54,7 +55,7 @@ impl Tracer<'_> {
             // Stop just short of the light's surface (it is not in the BVH anyway).
             let reach = ls.dist * (1.0 - 1e-4);
             let (blocked, contribution) = match self.params.transport {
-                Transport::Whitted => {
+                Transport::Whitted | Transport::Path => {
                     let blocked = self.scene.occluded(&shadow, reach);
                     let c = if blocked {
                         Color::ZERO
@@ -70,21 +71,8 @@ impl Tracer<'_> {
                 }
             };
             sum += contribution;
-            if w.rec.on() {
-                w.rec.ray(|| TreeNode {
-                    parent: Some(id),
-                    kind: RayKind::Shadow,
-                    ray: shadow,
-                    depth: 0,
-                    branch_weight: 1.0,
-                    path_weight: 0.0,
-                    hit: None,
-                    end_point: shadow.at(ls.dist),
-                    end: if blocked { End::Occluded } else { End::Lit },
-                    radiance: contribution,
-                    stokes_weights: None,
-                });
-            }
+            w.rec
+                .ray(|| shadow_node(id, &shadow, ls.dist, blocked, contribution));
         }
         sum
     }

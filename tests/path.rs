@@ -1,0 +1,205 @@
+//! Path tracing (`transport = "path"`) against closed forms and against the lecture's
+//! tracer where the two must agree: light that reaches a surface directly.
+
+use raylab::camera::Camera;
+use raylab::geometry::{Plane, Quad, Shape, Sphere};
+use raylab::light::{Background, Light, LightShape};
+use raylab::material::{Diffuse, Emissive, Glossy, Material, Texture};
+use raylab::math::{Color, Vec3};
+use raylab::params::{Params, Transport};
+use raylab::render::{Film, render};
+use raylab::scene::{Scene, SceneDesc};
+
+fn path(spp: u32, seed: u64) -> Params {
+    Params {
+        spp,
+        seed,
+        transport: Transport::Path,
+        ..Params::default()
+    }
+}
+
+fn rendered(scene: &Scene, params: &Params) -> Film {
+    render(scene, params, 32, 24, &()).unwrap().0
+}
+
+/// The mean of `a − b` over all pixels and channels, and its standard error: the pixels'
+/// noise is independent, so the spread of their differences measures it.
+fn mean_difference(a: &Film, b: &Film) -> (f64, f64) {
+    let d: Vec<f64> = a
+        .pixels()
+        .zip(b.pixels())
+        .flat_map(|(x, y)| (x - y).to_array())
+        .map(f64::from)
+        .collect();
+    let n = d.len() as f64;
+    let mean = d.iter().sum::<f64>() / n;
+    let var = d.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (var / n).sqrt())
+}
+
+fn image_mean(f: &Film) -> f64 {
+    let s: f64 = f
+        .pixels()
+        .map(|c| c.to_array().iter().sum::<f32>() as f64)
+        .sum();
+    s / (3 * f.pixels().count()) as f64
+}
+
+/// Asserts that two renders of the same light have the same mean within 4 standard
+/// errors, and that the test could tell: the error is under 1 % of the image's mean.
+fn assert_same_mean(a: &Film, b: &Film, what: &str) {
+    let (d, se) = mean_difference(a, b);
+    let mean = 0.5 * (image_mean(a) + image_mean(b));
+    assert!(
+        se < 0.01 * mean,
+        "{what}: too noisy to tell ({se} of {mean})"
+    );
+    assert!(
+        d.abs() < 4.0 * se,
+        "{what}: means differ by {d} ({:.1} standard errors; image mean {mean})",
+        d / se
+    );
+}
+
+#[test]
+fn a_diffuse_sphere_in_a_uniform_environment_renders_albedo_times_l() {
+    // Lit by a uniform environment L, a convex Lambertian surface of albedo a reflects
+    // a·L: whichever direction the path takes off the sphere, it sees L, weighted
+    // f cos θ / p = a. The lecture's tracer cannot (its ambient term stands in for it).
+    let (a, l) = (Color::new(0.8, 0.5, 0.2), Color::new(1.0, 2.0, 0.5));
+    let camera = Camera::looking_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y, 32.0);
+    let mut desc = SceneDesc::empty(camera);
+    desc.add(
+        "sphere",
+        Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0)),
+        Material::Diffuse(Diffuse::solid(a)),
+    );
+    desc.background = Background::Constant(l);
+    let scene = desc.build();
+    let film = rendered(&scene, &path(8, 1));
+    let frame = scene.camera.pinhole(32.0 / 24.0);
+    let mut on_sphere = 0;
+    for y in 0..24 {
+        for x in 0..32 {
+            let film_xy = glam::Vec2::new((x as f32 + 0.5) / 32.0, (y as f32 + 0.5) / 24.0);
+            let ray = frame.ray(film_xy, glam::Vec2::ZERO, 0.0);
+            // Pixels wholly on or off the sphere: the distance of the centre ray from
+            // the sphere's centre, with a pixel's margin.
+            let miss = ray.origin.cross(ray.dir).length();
+            let expected = if miss < 0.9 {
+                on_sphere += 1;
+                a * l
+            } else if miss > 1.1 {
+                l
+            } else {
+                continue;
+            };
+            let got = film.pixel(x, y);
+            assert!(
+                (got - expected).abs().max_element() < 1e-4,
+                "pixel ({x}, {y}): {got} against {expected}"
+            );
+        }
+    }
+    assert!(on_sphere > 100, "{on_sphere} pixels on the sphere");
+}
+
+/// A floor seen from above, under `lights` and `emitters` (quads), nothing else: only
+/// direct light, which every transport must get right.
+fn floor_scene(floor: Material, lights: Vec<Light>, emitters: &[(Quad, Color)]) -> Scene {
+    // Below the lights: it sees the floor, not the lights' backs (which only an emitting
+    // surface, lit on both sides, would show).
+    let camera = Camera::looking_at(Vec3::new(0.0, 1.2, 3.5), Vec3::ZERO, Vec3::Y, 50.0);
+    let mut desc = SceneDesc::empty(camera);
+    desc.add(
+        "floor",
+        Shape::Plane(Plane::new(Vec3::ZERO, Vec3::Y)),
+        floor,
+    );
+    for (i, (quad, radiance)) in emitters.iter().enumerate() {
+        desc.add(
+            format!("emitter {i}"),
+            Shape::Quad(quad.clone()),
+            Material::Emissive(Emissive::solid(*radiance)),
+        );
+    }
+    desc.lights = lights;
+    desc.background = Background::Constant(Color::ZERO);
+    desc.build()
+}
+
+/// A rectangle light of `size`² centred `height` above the floor at `x`, facing down.
+fn rect_light(x: f32, height: f32, size: f32, intensity: f32) -> Light {
+    Light {
+        shape: LightShape::Rect {
+            center: Vec3::new(x, height, 0.0),
+            edge_u: Vec3::X * size,
+            edge_v: Vec3::Z * size,
+        },
+        intensity: Color::splat(intensity),
+        scale: 1.0,
+    }
+}
+
+#[test]
+fn direct_light_matches_the_lecture_tracer_on_smooth_and_glossy_floors() {
+    // With one surface and no sky, every path is one bounce: the lecture's tracer (light
+    // samples on a diffuse floor, jittered reflected rays on a glossy one) and path
+    // tracing (both, weighed by multiple importance) estimate the same integral. A broken
+    // weight shows as a difference in the mean.
+    let lights = || {
+        vec![
+            rect_light(-1.0, 2.0, 1.0, 6.0),
+            Light {
+                shape: LightShape::Sphere {
+                    center: Vec3::new(1.2, 1.5, -0.5),
+                    radius: 0.3,
+                },
+                intensity: Color::new(2.0, 3.0, 4.0),
+                scale: 1.0,
+            },
+            Light::point(Vec3::new(0.0, 2.5, 1.0), Color::splat(3.0)),
+        ]
+    };
+    let phong = Material::Diffuse(Diffuse {
+        albedo: Texture::Solid(Color::new(0.6, 0.5, 0.4)),
+        specular: Color::splat(0.3),
+        exponent: 30.0,
+    });
+    let glossy = Material::Glossy(Glossy {
+        reflectance: Color::new(0.9, 0.7, 0.5),
+        exponent: 40.0,
+    });
+    for (name, floor) in [("Phong", phong), ("glossy", glossy)] {
+        // The glossy floor sees the point light in neither tracer: no ray can hit it.
+        let scene = floor_scene(floor, lights(), &[]);
+        let whitted = Params {
+            spp: 512,
+            seed: 2,
+            ..Params::default()
+        };
+        let a = rendered(&scene, &whitted);
+        let b = rendered(&scene, &path(512, 3));
+        assert_same_mean(&a, &b, name);
+    }
+}
+
+#[test]
+fn an_emitting_quad_lights_like_the_rectangle_light_it_replaces() {
+    // The same rectangle as a light and as an emitting surface of radiance I / A: path
+    // tracing samples both (the light, and the scene's emitters) and must see the same.
+    let (size, intensity) = (1.2f32, 5.0f32);
+    let quad = Quad::new(
+        Vec3::new(-0.5 - size / 2.0, 2.0, -size / 2.0),
+        Vec3::X * size,
+        Vec3::Z * size,
+    );
+    let floor = || Material::Diffuse(Diffuse::solid(Color::splat(0.7)));
+    let as_light = floor_scene(floor(), vec![rect_light(-0.5, 2.0, size, intensity)], &[]);
+    let radiance = Color::splat(intensity / (size * size));
+    let as_surface = floor_scene(floor(), vec![], &[(quad, radiance)]);
+    let a = rendered(&as_light, &path(256, 4));
+    let b = rendered(&as_surface, &path(256, 5));
+    assert_same_mean(&a, &b, "emitting quad");
+}
