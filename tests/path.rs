@@ -203,3 +203,51 @@ fn an_emitting_quad_lights_like_the_rectangle_light_it_replaces() {
     let b = rendered(&as_surface, &path(256, 5));
     assert_same_mean(&a, &b, "emitting quad");
 }
+
+#[test]
+fn the_inspector_shows_a_path_as_a_chain_of_vertices() {
+    // In path mode a sample is one path: each ray has at most one reflected or refracted
+    // child, light samples hang off the diffuse vertices, and the radiance recorded on
+    // the camera ray is the sample's.
+    let scene = Scene::load("default").unwrap();
+    let params = Params {
+        transport: Transport::Path,
+        ..scene.params.clone()
+    };
+    let tracer = raylab::tracer::Tracer::new(&scene, &params, 96, 54);
+    let (mut longest, mut entered) = (0, 0);
+    for sample in 0..16 {
+        // A pixel on the glass sphere, whose paths pass through it to the floor.
+        let (tree, c) = tracer.inspect(73, 30, sample);
+        let root = &tree.nodes[0];
+        assert_eq!(root.kind, raylab::tracer::RayKind::Camera);
+        assert!(
+            (root.radiance - c).abs().max_element() <= 1e-4 * (1.0 + c.max_element()),
+            "sample {sample}: {} recorded, {c} traced",
+            root.radiance
+        );
+        let mut chain = 0;
+        for (i, _) in tree.nodes.iter().enumerate() {
+            let bounces = tree
+                .children(i)
+                .filter(|(_, n)| n.kind != raylab::tracer::RayKind::Shadow)
+                .count();
+            assert!(bounces <= 1, "sample {sample}: node {i} branches");
+            chain += bounces;
+        }
+        longest = longest.max(chain);
+        if tree
+            .nodes
+            .iter()
+            .any(|n| n.kind == raylab::tracer::RayKind::Refract)
+        {
+            entered += 1;
+        }
+    }
+    // The glass reflects a few per cent: most paths enter it.
+    assert!(entered >= 12, "{entered} of 16 paths enter the glass");
+    assert!(
+        longest >= 3,
+        "paths through the sphere have several vertices"
+    );
+}

@@ -21,13 +21,15 @@ pub(crate) enum CompareKind {
     SplitStochastic,
     /// The lecture's black shadows behind glass against transmissive shadows.
     WhittedTransmissive,
+    /// The lecture's tracer against path tracing, the reference.
+    WhittedPath,
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
 
 impl CompareKind {
     /// The presets, for the menu.
-    pub fn presets() -> [(&'static str, CompareKind); 5] {
+    pub fn presets() -> [(&'static str, CompareKind); 6] {
         [
             ("Schlick | exact", CompareKind::SchlickExact),
             ("random | jittered", CompareKind::RandomJittered),
@@ -37,6 +39,7 @@ impl CompareKind {
                 "whitted | transmissive shadows",
                 CompareKind::WhittedTransmissive,
             ),
+            ("whitted | path", CompareKind::WhittedPath),
         ]
     }
 
@@ -48,6 +51,7 @@ impl CompareKind {
             CompareKind::ConstantFresnel => ("A: constant k", "B: exact Fresnel"),
             CompareKind::SplitStochastic => ("A: split tree", "B: stochastic tree"),
             CompareKind::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
+            CompareKind::WhittedPath => ("A: Whitted", "B: path tracing"),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
@@ -60,7 +64,9 @@ impl CompareKind {
             CompareKind::RandomJittered => p.pattern = Pattern::Random,
             CompareKind::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
             CompareKind::SplitStochastic => p.tree = TreeMode::Split,
-            CompareKind::WhittedTransmissive => p.transport = Transport::Whitted,
+            CompareKind::WhittedTransmissive | CompareKind::WhittedPath => {
+                p.transport = Transport::Whitted
+            }
             CompareKind::Frozen(_) => {}
         }
         p
@@ -76,6 +82,7 @@ impl CompareKind {
             CompareKind::RandomJittered => p.pattern = Pattern::Jittered,
             CompareKind::SplitStochastic => p.tree = TreeMode::Stochastic,
             CompareKind::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
+            CompareKind::WhittedPath => p.transport = Transport::Path,
             CompareKind::Frozen(b) => return b.clone(),
         }
         p
@@ -215,9 +222,16 @@ mod tests {
             assert_eq!((a.max_depth, a.spp), (3, 7), "{label}: A keeps the rest");
             assert_eq!((b.max_depth, b.spp), (3, 7), "{label}: B keeps the rest");
         }
-        let k = CompareKind::WhittedTransmissive;
-        let a = k.side_a(&p);
-        assert_eq!(a.transport, Transport::Whitted);
-        assert_eq!(k.side_b(&a).transport, Transport::TransmissiveShadows);
+        for (k, b) in [
+            (
+                CompareKind::WhittedTransmissive,
+                Transport::TransmissiveShadows,
+            ),
+            (CompareKind::WhittedPath, Transport::Path),
+        ] {
+            let a = k.side_a(&p);
+            assert_eq!(a.transport, Transport::Whitted);
+            assert_eq!(k.side_b(&a).transport, b);
+        }
     }
 }

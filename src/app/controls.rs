@@ -179,13 +179,22 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
     CollapsingHeader::new("Ray tree").default_open(true).show(ui, |ui| {
         ui.add(param_slider(&mut p.max_depth, "max_depth"))
             .on_hover_text(tip("max_depth"));
-        ui.add(param_slider(&mut p.min_weight, "min_weight"))
-            .on_hover_text(tip("min_weight"));
-        ui.horizontal(|ui| {
-            ui.radio_value(&mut p.tree, TreeMode::Split, "Split")
-                .on_hover_text("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.");
-            ui.radio_value(&mut p.tree, TreeMode::Stochastic, "Stochastic")
-                .on_hover_text("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.");
+        // A path tracer follows one path and ends it by Russian roulette: the tree's
+        // weight limit and branching do not apply.
+        let tree = p.transport != Transport::Path;
+        let no_tree = "Path tracing follows one path per sample (Russian roulette ends the faint ones): there is no tree to prune or split.";
+        ui.add_enabled(tree, param_slider(&mut p.min_weight, "min_weight"))
+            .on_hover_text(tip("min_weight"))
+            .on_disabled_hover_text(no_tree);
+        ui.add_enabled_ui(tree, |ui| {
+            ui.horizontal(|ui| {
+                ui.radio_value(&mut p.tree, TreeMode::Split, "Split")
+                    .on_hover_text("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.")
+                    .on_disabled_hover_text(no_tree);
+                ui.radio_value(&mut p.tree, TreeMode::Stochastic, "Stochastic")
+                    .on_hover_text("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.")
+                    .on_disabled_hover_text(no_tree);
+            });
         });
         ComboBox::from_label("Light transport")
             .selected_text(transport_label(p.transport))

@@ -304,10 +304,12 @@ impl Tracer<'_> {
             if depth >= ROULETTE_AFTER {
                 let q = throughput.max_element().min(1.0);
                 if q <= 0.0 || w.rng.next_1d() >= q {
+                    w.rec.finish(id, &|n| n.end = End::Roulette);
                     break;
                 }
                 throughput /= q;
             }
+            w.rec.finish(id, &|n| n.end = End::Continued);
             let n_side = match side {
                 Side::Reflect => at.n_geom,
                 Side::Transmit => {

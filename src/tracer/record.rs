@@ -30,6 +30,10 @@ pub enum End {
     Absorbed,
     /// It split into child rays.
     Split,
+    /// A path (path tracing) goes on from here in one direction, chosen at random.
+    Continued,
+    /// A path ended at random by Russian roulette (its survivors count for it).
+    Roulette,
     /// Not traced: it would exceed the maximum depth.
     DepthLimit,
     /// Not traced: its path weight fell below the minimum.

@@ -34,6 +34,8 @@ fn end_text(end: crate::tracer::End) -> &'static str {
         LightHit => "reached a light",
         Absorbed => "diffuse surface: shaded by shadow rays, absorbed",
         Split => "split into child rays",
+        Continued => "the path goes on: one direction, chosen at random",
+        Roulette => "ended by Russian roulette",
         DepthLimit => "pruned: depth limit",
         WeightLimit => "pruned: weight below the minimum",
         BudgetLimit => "pruned: the sample's ray budget is spent",
