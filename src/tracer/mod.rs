@@ -326,6 +326,32 @@ impl<'a> Tracer<'a> {
         )
     }
 
+    /// Radiance arriving along `ray` (starting in the surrounding medium) by the
+    /// parameters' light transport: one path in path tracing, the ray tree otherwise. For
+    /// measurements that are not through the camera, such as the irradiance on a wall.
+    pub fn radiance(&self, ray: &Ray, rng: &mut SampleStream, stats: &mut Stats) -> Color {
+        let mut walk = Walk {
+            rng,
+            stats,
+            rec: &mut NoRecorder,
+            tree_rays: 0,
+        };
+        match self.params.transport {
+            Transport::Path => self.path(ray, &mut walk, None::<Unpolarized>),
+            Transport::Whitted | Transport::TransmissiveShadows => {
+                let root = Branch {
+                    depth: 0,
+                    weight: 1.0,
+                    kind: RayKind::Camera,
+                    parent: None,
+                    factor: 1.0,
+                    wavelength: None,
+                };
+                self.trace_in(ray, root, &Media::default(), &mut walk, &Unpolarized)
+            }
+        }
+    }
+
     /// `pol`: the analyzer of a camera with a polariser, through every interface above.
     fn trace_in<R: Recorder, P: Polarization>(
         &self,

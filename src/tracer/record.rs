@@ -169,7 +169,9 @@ pub(super) fn record_interface<R: Recorder>(rec: &mut R, id: usize, i: Interface
     });
 }
 
-/// Records where the ray of node `id` meets a surface, and at what angle.
+/// Records where the ray of node `id` meets a surface, and at what angle. Inlined: with
+/// no recorder it is nothing, not a call per hit.
+#[inline(always)]
 pub(super) fn record_hit<R: Recorder>(rec: &mut R, id: usize, hit: &Hit, at: &Interaction) {
     if rec.on() {
         let node_hit = NodeHit {
