@@ -90,6 +90,16 @@ struct Branch {
 const _: () = assert!(std::mem::size_of::<Branch>() <= 32);
 
 impl Branch {
+    /// The root of a tree: a camera ray.
+    const CAMERA: Branch = Branch {
+        depth: 0,
+        weight: 1.0,
+        kind: RayKind::Camera,
+        parent: None,
+        factor: 1.0,
+        wavelength: None,
+    };
+
     /// The record of `ray` at this place in the tree, ending at `end_point` for `end`
     /// (amended once its hit and radiance are known).
     fn node(&self, ray: &Ray, end_point: Vec3, end: End) -> TreeNode {
@@ -246,14 +256,7 @@ impl<'a> Tracer<'a> {
             rec,
             tree_rays: 0,
         };
-        let root = Branch {
-            depth: 0,
-            weight: 1.0,
-            kind: RayKind::Camera,
-            parent: None,
-            factor: 1.0,
-            wavelength: None,
-        };
+        let root = Branch::CAMERA;
         if p.transport == Transport::Path {
             return match p.polarizer {
                 None => self.path(&ray, &mut walk, None::<Unpolarized>),
@@ -338,17 +341,13 @@ impl<'a> Tracer<'a> {
         };
         match self.params.transport {
             Transport::Path => self.path(ray, &mut walk, None::<Unpolarized>),
-            Transport::Whitted | Transport::TransmissiveShadows => {
-                let root = Branch {
-                    depth: 0,
-                    weight: 1.0,
-                    kind: RayKind::Camera,
-                    parent: None,
-                    factor: 1.0,
-                    wavelength: None,
-                };
-                self.trace_in(ray, root, &Media::default(), &mut walk, &Unpolarized)
-            }
+            Transport::Whitted | Transport::TransmissiveShadows => self.trace_in(
+                ray,
+                Branch::CAMERA,
+                &Media::default(),
+                &mut walk,
+                &Unpolarized,
+            ),
         }
     }
 
