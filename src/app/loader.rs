@@ -145,7 +145,7 @@ impl RaylabApp {
 
     /// Takes the scenes that finished loading: a good one replaces the scene shown, a bad
     /// one leaves it and shows what is wrong and where.
-    pub(super) fn receive_scenes(&mut self) {
+    pub(super) fn receive_scenes(&mut self, ctx: &egui::Context) {
         while let Some(loaded) = self.loader.receive() {
             let scene = match loaded.result {
                 Ok(scene) => Arc::new(scene),
@@ -157,16 +157,19 @@ impl RaylabApp {
                 }
             };
             let s = &mut self.settings;
+            let mut slide = None;
             match loaded.purpose {
                 LoadPurpose::Open => {
                     s.params = scene.params.clone();
                     s.camera = scene.camera.clone();
-                    let slide = self.lecture.arrived(&scene);
+                    slide = self.lecture.arrived(&scene);
                     if let Some(slide) = slide {
                         match slide.apply(&scene.params) {
                             Ok(p) => s.params = p,
                             Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
                         }
+                        // A slide opens its own comparison, or none.
+                        self.compare = None;
                     }
                 }
                 LoadPurpose::Reload => {
@@ -188,6 +191,9 @@ impl RaylabApp {
             self.view.fit();
             self.loader.watch(&scene);
             self.scene = scene;
+            if let Some(kind) = slide.and_then(|s| s.compare.clone()) {
+                self.start_compare(ctx, kind);
+            }
         }
     }
 }

@@ -293,7 +293,7 @@ impl RaylabApp {
 
 impl eframe::App for RaylabApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
-        self.receive_scenes();
+        self.receive_scenes(ctx);
         self.loader.poll();
         self.receive_sheet();
         self.dropped_files(ctx);
