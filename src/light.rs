@@ -112,6 +112,20 @@ impl Light {
         }
     }
 
+    /// For a light drawn as a point (a point light, or any light at size 0): its radiant
+    /// intensity towards the unit direction `dir`, all round for a sphere, intensity × cos θ
+    /// in front of a rectangle or disk. `None` for a light with an area, which paths can
+    /// find by themselves.
+    pub fn point_intensity(&self, dir: Vec3) -> Option<Color> {
+        if self.area() > 0.0 {
+            return None;
+        }
+        Some(match self.normal() {
+            Some(n) => self.intensity * dir.dot(n).max(0.0),
+            None => self.intensity,
+        })
+    }
+
     /// The area that emits at the current scale (0 for a point).
     pub fn area(&self) -> f32 {
         let s2 = self.scale * self.scale;

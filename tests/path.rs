@@ -258,12 +258,17 @@ const INTENSITY: f32 = 10.0;
 const LIGHT_RADIUS: f32 = 0.3;
 
 /// The power arriving on the inside of a closed spherical room of radius [`ROOM`] and
-/// albedo [`ALBEDO`], lit by a sphere light at its centre, with `glass` (a clear sphere)
-/// inside or not: ∮ E dA, measured by rays that start a hair
+/// albedo [`ALBEDO`], lit by a sphere light of radius `light_radius` (0: a point light) at
+/// its centre, with `glass` (a clear sphere) inside or not, by `transport`: ∮ E dA, measured by rays that start a hair
 /// inside the wall and look at it (L = a/π E), at a stratified grid of points. Returned
 /// per batch of samples (independent estimates), and the bottom cap's share
 /// (y < −0.99 R, under the glass) of the last batch.
-fn room_power(glass: Option<(Vec3, f32)>, batches: u32) -> (Vec<f64>, f64) {
+fn room_power(
+    glass: Option<(Vec3, f32)>,
+    transport: Transport,
+    light_radius: f32,
+    batches: u32,
+) -> (Vec<f64>, f64) {
     let (room, albedo, intensity) = (ROOM, ALBEDO, INTENSITY);
     let mut desc = SceneDesc::empty(Camera::looking_at(Vec3::ZERO, Vec3::NEG_Y, Vec3::Z, 40.0));
     desc.add(
@@ -281,7 +286,7 @@ fn room_power(glass: Option<(Vec3, f32)>, batches: u32) -> (Vec<f64>, f64) {
     desc.lights = vec![Light {
         shape: LightShape::Sphere {
             center: Vec3::ZERO,
-            radius: LIGHT_RADIUS,
+            radius: light_radius,
         },
         intensity: Color::splat(intensity),
         scale: 1.0,
@@ -289,16 +294,18 @@ fn room_power(glass: Option<(Vec3, f32)>, batches: u32) -> (Vec<f64>, f64) {
     desc.background = Background::Constant(Color::ZERO);
     let scene = desc.build();
     let params = Params {
-        transport: Transport::Path,
+        transport,
         max_depth: raylab::params::MAX_DEPTH,
         ..Params::default()
     };
-    let tracer = raylab::tracer::Tracer::new(&scene, &params, 1, 1);
+    let mut tracer = raylab::tracer::Tracer::new(&scene, &params, 1, 1);
     let (nz, nphi) = (96u32, 192u32);
     let area = 4.0 * std::f64::consts::PI * (room as f64).powi(2);
     let mut powers = Vec::new();
     let mut cap_share = 0.0;
     for batch in 0..batches {
+        // Each batch a pass of its own (with its own photons, where there are some).
+        tracer.prepare_photons(batch, 1);
         let (mut sum, mut cap) = (0.0f64, 0.0f64);
         for i in 0..nz * nphi {
             let mut rng = raylab::math::SampleStream::new(7, i, batch);
@@ -342,7 +349,7 @@ fn a_closed_room_receives_all_the_light_with_or_without_a_glass_sphere() {
     let mut caps = Vec::new();
     let batches = 40;
     for glass in [None, Some((Vec3::new(0.0, -2.0, 0.0), 1.0f32))] {
-        let (powers, cap) = room_power(glass, batches);
+        let (powers, cap) = room_power(glass, Transport::Path, LIGHT_RADIUS, batches);
         let mean = powers.iter().sum::<f64>() / batches as f64;
         let var = powers.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (batches - 1) as f64;
         let se = (var / batches as f64).sqrt();
@@ -361,5 +368,39 @@ fn a_closed_room_receives_all_the_light_with_or_without_a_glass_sphere() {
         "floor cap's share: {} without the sphere, {} with",
         caps[0],
         caps[1]
+    );
+}
+
+#[test]
+fn photons_carry_a_point_lights_caustic_and_conserve_its_energy() {
+    // The closed room again, lit by a point light, which no path can find through the
+    // glass: path tracing alone loses the light the glass passes on to the walls; with
+    // photons it arrives, and ∮ E dA = Φ / (1 − a) (a point light absorbs nothing), up to
+    // the photon map's blur, which moves light but keeps it.
+    let phi = 4.0 * std::f64::consts::PI * INTENSITY as f64;
+    let expected = phi / (1.0 - ALBEDO as f64);
+    let glass = Some((Vec3::new(0.0, -2.0, 0.0), 1.0f32));
+    let batches = 40;
+    let mean_and_error = |transport| {
+        let (powers, cap) = room_power(glass, transport, 0.0, batches);
+        let mean = powers.iter().sum::<f64>() / batches as f64;
+        let var = powers.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (batches - 1) as f64;
+        (mean, (var / batches as f64).sqrt(), cap)
+    };
+    let (with_photons, se, cap) = mean_and_error(Transport::Photons);
+    assert!(se < 0.005 * expected, "too noisy to tell ({se})");
+    assert!(
+        (with_photons - expected).abs() < 4.0 * se,
+        "photons: {with_photons} against Φ/(1 − a) = {expected} ({:.1} standard errors)",
+        (with_photons - expected) / se
+    );
+    let (path_only, se_path, cap_path) = mean_and_error(Transport::Path);
+    assert!(
+        path_only < expected - 10.0 * se_path.max(se),
+        "path tracing alone misses the caustic: {path_only} against {expected}"
+    );
+    assert!(
+        cap > 2.0 * cap_path,
+        "the caustic under the glass: {cap} against {cap_path}"
     );
 }

@@ -123,6 +123,7 @@ fn a_white_furnace_stays_uniform_in_every_transport() {
         Transport::Whitted,
         Transport::TransmissiveShadows,
         Transport::Path,
+        Transport::Photons,
     ] {
         let params = Params {
             spp: 4,

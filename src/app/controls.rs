@@ -50,6 +50,7 @@ fn transport_label(t: Transport) -> &'static str {
         Transport::Whitted => "Whitted (the lecture)",
         Transport::TransmissiveShadows => "transmissive shadows",
         Transport::Path => "path tracing (reference)",
+        Transport::Photons => "path tracing + photons",
     }
 }
 
@@ -181,7 +182,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             .on_hover_text(tip("max_depth"));
         // A path tracer follows one path and ends it by Russian roulette: the tree's
         // weight limit and branching do not apply.
-        let tree = p.transport != Transport::Path;
+        let tree = !p.transport.traces_paths();
         let no_tree = "Path tracing follows one path per sample (Russian roulette ends the faint ones): there is no tree to prune or split.";
         ui.add_enabled(tree, param_slider(&mut p.min_weight, "min_weight"))
             .on_hover_text(tip("min_weight"))
@@ -203,6 +204,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                     (Transport::Whitted, "The lecture's tracer: a shadow ray stops at glass and water, so they cast black shadows."),
                     (Transport::TransmissiveShadows, "Shadow rays pass straight through glass and water, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows, though real glass would bend the light into caustics elsewhere."),
                     (Transport::Path, "Path tracing: light is gathered at every diffuse or glossy surface, by light samples and by the path itself finding lights (through glass too). Colour bleeding, sky light in shadows, caustics from area lights; not from point lights."),
+                    (Transport::Photons, "Path tracing, plus photons from the point lights through glass and mirrors, gathered where they land: the caustics a path cannot find. Blurred at first, sharper with every pass."),
                 ] {
                     ui.selectable_value(&mut p.transport, t, transport_label(t)).on_hover_text(hint);
                 }

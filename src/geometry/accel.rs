@@ -80,7 +80,7 @@ fn break_ties(bounds: &mut [Aabb]) {
 
 /// Hashes keys that are hashes already: passes them through.
 #[derive(Default)]
-struct KeyHasher(u64);
+pub(crate) struct KeyHasher(u64);
 
 impl Hasher for KeyHasher {
     fn finish(&self) -> u64 {

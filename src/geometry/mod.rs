@@ -9,6 +9,7 @@ mod accel;
 mod mesh;
 mod shapes;
 
+pub(crate) use accel::KeyHasher;
 pub use accel::{Accel, PrimRef};
 pub use mesh::Mesh;
 pub use shapes::{Plane, Quad, Sphere};

@@ -38,6 +38,19 @@ pub enum Transport {
     /// interreflection, and caustics from area lights and emitting surfaces. The reference
     /// the lecture's tracer is compared with.
     Path,
+    /// Path tracing, plus the caustics of point lights (which no path can find) by
+    /// progressive photon mapping: photons shot from each point light through mirrors and
+    /// glass are gathered where the path meets a diffuse surface, within a radius that
+    /// shrinks pass by pass.
+    Photons,
+}
+
+impl Transport {
+    /// Whether each sample follows one path (path tracing, with or without photons)
+    /// rather than the ray tree.
+    pub fn traces_paths(self) -> bool {
+        matches!(self, Transport::Path | Transport::Photons)
+    }
 }
 
 /// Every parameter that shapes the image (and the display exposure).

@@ -202,10 +202,10 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "transport",
         label: "Light transport",
-        kind: Kind::Choice(&["whitted", "transmissive_shadows", "path"]),
+        kind: Kind::Choice(&["whitted", "transmissive_shadows", "path", "photons"]),
         unit: "",
-        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption; `path`, path tracing with light sampling and multiple importance sampling (interreflection, caustics from area lights and emitters; `max_depth` bounds the path, `min_weight` and `tree` do not apply)",
-        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics. Path: each sample follows one path, gathering light at every diffuse or glossy surface and finding lights through glass: colour bleeding, sky light in the shadows, caustics from area lights (not from point lights, which a path can never hit).",
+        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption; `path`, path tracing with light sampling and multiple importance sampling (interreflection, caustics from area lights and emitters; `max_depth` bounds the path, `min_weight` and `tree` do not apply); `photons`, path tracing plus the caustics of point lights by progressive photon mapping",
+        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics. Path: each sample follows one path, gathering light at every diffuse or glossy surface and finding lights through glass: colour bleeding, sky light in the shadows, caustics from area lights (not from point lights, which a path can never hit). Photons: path tracing, plus photons shot from the point lights through glass and mirrors, gathered where they land: the point light's caustic, blurred at first, sharpening pass by pass.",
         slider: None,
         display_only: false,
     },

@@ -44,8 +44,9 @@ pub fn render_pass(
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
-    let tracer = Tracer::with_camera(scene, camera, params, width, height);
     let first = film.spp();
+    let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
+    tracer.prepare_photons(first, samples);
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
         .pixels
@@ -102,7 +103,8 @@ pub fn render_preview(
     block: u32,
     observer: &dyn PassObserver,
 ) -> Result<(Vec<Color>, Stats), Cancelled> {
-    let tracer = Tracer::with_camera(scene, camera, params, width, height);
+    let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
+    tracer.prepare_photons(0, 1);
     let block = block.max(1);
     let nx = width.div_ceil(block);
     // The pixel at the centre of block i (the last block may be cut short).

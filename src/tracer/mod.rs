@@ -9,6 +9,7 @@
 mod emitters;
 mod media;
 mod path;
+mod photons;
 mod polarized;
 mod record;
 mod shadow;
@@ -166,6 +167,8 @@ pub struct Tracer<'a> {
     lights: Vec<PreparedLight>,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
     emitters: Emitters,
+    // The pass's photons, with transport = "photons" (see `prepare_photons`).
+    photons: Option<photons::PhotonMap>,
     frame: CameraFrame,
     width: u32,
     height: u32,
@@ -191,7 +194,7 @@ impl<'a> Tracer<'a> {
             .map(|m| m.with_params(params))
             .collect();
         let emitters = match params.transport {
-            Transport::Path => Emitters::new(scene, &materials),
+            Transport::Path | Transport::Photons => Emitters::new(scene, &materials),
             Transport::Whitted | Transport::TransmissiveShadows => Emitters::default(),
         };
         Tracer {
@@ -200,6 +203,7 @@ impl<'a> Tracer<'a> {
             dispersive: materials.iter().any(Material::disperses),
             materials,
             emitters,
+            photons: None,
             lights: scene
                 .lights
                 .iter()
@@ -257,7 +261,7 @@ impl<'a> Tracer<'a> {
             tree_rays: 0,
         };
         let root = Branch::CAMERA;
-        if p.transport == Transport::Path {
+        if p.transport.traces_paths() {
             return match p.polarizer {
                 None => self.path(&ray, &mut walk, None::<Unpolarized>),
                 Some(angle) => {
@@ -340,7 +344,7 @@ impl<'a> Tracer<'a> {
             tree_rays: 0,
         };
         match self.params.transport {
-            Transport::Path => self.path(ray, &mut walk, None::<Unpolarized>),
+            Transport::Path | Transport::Photons => self.path(ray, &mut walk, None::<Unpolarized>),
             Transport::Whitted | Transport::TransmissiveShadows => self.trace_in(
                 ray,
                 Branch::CAMERA,

@@ -24,8 +24,9 @@ use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
 use super::{Arrival, End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
 use crate::material::{Brdf, Interaction, Lobe, Material, Scatter, Side, glossy_pdf};
-use crate::math::{Color, Ray, Vec3, offset_ray_origin};
+use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
+use crate::scene::Hit;
 
 /// Bounces before Russian roulette may end a path.
 const ROULETTE_AFTER: u32 = 3;
@@ -42,7 +43,7 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
 }
 
 /// The part of a material a path goes on through.
-enum Part<'s> {
+pub(super) enum Part<'s> {
     /// The smooth BRDF, times the scale a glaze's coat leaves it.
     Smooth(Brdf, f32),
     /// A glossy lobe of this Phong exponent (its direction already drawn).
@@ -52,7 +53,8 @@ enum Part<'s> {
 }
 
 impl Part<'_> {
-    fn weight(&self) -> f32 {
+    /// Its weight: the largest channel of the light it passes on (at most 1 in all).
+    pub(super) fn weight(&self) -> f32 {
         match self {
             Part::Smooth(brdf, scale) => scale * (brdf.albedo + brdf.specular).max_element(),
             Part::Glossy(lobe, _) | Part::Delta(lobe) => lobe.weight.max_element(),
@@ -83,7 +85,7 @@ impl Part<'_> {
 }
 
 /// The parts of `scatter` with their weights: the smooth BRDF, then the lobes.
-fn parts(scatter: &Scatter) -> [Option<Part<'_>>; 3] {
+pub(super) fn parts(scatter: &Scatter) -> [Option<Part<'_>>; 3] {
     let lobe = |i: usize| {
         scatter.lobes[i].as_ref().map(|l| match scatter.glossy {
             Some(n) if i == 0 => Part::Glossy(l, n),
@@ -95,6 +97,22 @@ fn parts(scatter: &Scatter) -> [Option<Part<'_>>; 3] {
         lobe(0),
         lobe(1),
     ]
+}
+
+/// A path (or photon) leaving a surface on `side`: the media it is in from there, and the
+/// normal its next ray sets out along.
+pub(super) fn cross(media: &mut Media, at: &Interaction, hit: &Hit, side: Side) -> Vec3 {
+    match side {
+        Side::Reflect => at.n_geom,
+        Side::Transmit => {
+            *media = if at.entering {
+                media.entered(hit.object, hit.material)
+            } else {
+                media.left(hit.object)
+            };
+            -at.n_geom
+        }
+    }
 }
 
 /// One segment of the path, for the inspector: its node, the path's throughput when it
@@ -188,21 +206,7 @@ impl Tracer<'_> {
             w.rec.finish(id, &|n| n.end_point = end_point);
             throughput *= transmittance(sigma, hit.surface.t);
             let material = &self.materials[hit.material as usize];
-            if self.dispersive && wavelength.is_none() && material.disperses() {
-                let lambda = dispersion::wavelength(w.rng.next_1d());
-                wavelength = Some(lambda);
-                throughput *= dispersion::channel_weight(lambda);
-            }
-            let arrival = Arrival::at(ray.dir, &hit, &media);
-            let at = Interaction {
-                dir: ray.dir,
-                uv: hit.surface.uv,
-                n_geom: arrival.n_geom,
-                n_shade: arrival.n_shade,
-                entering: arrival.entering,
-                outside_ior: self.ior_of(arrival.outside, wavelength),
-                wavelength,
-            };
+            let at = self.meet(&ray, &hit, &media, &mut wavelength, &mut throughput, w.rng);
             record_hit(w.rec, id, &hit, &at);
             let scatter = material.scatter(&at, w.rng);
             if let Some(radiance) = scatter.emitted {
@@ -253,7 +257,11 @@ impl Tracer<'_> {
             // choice of their direction.
             let last = depth >= self.params.max_depth;
             if !matches!(part, Part::Delta(_)) {
-                let lit = self.light_samples(&ray, p, &at, part, sigma, last, id, w);
+                let mut lit = self.light_samples(&ray, p, &at, part, sigma, last, id, w);
+                // The point lights' caustics, from this pass's photons.
+                if let (Some(map), Part::Smooth(brdf, scale)) = (&self.photons, part) {
+                    lit += map.gather(p, &at, brdf, *scale);
+                }
                 let lit = match &s_frame {
                     Some(s) => s.direct(material, &at, lit),
                     None => lit,
@@ -310,17 +318,7 @@ impl Tracer<'_> {
                 throughput /= q;
             }
             w.rec.finish(id, &|n| n.end = End::Continued);
-            let n_side = match side {
-                Side::Reflect => at.n_geom,
-                Side::Transmit => {
-                    media = if at.entering {
-                        media.entered(hit.object, hit.material)
-                    } else {
-                        media.left(hit.object)
-                    };
-                    -at.n_geom
-                }
-            };
+            let n_side = cross(&mut media, &at, &hit, side);
             kind = match side {
                 Side::Reflect => {
                     w.stats.reflection_rays += 1;
@@ -349,6 +347,38 @@ impl Tracer<'_> {
             }
         }
         total
+    }
+
+    /// The hit as its material sees it, for a path (or photon) through `media` carrying
+    /// `wavelength`: the first dispersive surface on the way picks one, and `weight` takes
+    /// its channel's weight.
+    pub(super) fn meet(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        media: &Media,
+        wavelength: &mut Option<f32>,
+        weight: &mut Color,
+        rng: &mut SampleStream,
+    ) -> Interaction {
+        if self.dispersive
+            && wavelength.is_none()
+            && self.materials[hit.material as usize].disperses()
+        {
+            let lambda = dispersion::wavelength(rng.next_1d());
+            *wavelength = Some(lambda);
+            *weight *= dispersion::channel_weight(lambda);
+        }
+        let arrival = Arrival::at(ray.dir, hit, media);
+        Interaction {
+            dir: ray.dir,
+            uv: hit.surface.uv,
+            n_geom: arrival.n_geom,
+            n_shade: arrival.n_shade,
+            entering: arrival.entering,
+            outside_ior: self.ior_of(arrival.outside, *wavelength),
+            wavelength: *wavelength,
+        }
     }
 
     /// Light arriving at `p` through `part`: one sample of each light and one of the

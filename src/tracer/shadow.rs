@@ -55,7 +55,7 @@ impl Tracer<'_> {
             // Stop just short of the light's surface (it is not in the BVH anyway).
             let reach = ls.dist * (1.0 - 1e-4);
             let (blocked, contribution) = match self.params.transport {
-                Transport::Whitted | Transport::Path => {
+                Transport::Whitted | Transport::Path | Transport::Photons => {
                     let blocked = self.scene.occluded(&shadow, reach);
                     let c = if blocked {
                         Color::ZERO

@@ -64,7 +64,9 @@ impl RaylabApp {
     /// Records the ray tree of `pixel`'s first sample with the current parameters and camera.
     pub(super) fn inspect(&mut self, pixel: (u32, u32), size: (u32, u32)) {
         let s = &self.settings;
-        let tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
+        let mut tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
+        // Sample 0 as the first pass traces it (with its photons, where there are some).
+        tracer.prepare_photons(0, 1);
         let (tree, radiance) = tracer.inspect(pixel.0, pixel.1, 0);
         self.instruments.inspection = Some(Inspection {
             pixel,
