@@ -23,13 +23,15 @@ pub(crate) enum CompareKind {
     WhittedTransmissive,
     /// The lecture's tracer against path tracing, the reference.
     WhittedPath,
+    /// The lecture's tracer against path tracing with photons (point lights' caustics).
+    WhittedPhotons,
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
 
 impl CompareKind {
     /// The presets, for the menu.
-    pub fn presets() -> [(&'static str, CompareKind); 6] {
+    pub fn presets() -> [(&'static str, CompareKind); 7] {
         [
             ("Schlick | exact", CompareKind::SchlickExact),
             ("random | jittered", CompareKind::RandomJittered),
@@ -40,6 +42,7 @@ impl CompareKind {
                 CompareKind::WhittedTransmissive,
             ),
             ("whitted | path", CompareKind::WhittedPath),
+            ("whitted | path + photons", CompareKind::WhittedPhotons),
         ]
     }
 
@@ -52,6 +55,7 @@ impl CompareKind {
             CompareKind::SplitStochastic => ("A: split tree", "B: stochastic tree"),
             CompareKind::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
             CompareKind::WhittedPath => ("A: Whitted", "B: path tracing"),
+            CompareKind::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
@@ -64,9 +68,9 @@ impl CompareKind {
             CompareKind::RandomJittered => p.pattern = Pattern::Random,
             CompareKind::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
             CompareKind::SplitStochastic => p.tree = TreeMode::Split,
-            CompareKind::WhittedTransmissive | CompareKind::WhittedPath => {
-                p.transport = Transport::Whitted
-            }
+            CompareKind::WhittedTransmissive
+            | CompareKind::WhittedPath
+            | CompareKind::WhittedPhotons => p.transport = Transport::Whitted,
             CompareKind::Frozen(_) => {}
         }
         p
@@ -83,6 +87,7 @@ impl CompareKind {
             CompareKind::SplitStochastic => p.tree = TreeMode::Stochastic,
             CompareKind::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
             CompareKind::WhittedPath => p.transport = Transport::Path,
+            CompareKind::WhittedPhotons => p.transport = Transport::Photons,
             CompareKind::Frozen(b) => return b.clone(),
         }
         p
@@ -228,6 +233,7 @@ mod tests {
                 Transport::TransmissiveShadows,
             ),
             (CompareKind::WhittedPath, Transport::Path),
+            (CompareKind::WhittedPhotons, Transport::Photons),
         ] {
             let a = k.side_a(&p);
             assert_eq!(a.transport, Transport::Whitted);

@@ -112,8 +112,8 @@ pub(crate) const LECTURE: &[Slide] = &[
         title: "What the ray tree misses",
         scene: "default",
         params: &[("spp", "64")],
-        caption: "Left, the lecture's tracer: light comes only along shadow rays and mirror directions, so shadows get a flat ambient. Right, path tracing (the reference): the blue sky lights the shadows, and the glass focuses it into a caustic inside its own shadow. Drag the divider right: the lecture's tracer leaves that shadow black. Light transport > transmissive shadows is the common fix: tinted, but not focused.",
-        compare: Some(CompareKind::WhittedPath),
+        caption: "Left, the lecture's tracer: light comes only along shadow rays and mirror directions, so shadows get a flat ambient. Right, path tracing with photons (the reference): the blue sky lights the shadows, the glass focuses it into its own shadow, and the lamp's light through the glass lands in a bright caustic at its right foot. Drag the divider right: the lecture's tracer leaves that shadow black. Light transport > transmissive shadows is the common fix: tinted, but not focused.",
+        compare: Some(CompareKind::WhittedPhotons),
     },
 ];
 
