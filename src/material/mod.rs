@@ -159,10 +159,6 @@ pub struct Scatter {
     pub interface: Option<Interface>,
     /// The refracted ray does not exist: total internal reflection.
     pub total_internal_reflection: bool,
-    /// The Phong exponent the first lobe's direction was jittered over, if it was: then it
-    /// is one sample of a glossy lobe rather than the one direction of a mirror, and its
-    /// density is [`glossy_pdf`].
-    pub glossy: Option<f32>,
 }
 
 impl Scatter {
@@ -269,7 +265,9 @@ impl Material {
         }
     }
 
-    /// The Phong exponent the `phong_exponent` parameter replaces, if this is glossy.
+    /// The Phong exponent the `phong_exponent` parameter replaces, if this is glossy: then
+    /// its reflected ray is one sample of the Phong lobe about the mirror direction (whose
+    /// density is [`glossy_pdf`]), not the one direction of a mirror.
     pub fn phong_exponent(&self) -> Option<f32> {
         match self {
             Material::Glossy(g) => Some(g.exponent),

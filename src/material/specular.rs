@@ -58,7 +58,6 @@ impl Conductor {
                 }),
                 None,
             ],
-            glossy: self.exponent,
             ..Scatter::default()
         }
     }
@@ -131,7 +130,6 @@ impl Glossy {
                 }),
                 None,
             ],
-            glossy: Some(self.exponent),
             ..Scatter::default()
         }
     }

@@ -84,10 +84,12 @@ impl Part<'_> {
     }
 }
 
-/// The parts of `scatter` with their weights: the smooth BRDF, then the lobes.
-pub(super) fn parts(scatter: &Scatter) -> [Option<Part<'_>>; 3] {
+/// The parts of `scatter` (of `material`) with their weights: the smooth BRDF, then the
+/// lobes, the first glossy where the material is.
+pub(super) fn parts<'s>(material: &Material, scatter: &'s Scatter) -> [Option<Part<'s>>; 3] {
+    let glossy = material.phong_exponent();
     let lobe = |i: usize| {
-        scatter.lobes[i].as_ref().map(|l| match scatter.glossy {
+        scatter.lobes[i].as_ref().map(|l| match glossy {
             Some(n) if i == 0 => Part::Glossy(l, n),
             _ => Part::Delta(l),
         })
@@ -231,7 +233,7 @@ impl Tracer<'_> {
                 w.stats.tir_events += 1;
             }
             // One part, in proportion to its weight.
-            let parts = parts(&scatter);
+            let parts = parts(material, &scatter);
             let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
             if sum <= 0.0 {
                 w.rec.finish(id, &|n| n.end = End::Absorbed);

@@ -281,7 +281,7 @@ impl Tracer<'_> {
             let material = &self.materials[hit.material as usize];
             let at = self.meet(&ray, &hit, &media, &mut wavelength, &mut power, &mut rng);
             let scatter = material.scatter(&at, &mut rng);
-            let parts = parts(&scatter);
+            let parts = parts(material, &scatter);
             if bounce > 0
                 && parts
                     .iter()
