@@ -305,7 +305,7 @@ fn room_power(
     let mut cap_share = 0.0;
     for batch in 0..batches {
         // Each batch a pass of its own (with its own photons, where there are some).
-        tracer.prepare_photons(batch, 1);
+        tracer.prepare_photons(batch);
         let (mut sum, mut cap) = (0.0f64, 0.0f64);
         for i in 0..nz * nphi {
             let mut rng = raylab::math::SampleStream::new(7, i, batch);

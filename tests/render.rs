@@ -5,7 +5,7 @@ use raylab::geometry::{Plane, Shape};
 use raylab::light::{Background, Light};
 use raylab::material::{Diffuse, Emissive, Material, Mirror, Texture};
 use raylab::math::{Color, Vec3};
-use raylab::params::Params;
+use raylab::params::{Params, Transport};
 use raylab::render::{Film, render, render_pass};
 use raylab::scene::{Scene, SceneDesc};
 use std::f32::consts::PI;
@@ -37,13 +37,32 @@ fn same_image_for_any_thread_count() {
     let five = in_pool(5, || render(&scene, &params, 97, 61, &()).unwrap().0);
     assert_eq!(bits(&one), bits(&two));
     assert_eq!(bits(&one), bits(&five));
+    // Paths and photons too (the photons are shot in parallel, collected in order).
+    let scene = Scene::load("default").unwrap();
+    for transport in [Transport::Path, Transport::Photons] {
+        let params = Params {
+            spp: 2,
+            transport,
+            ..scene.params.clone()
+        };
+        let one = in_pool(1, || render(&scene, &params, 64, 36, &()).unwrap().0);
+        let three = in_pool(3, || render(&scene, &params, 64, 36, &()).unwrap().0);
+        assert_eq!(bits(&one), bits(&three), "{transport:?}");
+    }
 }
 
 #[test]
 fn same_image_for_any_split_into_passes() {
+    for transport in [Transport::Whitted, Transport::Photons] {
+        same_image_for_any_split_into_passes_in(transport);
+    }
+}
+
+fn same_image_for_any_split_into_passes_in(transport: Transport) {
     let scene = Scene::load("default").unwrap();
     let params = Params {
         spp: 8,
+        transport,
         ..scene.params.clone()
     };
     let (whole, stats_whole) = render(&scene, &params, 80, 45, &()).unwrap();

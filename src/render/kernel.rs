@@ -8,6 +8,7 @@ use crate::params::Params;
 use crate::scene::Scene;
 use crate::tracer::{Stats, Tracer};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Rows per band: the unit of parallel work, progress and cancellation.
 pub const BAND_ROWS: u32 = 4;
@@ -46,7 +47,55 @@ pub fn render_pass(
     let (width, height) = (film.width(), film.height());
     let first = film.spp();
     let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
-    tracer.prepare_photons(first, samples);
+    if !tracer.gathers_photons() {
+        return pass(&tracer, film, first, samples, observer);
+    }
+    // Each sample number has photons of its own, so that the image does not depend on how
+    // the samples are split into passes: one pass per sample.
+    let each = Share {
+        observer,
+        samples,
+        rows: AtomicU32::new(0),
+    };
+    let mut total = Stats::default();
+    for s in first..first + samples {
+        tracer.prepare_photons(s);
+        total += pass(&tracer, film, s, 1, &each)?;
+    }
+    Ok(total)
+}
+
+/// Tells `observer` of the rows of `samples` passes as of one: a row is done when it is
+/// done in all of them.
+struct Share<'o> {
+    observer: &'o dyn PassObserver,
+    samples: u32,
+    rows: AtomicU32,
+}
+
+impl PassObserver for Share<'_> {
+    fn keep_going(&self) -> bool {
+        self.observer.keep_going()
+    }
+    fn band_done(&self, rows: u32) {
+        let before = self.rows.fetch_add(rows, Ordering::Relaxed);
+        let n = self.samples.max(1);
+        let done = (before + rows) / n - before / n;
+        if done > 0 {
+            self.observer.band_done(done);
+        }
+    }
+}
+
+/// Samples `first..first + samples` of every pixel, by `tracer`.
+fn pass(
+    tracer: &Tracer,
+    film: &mut Film,
+    first: u32,
+    samples: u32,
+    observer: &dyn PassObserver,
+) -> Result<Stats, Cancelled> {
+    let (width, height) = (film.width(), film.height());
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
         .pixels
@@ -104,7 +153,7 @@ pub fn render_preview(
     observer: &dyn PassObserver,
 ) -> Result<(Vec<Color>, Stats), Cancelled> {
     let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
-    tracer.prepare_photons(0, 1);
+    tracer.prepare_photons(0);
     let block = block.max(1);
     let nx = width.div_ceil(block);
     // The pixel at the centre of block i (the last block may be cut short).

@@ -2,15 +2,16 @@
 //!
 //! A path from the camera can never hit a point light, and a light sample cannot pass
 //! through glass, so light from a point light focused by glass or a mirror (L S+ D) is
-//! what path tracing misses. Before each pass, photons are shot from every point light
-//! towards the mirror-like objects (each object's bounding sphere, so that none is wasted
-//! on the floor), followed through their mirrors and interfaces as a path follows them,
-//! and stored where they land on a diffuse surface after at least one such bounce. A path
+//! what path tracing misses. For each sample number, photons are shot from every point
+//! light towards the mirror-like objects (each object's bounding sphere, so that none is
+//! wasted on the floor), followed through their mirrors and interfaces as a path follows
+//! them, and stored where they land on a diffuse surface after at least one such bounce. A
+//! path
 //! that meets a diffuse surface adds the photons within radius r around it:
-//! L = Σ f(ωp, ωo) Φp / (π r²). Each pass has its own photons and a smaller radius,
-//! r² = r₀² · n^(−1/3) after n samples (Knaus and Zwicker's probabilistic progressive
-//! photon mapping, α = 2/3), so the average over passes converges: blurred at first,
-//! sharp in the end.
+//! L = Σ f(ωp, ωo) Φp / (π r²). Each sample number n has its own photons and a smaller
+//! radius, r² = r₀² · n^(−1/3) (Knaus and Zwicker's probabilistic progressive photon
+//! mapping, α = 2/3), so the average over samples converges: blurred at first, sharp in
+//! the end.
 
 use super::media::transmittance;
 use super::path::{Part, cross, parts};
@@ -147,27 +148,28 @@ impl PhotonMap {
 }
 
 impl Tracer<'_> {
-    /// Shoots the photons of the pass of samples `first..first + samples`, if the
-    /// transport gathers photons and a point light and a mirror-like object exist.
-    pub fn prepare_photons(&mut self, first: u32, samples: u32) {
-        if self.params.transport != crate::params::Transport::Photons {
+    /// Whether samples gather photons (`transport = "photons"`): each sample number then
+    /// needs its own, shot by [`Tracer::prepare_photons`] before it is traced.
+    pub fn gathers_photons(&self) -> bool {
+        self.params.transport == crate::params::Transport::Photons
+    }
+
+    /// Shoots the photons of sample number `sample` (of every pixel), if samples gather
+    /// photons and there are point lights and mirror-like objects.
+    pub fn prepare_photons(&mut self, sample: u32) {
+        self.photons = None;
+        if !self.gathers_photons() {
             return;
         }
         let (targets, mean_radius) = self.targets();
         if targets.is_empty() {
-            self.photons = None;
             return;
         }
-        let n = PHOTONS_PER_SAMPLE * samples.max(1);
-        let done = (first + samples.max(1)) as f32;
-        let radius = FIRST_RADIUS * mean_radius * done.powf(-1.0 / 6.0);
-        let photons: Vec<Photon> = (0..n)
+        let radius = FIRST_RADIUS * mean_radius * ((sample + 1) as f32).powf(-1.0 / 6.0);
+        // Collected in photon order whatever the threads: the same map every time.
+        let photons: Vec<Photon> = (0..PHOTONS_PER_SAMPLE)
             .into_par_iter()
-            .fold(Vec::new, |mut out, k| {
-                self.shoot(k, first, n, &targets, &mut out);
-                out
-            })
-            .flatten()
+            .flat_map_iter(|k| self.shoot(k, sample, &targets))
             .collect();
         self.photons = Some(PhotonMap::new(photons, radius));
     }
@@ -236,11 +238,22 @@ impl Tracer<'_> {
         }
     }
 
-    /// Photon `k` of `n` of the pass starting at sample `first`: from a light, along its
-    /// target's cone, through mirror-like bounces, stored where it lands on a diffuse
-    /// surface after one at least.
-    fn shoot(&self, k: u32, first: u32, n: u32, targets: &[Target], out: &mut Vec<Photon>) {
-        let mut rng = SampleStream::new(self.params.seed ^ 0x5eed_f0f0, k, first);
+    /// Photon `k` of sample number `sample`: from a light, along its target's cone, through
+    /// mirror-like bounces, stored wherever it meets a diffuse surface after one at least.
+    fn shoot(&self, k: u32, sample: u32, targets: &[Target]) -> Vec<Photon> {
+        let mut out = Vec::new();
+        self.shoot_into(k, sample, targets, &mut out);
+        out
+    }
+
+    fn shoot_into(
+        &self,
+        k: u32,
+        sample: u32,
+        targets: &[Target],
+        out: &mut Vec<Photon>,
+    ) -> Option<()> {
+        let mut rng = SampleStream::new(self.params.seed ^ 0x5eed_f0f0, k, sample);
         let pick = rng.next_1d();
         let mut acc = 0.0;
         let target = targets
@@ -252,9 +265,7 @@ impl Tracer<'_> {
             .unwrap_or(&targets[targets.len() - 1]);
         let dir = to_world(uniform_cone(rng.next_2d(), target.cos_max), target.axis);
         let light = self.scene.lights[target.light].scaled(self.params.light_size);
-        let Some(intensity) = light.point_intensity(dir) else {
-            return;
-        };
+        let intensity = light.point_intensity(dir)?;
         // The density of `dir` over every cone of this light that contains it.
         let pdf: f32 = targets
             .iter()
@@ -262,9 +273,9 @@ impl Tracer<'_> {
             .map(|t| t.share / t.solid_angle())
             .sum();
         if pdf <= 0.0 {
-            return;
+            return None;
         }
-        let mut power = intensity / (n as f32 * pdf);
+        let mut power = intensity / (PHOTONS_PER_SAMPLE as f32 * pdf);
         let (shutter_open, shutter) = (self.params.shutter_open, self.params.shutter);
         let mut ray = Ray {
             origin: light.center(),
@@ -274,9 +285,7 @@ impl Tracer<'_> {
         let mut media = Media::default();
         let mut wavelength = None;
         for bounce in 0..=self.params.max_depth {
-            let Some(hit) = self.scene.intersect(&ray, f32::INFINITY) else {
-                return;
-            };
+            let hit = self.scene.intersect(&ray, f32::INFINITY)?;
             power *= transmittance(self.absorption_in(&media), hit.surface.t);
             let material = &self.materials[hit.material as usize];
             let at = self.meet(&ray, &hit, &media, &mut wavelength, &mut power, &mut rng);
@@ -305,7 +314,7 @@ impl Tracer<'_> {
                 acc += p.weight();
                 u < acc
             }) else {
-                return;
+                return None;
             };
             power *= lobe.weight * (sum / lobe.weight.max_element());
             let side_n = cross(&mut media, &at, &hit, lobe.side);
@@ -315,5 +324,6 @@ impl Tracer<'_> {
                 time: ray.time,
             };
         }
+        None
     }
 }

@@ -66,7 +66,7 @@ impl RaylabApp {
         let s = &self.settings;
         let mut tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
         // Sample 0 as the first pass traces it (with its photons, where there are some).
-        tracer.prepare_photons(0, 1);
+        tracer.prepare_photons(0);
         let (tree, radiance) = tracer.inspect(pixel.0, pixel.1, 0);
         self.instruments.inspection = Some(Inspection {
             pixel,
