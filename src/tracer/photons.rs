@@ -6,8 +6,7 @@
 //! light towards the mirror-like objects (each object's bounding sphere, so that none is
 //! wasted on the floor), followed through their mirrors and interfaces as a path follows
 //! them, and stored where they land on a diffuse surface after at least one such bounce. A
-//! path
-//! that meets a diffuse surface adds the photons within radius r around it:
+//! path that meets a diffuse surface adds the photons within radius r around it:
 //! L = Σ f(ωp, ωo) Φp / (π r²). Each sample number n has its own photons and a smaller
 //! radius, r² = r₀² · n^(−1/3) (Knaus and Zwicker's probabilistic progressive photon
 //! mapping, α = 2/3), so the average over samples converges: blurred at first, sharp in
