@@ -101,6 +101,8 @@ const LINES: &[&str] = &[
     "abbe = 1e-40",
     "polarizer = 90",
     "transport = \"transmissive_shadows\"",
+    "transport = \"path\"",
+    "transport = \"photons\"",
     "Pm 1.0",
     "\"polarizer\": 45,",
     "\"samples\": 0,",
@@ -228,6 +230,8 @@ fn seeds(target: Target) -> Vec<String> {
         Target::Params => vec![
             "spp=4\nmax_depth=3\nmin_weight=0.01\nior=1.5\naperture=0.1\nfocus_distance=5\nshutter_open=0\nshutter=1\npattern=sobol\ntree=split\nsize=64x36".into(),
             "abbe=20\npolarizer=45\ntransport=transmissive_shadows\nior=2.4\nsize=64x36".into(),
+            "transport=photons\nlight_size=0\nmax_depth=64\nabbe=30\nsize=64x36".into(),
+            "transport=path\npolarizer=10\nphong_exponent=3\nsize=64x36".into(),
         ],
     }
 }
