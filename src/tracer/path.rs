@@ -42,6 +42,17 @@ fn power_heuristic(a: f32, b: f32) -> f32 {
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
+/// The weight of a light sample of density `light_pdf` whose direction the BRDF draws with
+/// density `bsdf_pdf`: the power heuristic, or all of it where the path goes no further
+/// (`alone`) and so cannot find the light itself.
+fn light_weight(alone: bool, light_pdf: f32, bsdf_pdf: f32) -> f32 {
+    if alone {
+        1.0
+    } else {
+        power_heuristic(light_pdf, bsdf_pdf)
+    }
+}
+
 /// The part of a material a path goes on through.
 pub(super) enum Part<'s> {
     /// The smooth BRDF, times the scale a glaze's coat leaves it.
@@ -399,13 +410,7 @@ impl Tracer<'_> {
         id: usize,
         w: &mut Walk<R>,
     ) -> Color {
-        let mis = |light_pdf: f32, bsdf_pdf: f32| {
-            if alone {
-                1.0
-            } else {
-                power_heuristic(light_pdf, bsdf_pdf)
-            }
-        };
+        let mis = |light_pdf, bsdf_pdf| light_weight(alone, light_pdf, bsdf_pdf);
         let origin = offset_ray_origin(p, at.n_geom);
         let shadow = |dir| Ray {
             origin,
@@ -436,16 +441,15 @@ impl Tracer<'_> {
         if !self.emitters.is_empty() {
             let (pick, u) = (w.rng.next_1d(), w.rng.next_2d());
             if let Some((object, q)) = self.emitters.sample(self.scene, pick, u, ray.time) {
-                let (c, light_pdf, pdf) =
-                    self.emitter_sample(ray, origin, p, q, object, at, part, sigma, id, w);
-                sum += c * mis(light_pdf, pdf);
+                sum +=
+                    self.emitter_sample(ray, origin, p, q, object, at, part, sigma, alone, id, w);
             }
         }
         sum
     }
 
-    /// The light from point `q` of emitting `object`, seen from `p` through `part`, not yet
-    /// weighed; and the densities of its direction as a light sample and under `part`.
+    /// The light from point `q` of emitting `object`, seen from `p` through `part`, weighed
+    /// as [`light_weight`] says.
     #[allow(clippy::too_many_arguments)]
     fn emitter_sample<R: Recorder>(
         &self,
@@ -457,18 +461,19 @@ impl Tracer<'_> {
         at: &Interaction,
         part: &Part,
         sigma: Color,
+        alone: bool,
         id: usize,
         w: &mut Walk<R>,
-    ) -> (Color, f32, f32) {
+    ) -> Color {
         let to = q - p;
         let dist = to.length();
         if dist <= 0.0 {
-            return (Color::ZERO, 0.0, 0.0);
+            return Color::ZERO;
         }
         let dir = to / dist;
         let (f_cos, pdf) = part.eval(at, dir);
         if f_cos == Color::ZERO {
-            return (Color::ZERO, 0.0, 0.0);
+            return Color::ZERO;
         }
         w.stats.shadow_rays += 1;
         let s = Ray {
@@ -481,24 +486,23 @@ impl Tracer<'_> {
             .scene
             .intersect(&s, dist * 1.001 + 1e-4)
             .filter(|h| h.object == object && (h.surface.t - dist).abs() <= 1e-3 * dist + 1e-4);
-        let (c, light_pdf) = match seen {
+        let c = match seen {
             Some(h) => {
                 let cos_e = dir.dot(h.surface.n_geom).abs();
                 let light_pdf = self.emitters.pdf(object, dist, cos_e);
                 match &self.materials[h.material as usize] {
                     Material::Emissive(e) if light_pdf > 0.0 => {
                         let l = e.radiance.eval(h.surface.uv);
-                        (
-                            f_cos * l / light_pdf * transmittance(sigma, dist),
-                            light_pdf,
-                        )
+                        f_cos * l / light_pdf
+                            * transmittance(sigma, dist)
+                            * light_weight(alone, light_pdf, pdf)
                     }
-                    _ => (Color::ZERO, 0.0),
+                    _ => Color::ZERO,
                 }
             }
-            None => (Color::ZERO, 0.0),
+            None => Color::ZERO,
         };
         w.rec.ray(|| shadow_node(id, &s, dist, seen.is_none(), c));
-        (c, light_pdf, pdf)
+        c
     }
 }
