@@ -1,7 +1,8 @@
-//! The media a ray travels through: the stack of dielectric objects it has entered, and
-//! Beer–Lambert attenuation along a segment.
+//! The media a ray travels through: the stack of dielectric objects it has entered,
+//! Beer–Lambert attenuation along a segment, and which side of a surface a ray arrives on.
 
-use crate::math::Color;
+use crate::math::{Color, Vec3};
+use crate::scene::Hit;
 
 /// How deeply dielectrics may nest (glass in water in glass ...); deeper entries are ignored.
 pub const MAX_NESTING: usize = 8;
@@ -70,6 +71,41 @@ pub(super) fn transmittance(sigma: Color, t: f32) -> Color {
         return Color::ONE;
     }
     Color::select(sigma.cmpeq(Color::ZERO), Color::ONE, (-sigma * t).exp())
+}
+
+/// How a ray meets a surface.
+pub(super) struct Arrival {
+    /// It arrives from the surface's outside (against its normal).
+    pub(super) entering: bool,
+    /// The geometric normal, facing the side the ray arrives from.
+    pub(super) n_geom: Vec3,
+    /// The shading normal, facing the side the ray arrives from.
+    pub(super) n_shade: Vec3,
+    /// The medium on the surface's outer side (once left, when inside).
+    pub(super) outside: Option<u32>,
+}
+
+impl Arrival {
+    pub(super) fn at(dir: Vec3, hit: &Hit, media: &Media) -> Arrival {
+        let s = &hit.surface;
+        let entering = dir.dot(s.n_geom) < 0.0;
+        let (n_geom, n_shade) = if entering {
+            (s.n_geom, s.n_shade)
+        } else {
+            (-s.n_geom, -s.n_shade)
+        };
+        let outside = if entering {
+            media.innermost()
+        } else {
+            media.innermost_after_leaving(hit.object)
+        };
+        Arrival {
+            entering,
+            n_geom,
+            n_shade,
+            outside,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -15,6 +15,7 @@ mod record;
 mod shadow;
 mod stats;
 
+use media::Arrival;
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
 pub use stats::Stats;
@@ -116,41 +117,6 @@ impl Branch {
             end,
             radiance: Color::ZERO,
             stokes_weights: None,
-        }
-    }
-}
-
-/// How a ray meets a surface.
-struct Arrival {
-    /// It arrives from the surface's outside (against its normal).
-    entering: bool,
-    /// The geometric normal, facing the side the ray arrives from.
-    n_geom: Vec3,
-    /// The shading normal, facing the side the ray arrives from.
-    n_shade: Vec3,
-    /// The medium on the surface's outer side (once left, when inside).
-    outside: Option<u32>,
-}
-
-impl Arrival {
-    fn at(dir: Vec3, hit: &Hit, media: &Media) -> Arrival {
-        let s = &hit.surface;
-        let entering = dir.dot(s.n_geom) < 0.0;
-        let (n_geom, n_shade) = if entering {
-            (s.n_geom, s.n_shade)
-        } else {
-            (-s.n_geom, -s.n_shade)
-        };
-        let outside = if entering {
-            media.innermost()
-        } else {
-            media.innermost_after_leaving(hit.object)
-        };
-        Arrival {
-            entering,
-            n_geom,
-            n_shade,
-            outside,
         }
     }
 }
