@@ -355,7 +355,7 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.step();
     h.get_by_label("Lecture").click();
     h.run_steps(3);
-    h.get_by_label("Pruning the ray tree").click();
+    h.get_by_label("5. Pruning the ray tree").click();
     h.run_steps(2);
     step_until(&mut h, "the slide's scene", |a| {
         a.scene().name == "ray-tree"
@@ -498,4 +498,59 @@ fn the_cost_heat_map_shows_rays_per_sample() {
             .is_some(),
         "the heat map's scale in the status bar"
     );
+}
+
+#[test]
+fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    let slides: Vec<_> = raylab::app::lecture_slides().collect();
+    let shows = |h: &mut Harness<'static, RaylabApp>, i: usize| {
+        step_until(h, slides[i].0, |a| {
+            a.slide() == Some(i)
+                && a.scene().source.reference() == format!("builtin:{}", slides[i].1)
+                && a.caption().is_some()
+        });
+    };
+    h.key_press(egui::Key::F5);
+    h.step();
+    assert!(h.state().presenting(), "F5 enters presentation mode");
+    // The toolbar and the controls are hidden.
+    assert!(h.query_by_label("Instruments").is_none());
+    assert!(h.query_by_role_and_label(Role::Slider, "IOR").is_none());
+    h.key_press(egui::Key::PageDown);
+    shows(&mut h, 0);
+    h.key_press(egui::Key::ArrowRight);
+    shows(&mut h, 1);
+    h.key_press(egui::Key::PageUp);
+    shows(&mut h, 0);
+    // Before the first slide there is none: Page Up stays.
+    h.key_press(egui::Key::ArrowLeft);
+    h.run_steps(3);
+    assert_eq!(h.state().slide(), Some(0));
+    // The caption is on screen, in the strip below the image.
+    let caption = h.state().caption().unwrap().to_string();
+    h.get_by_label(&caption);
+    h.key_press(egui::Key::Escape);
+    h.step();
+    assert!(!h.state().presenting(), "Esc leaves");
+    h.get_by_label("Instruments");
+}
+
+#[test]
+fn f1_lists_every_shortcut_and_esc_closes_the_list() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.key_press(egui::Key::F1);
+    h.run_steps(2);
+    assert!(h.state().help_open());
+    h.get_by_label("Keyboard shortcuts");
+    h.get_by_label("F5 or F11");
+    h.get_by_label("Page Down, Right or Down arrow");
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    assert!(!h.state().help_open());
+    assert!(h.query_by_label("F5 or F11").is_none());
 }

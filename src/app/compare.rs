@@ -188,10 +188,16 @@ impl RaylabApp {
         painter.circle_filled(egui::pos2(x, image.center().y), 7.0, Color32::WHITE);
         let (a, b) = c.kind.labels();
         let b_spp = c.side.frame().map_or(0, |f| f.progress.spp);
+        // In a hall the labels grow with the caption.
+        let size = if self.hall.presenting {
+            super::present::caption_size(ui.ctx().content_rect().height()) * 0.7
+        } else {
+            15.0
+        };
         // Labels on dark plates: legible over a white sky too.
         let label = |text: String, anchor: egui::Pos2, align: egui::Align2| {
             let galley =
-                painter.layout_no_wrap(text, egui::FontId::proportional(15.0), Color32::WHITE);
+                painter.layout_no_wrap(text, egui::FontId::proportional(size), Color32::WHITE);
             let rect = align.anchor_size(anchor, galley.size());
             painter.rect_filled(rect.expand(5.0), 4.0, Color32::from_black_alpha(170));
             painter.galley(rect.min, galley, Color32::WHITE);

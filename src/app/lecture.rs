@@ -140,6 +140,8 @@ pub(crate) struct Lecture {
     // Its parameters wait for its scene to load.
     pending: Option<&'static Slide>,
     caption: Option<&'static str>,
+    // The slide last asked for (its number in `LECTURE`), for next and previous.
+    current: Option<usize>,
 }
 
 impl Lecture {
@@ -151,7 +153,16 @@ impl Lecture {
             .take()
             .filter(|s| scene.source.reference() == s.reference());
         self.caption = slide.map(|s| s.caption);
+        if slide.is_none() {
+            // Another scene opened: no slide is shown.
+            self.current = None;
+        }
         slide
+    }
+
+    /// The number (in the lecture) of the slide last asked for, while it is shown.
+    pub(crate) fn current(&self) -> Option<usize> {
+        self.current
     }
 
     /// The caption shown, if any.
@@ -163,13 +174,20 @@ impl Lecture {
 impl RaylabApp {
     /// The Lecture menu's entries.
     pub(super) fn lecture_menu_ui(&mut self, ui: &mut egui::Ui) {
-        for slide in LECTURE {
-            if ui.button(slide.title).clicked() {
-                self.lecture.pending = Some(slide);
-                self.open_scene(&slide.reference());
+        for (i, slide) in LECTURE.iter().enumerate() {
+            if ui.button(format!("{}. {}", i + 1, slide.title)).clicked() {
+                self.go_to_slide(i);
                 ui.close();
             }
         }
+    }
+
+    /// Opens slide `i` of the lecture: its scene, then its parameters and caption.
+    pub(super) fn go_to_slide(&mut self, i: usize) {
+        let slide = &LECTURE[i];
+        self.lecture.pending = Some(slide);
+        self.lecture.current = Some(i);
+        self.open_scene(&slide.reference());
     }
 }
 

@@ -15,6 +15,7 @@ mod instruments;
 mod lecture;
 mod loader;
 mod persist;
+mod present;
 mod sheet;
 mod side;
 mod snapshot;
@@ -34,6 +35,7 @@ use files::FileDialog;
 use instruments::Instruments;
 use lecture::Lecture;
 use loader::Loader;
+use present::Hall;
 use sheet::SheetForm;
 use side::{Side, Told};
 use std::path::PathBuf;
@@ -101,6 +103,14 @@ pub struct RaylabApp {
     // The last scene error, shown above the image.
     error: Option<String>,
     close_at: Option<Instant>,
+    hall: Hall,
+    // egui's zoom factor (the UI scale), remembered between runs.
+    ui_scale: f32,
+}
+
+/// The lecture's slides in order: each one's title and built-in scene.
+pub fn lecture_slides() -> impl Iterator<Item = (&'static str, &'static str)> {
+    lecture::LECTURE.iter().map(|s| (s.title, s.scene))
 }
 
 /// Opens the previewer window and runs it until it is closed.
@@ -139,6 +149,10 @@ impl RaylabApp {
     /// Builds the app: opens the scene (or the remembered one), starts the engine.
     pub fn new(cc: &eframe::CreationContext<'_>, options: AppOptions) -> Result<Self, EngineError> {
         let remembered = options.persist.then(|| persist::load(cc)).flatten();
+        let ui_scale = remembered
+            .as_ref()
+            .map_or(1.0, |r| r.ui_scale.clamp(0.5, 3.0));
+        cc.egui_ctx.set_zoom_factor(ui_scale);
         let mut error = None;
         let wanted = options
             .scene
@@ -203,6 +217,8 @@ impl RaylabApp {
             dialog: None,
             toasts: Toasts::default(),
             error,
+            hall: Hall::default(),
+            ui_scale,
         })
     }
 
@@ -239,6 +255,21 @@ impl RaylabApp {
     /// The inspected ray tree, if a pixel was clicked in inspect mode.
     pub fn inspected_tree(&self) -> Option<&RayTree> {
         self.instruments.tree()
+    }
+
+    /// Whether presentation mode is on.
+    pub fn presenting(&self) -> bool {
+        self.hall.presenting
+    }
+
+    /// The number (from 0, in the Lecture menu's order) of the slide shown, if any.
+    pub fn slide(&self) -> Option<usize> {
+        self.lecture.current()
+    }
+
+    /// Whether the help overlay is open.
+    pub fn help_open(&self) -> bool {
+        self.hall.help
     }
 
     /// Side B's parameters and its newest frame, while the A/B view is on.
@@ -337,6 +368,18 @@ impl eframe::App for RaylabApp {
         let ctx = ui.ctx().clone();
         let before = self.settings.clone();
         self.shortcuts(&ctx);
+        self.hall_keys(&ctx);
+        self.ui_scale = ctx.zoom_factor();
+        if self.hall.presenting {
+            self.presentation_ui(ui);
+            self.toasts.ui(&ctx);
+            self.instruments_ui(&ctx);
+            self.help_ui(&ctx);
+            if self.settings != before {
+                ctx.request_repaint();
+            }
+            return;
+        }
         Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
         Panel::bottom("status").show(ui, |ui| self.status_ui(ui));
         Panel::left("controls")
@@ -363,6 +406,7 @@ impl eframe::App for RaylabApp {
         self.toasts.ui(&ctx);
         self.instruments_ui(&ctx);
         self.sheet_ui(&ctx);
+        self.help_ui(&ctx);
         // What the controls changed reaches the engines in the next logic(): at once.
         if self.settings != before {
             ctx.request_repaint();
@@ -372,7 +416,7 @@ impl eframe::App for RaylabApp {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         if self.options.persist {
             let s = &self.settings;
-            persist::save(storage, &self.scene, s);
+            persist::save(storage, &self.scene, s, self.ui_scale);
         }
     }
 }

@@ -16,6 +16,7 @@ pub(super) struct Persisted {
     pub(super) camera: Option<Camera>,
     pub(super) resolution: f32,
     pub(super) unlimited: bool,
+    pub(super) ui_scale: f32,
 }
 
 impl Default for Persisted {
@@ -26,6 +27,7 @@ impl Default for Persisted {
             camera: None,
             resolution: 1.0,
             unlimited: false,
+            ui_scale: 1.0,
         }
     }
 }
@@ -37,14 +39,20 @@ pub(super) fn load(cc: &eframe::CreationContext<'_>) -> Option<Persisted> {
     cc.storage.and_then(|s| eframe::get_value(s, STORAGE_KEY))
 }
 
-/// Remembers `scene` and `settings` for the next run.
-pub(super) fn save(storage: &mut dyn eframe::Storage, scene: &Scene, settings: &Settings) {
+/// Remembers `scene`, `settings` and the UI scale for the next run.
+pub(super) fn save(
+    storage: &mut dyn eframe::Storage,
+    scene: &Scene,
+    settings: &Settings,
+    ui_scale: f32,
+) {
     let state = Persisted {
         scene: scene.source.reference(),
         params: settings.params.clone(),
         camera: Some(settings.camera.clone()),
         resolution: settings.resolution,
         unlimited: settings.unlimited,
+        ui_scale,
     };
     eframe::set_value(storage, STORAGE_KEY, &state);
 }

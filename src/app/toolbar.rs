@@ -75,6 +75,7 @@ impl RaylabApp {
             ui.separator();
             ui.menu_button("Instruments", |ui| self.instruments_menu_ui(ui));
             ui.menu_button("Lecture", |ui| self.lecture_menu_ui(ui));
+            ui.menu_button("View", |ui| self.view_menu_ui(ui));
         });
     }
 

@@ -160,7 +160,8 @@ impl RaylabApp {
                 &i.tree,
             );
         }
-        if let Some(caption) = self.lecture.caption() {
+        // Presentation mode shows the caption in a strip of its own.
+        if let Some(caption) = self.lecture.caption().filter(|_| !self.hall.presenting) {
             lecture::caption_ui(ui, ui.min_rect(), caption);
         }
         for event in events {

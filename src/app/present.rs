@@ -1,0 +1,220 @@
+//! The lecture hall: presentation mode (the image alone, fullscreen, the slide's caption
+//! large under it, the keys a presentation clicker sends to step through the slides), the
+//! UI scale with a projector preset, and the help overlay listing every shortcut.
+
+use super::RaylabApp;
+use super::lecture::LECTURE;
+use egui::{Color32, Key, RichText};
+
+/// Every keyboard shortcut, as the help overlay lists it: the keys, and what they do.
+pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
+    (
+        "F5 or F11",
+        "presentation mode: the image fullscreen, panels hidden, caption large",
+    ),
+    (
+        "Esc",
+        "leave presentation mode (or close the shortcut list)",
+    ),
+    (
+        "Page Down, Right or Down arrow",
+        "next slide (presentation mode)",
+    ),
+    (
+        "Page Up, Left or Up arrow",
+        "previous slide (presentation mode)",
+    ),
+    ("Space", "pause or resume refining"),
+    ("R", "restart refining from the first sample"),
+    ("F", "fit the image to the window"),
+    ("1", "one image pixel per screen pixel"),
+    ("Ctrl+S", "save a snapshot (image and parameters)"),
+    ("Ctrl+O", "open a scene file"),
+    (
+        "Ctrl+= / Ctrl+- / Ctrl+0",
+        "UI scale up, down, back to 100 %",
+    ),
+    ("F1 or ?", "list these shortcuts"),
+];
+
+/// UI scales offered in the View menu: a name and egui's zoom factor.
+pub(crate) const UI_SCALES: &[(&str, f32)] = &[
+    ("laptop (100 %)", 1.0),
+    ("desk (125 %)", 1.25),
+    ("projector (175 %)", 1.75),
+    ("hall (225 %)", 2.25),
+];
+
+/// The caption's text height in presentation mode, for an image area `height` points
+/// tall: a line is 1/26 of the screen, about 41 px at 1080p and 28 px at 720p, readable
+/// from the back of a hall (never under 20).
+pub(crate) fn caption_size(height: f32) -> f32 {
+    (height / 26.0).max(20.0)
+}
+
+/// What the hall adds to the window's state.
+#[derive(Debug, Default)]
+pub(crate) struct Hall {
+    /// Presentation mode is on.
+    pub presenting: bool,
+    /// The help overlay is open.
+    pub help: bool,
+}
+
+impl RaylabApp {
+    /// The keys of presentation mode and help, read before the panels are drawn.
+    pub(super) fn hall_keys(&mut self, ctx: &egui::Context) {
+        let pressed = |keys: &[Key]| ctx.input(|i| keys.iter().any(|k| i.key_pressed(*k)));
+        let typed_question = ctx.input(|i| {
+            i.events
+                .iter()
+                .any(|e| matches!(e, egui::Event::Text(t) if t == "?"))
+        });
+        if pressed(&[Key::F5, Key::F11]) {
+            self.set_presenting(ctx, !self.hall.presenting);
+        }
+        if pressed(&[Key::F1]) || (typed_question && !ctx.egui_wants_keyboard_input()) {
+            self.hall.help = !self.hall.help;
+        }
+        if pressed(&[Key::Escape]) {
+            if self.hall.help {
+                self.hall.help = false;
+            } else if self.hall.presenting {
+                self.set_presenting(ctx, false);
+            }
+        }
+        if self.hall.presenting {
+            if pressed(&[Key::PageDown, Key::ArrowRight, Key::ArrowDown]) {
+                self.step_slide(1);
+            }
+            if pressed(&[Key::PageUp, Key::ArrowLeft, Key::ArrowUp]) {
+                self.step_slide(-1);
+            }
+        }
+    }
+
+    /// Enters or leaves presentation mode (fullscreen, panels hidden, image fitted).
+    pub(super) fn set_presenting(&mut self, ctx: &egui::Context, on: bool) {
+        self.hall.presenting = on;
+        ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(on));
+        self.view.fit();
+    }
+
+    /// The slide `by` away from the one shown (the first, with none shown yet), within
+    /// the lecture.
+    fn step_slide(&mut self, by: i32) {
+        let next = match self.lecture.current() {
+            Some(i) => (i as i32 + by).clamp(0, LECTURE.len() as i32 - 1) as usize,
+            None => 0,
+        };
+        if Some(next) != self.lecture.current() {
+            self.go_to_slide(next);
+        }
+    }
+
+    /// Presentation mode's view: the caption in a strip of its own along the bottom (so
+    /// it covers nothing), the slide's number and title small above it, the image above.
+    pub(super) fn presentation_ui(&mut self, ui: &mut egui::Ui) {
+        let height = ui.ctx().content_rect().height();
+        let caption = self.lecture.caption();
+        let title = self.lecture.current().map(|i| (i, LECTURE[i].title));
+        egui::Panel::bottom("caption")
+            .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
+            .show_separator_line(false)
+            .show(ui, |ui| {
+                if let Some((i, title)) = title {
+                    ui.label(
+                        RichText::new(format!("{} / {}  {title}", i + 1, LECTURE.len()))
+                            .size(caption_size(height) * 0.6)
+                            .color(Color32::GRAY),
+                    );
+                }
+                let text = caption.unwrap_or("Page Down: the first slide. Esc: leave.");
+                ui.label(
+                    RichText::new(text)
+                        .size(caption_size(height))
+                        .color(Color32::WHITE),
+                );
+            });
+        egui::CentralPanel::default()
+            .frame(egui::Frame::new().fill(Color32::BLACK))
+            .show(ui, |ui| self.image_panel_ui(ui));
+    }
+
+    /// The help overlay: every shortcut, centred over the window.
+    pub(super) fn help_ui(&mut self, ctx: &egui::Context) {
+        if !self.hall.help {
+            return;
+        }
+        let mut open = true;
+        egui::Window::new("Keyboard shortcuts")
+            .open(&mut open)
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+            .show(ctx, |ui| {
+                egui::Grid::new("shortcuts")
+                    .num_columns(2)
+                    .spacing([24.0, 6.0])
+                    .show(ui, |ui| {
+                        for (keys, what) in SHORTCUTS {
+                            ui.label(RichText::new(*keys).strong());
+                            ui.label(*what);
+                            ui.end_row();
+                        }
+                    });
+            });
+        self.hall.help &= open;
+    }
+
+    /// The View menu: presentation mode, the UI scale, help.
+    pub(super) fn view_menu_ui(&mut self, ui: &mut egui::Ui) {
+        if ui.button("Presentation mode (F5)").clicked() {
+            self.set_presenting(ui.ctx(), true);
+            ui.close();
+        }
+        ui.separator();
+        ui.label("UI scale");
+        let zoom = ui.ctx().zoom_factor();
+        for (name, scale) in UI_SCALES {
+            if ui
+                .radio((zoom - scale).abs() < 0.01, *name)
+                .on_hover_text(
+                    "Text and controls this much larger (remembered). Ctrl+= and Ctrl+- step it.",
+                )
+                .clicked()
+            {
+                ui.ctx().set_zoom_factor(*scale);
+            }
+        }
+        ui.separator();
+        if ui.button("Keyboard shortcuts (F1)").clicked() {
+            self.hall.help = true;
+            ui.close();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn readme_lists_every_shortcut_as_the_help_does() {
+        let readme = include_str!("../../README.md");
+        for (keys, _) in SHORTCUTS {
+            assert!(
+                readme.contains(&format!("| {keys} |")),
+                "README's key table lacks `{keys}`"
+            );
+        }
+    }
+
+    #[test]
+    fn the_caption_is_legible_in_a_hall() {
+        // 1/26 of the screen: 41.5 px at 1080p, 27.7 at 720p, never under 20.
+        assert!((caption_size(1080.0) - 41.54).abs() < 0.01);
+        assert!((caption_size(720.0) - 27.69).abs() < 0.01);
+        assert_eq!(caption_size(300.0), 20.0);
+    }
+}
