@@ -3,7 +3,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use raylab::app::{AppOptions, RaylabApp};
 use raylab::optics::FresnelMode;
 use raylab::render::{Sidecar, sidecar_path};
@@ -553,4 +553,41 @@ fn f1_lists_every_shortcut_and_esc_closes_the_list() {
     h.run_steps(2);
     assert!(!h.state().help_open());
     assert!(h.query_by_label("F5 or F11").is_none());
+}
+
+#[test]
+fn the_status_bar_reads_out_the_pixel_under_the_cursor_and_the_zoom() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    step_until(&mut h, "a full pass", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    // The zoom level of the fitted image.
+    h.query_all_by_label_contains("zoom ")
+        .next()
+        .expect("the zoom level is shown");
+    // Hover over the middle of the window's central area: the image is fitted there.
+    h.hover_at(egui::pos2(800.0, 400.0));
+    h.run_steps(2);
+    let readout = h
+        .query_all_by_label_contains(" linear ")
+        .next()
+        .expect("the pixel readout")
+        .accesskit_node()
+        .value()
+        .unwrap_or_default();
+    // "(x, y) linear r g b · sRGB R G B", and x, y inside the image.
+    let numbers: Vec<f32> = readout
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter(|t| !t.is_empty())
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    assert_eq!(numbers.len(), 8, "{readout}");
+    let frame = h.state().latest_frame().unwrap();
+    assert!(numbers[0] < frame.width as f32 && numbers[1] < frame.height as f32);
+    let pixel = frame.pixels[(numbers[1] as u32 * frame.width + numbers[0] as u32) as usize];
+    assert!(
+        (numbers[2] - pixel.x).abs() < 1e-4,
+        "{readout} against {pixel}"
+    );
 }

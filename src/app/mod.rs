@@ -349,9 +349,10 @@ impl eframe::App for RaylabApp {
             .then(|| self.cost_scale())
             .flatten();
         let exposure = self.settings.params.exposure;
-        self.main.upload(ctx, exposure, cost);
+        let sharp = self.view.sharp();
+        self.main.upload(ctx, exposure, cost, sharp);
         if let Some(c) = &mut self.compare {
-            c.side.upload(ctx, exposure, cost);
+            c.side.upload(ctx, exposure, cost, sharp);
         }
         self.refresh_inspection();
         // Nothing here repaints by itself: an idle window sleeps until the engines, the

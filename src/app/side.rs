@@ -18,6 +18,10 @@ pub(crate) struct Told {
     pub(crate) unlimited: bool,
 }
 
+/// What a texture shows: the exposure, the cost heat map's scale (if shown), and whether
+/// pixels are drawn as squares.
+type Shown = (f32, Option<(f32, f32)>, bool);
+
 /// One engine and its image.
 pub(crate) struct Side {
     engine: Engine,
@@ -25,10 +29,10 @@ pub(crate) struct Side {
     told: Told,
     frame: Option<Frame>,
     texture: Option<egui::TextureHandle>,
-    // The texture's name, and what it shows: the exposure, or the cost map's scale;
-    // `None` after a new frame arrived.
+    // The texture's name, and what it shows: the exposure, or the cost map's scale, and
+    // whether pixels are sharp squares; `None` after a new frame arrived.
     name: &'static str,
-    shown: Option<(f32, Option<(f32, f32)>)>,
+    shown: Option<Shown>,
     // The newest frame's fewest and most rays per sample, found once when it arrived.
     cost_range: Option<(f32, f32)>,
     paused: bool,
@@ -106,11 +110,18 @@ impl Side {
     }
 
     /// Brings the texture up to date with the newest frame, shown at `exposure`, or as the
-    /// cost heat map on the scale `cost` (rays per sample from black to yellow).
-    pub(crate) fn upload(&mut self, ctx: &egui::Context, exposure: f32, cost: Option<(f32, f32)>) {
+    /// cost heat map on the scale `cost` (rays per sample from black to yellow); its pixels
+    /// drawn as squares if `sharp`, else filtered smoothly.
+    pub(crate) fn upload(
+        &mut self,
+        ctx: &egui::Context,
+        exposure: f32,
+        cost: Option<(f32, f32)>,
+        sharp: bool,
+    ) {
         let Some(frame) = &self.frame else { return };
         let cost = cost.filter(|_| !frame.cost.is_empty());
-        if self.shown == Some((exposure, cost)) {
+        if self.shown == Some((exposure, cost, sharp)) {
             return;
         }
         let rgba = match cost {
@@ -119,12 +130,12 @@ impl Side {
         };
         let (w, h) = frame.grid_size();
         let image = egui::ColorImage::from_rgba_unmultiplied([w as usize, h as usize], &rgba);
-        // A preview's blocks are stretched smoothly (bilinear); a pass's pixels are sharp
-        // when zoomed in for pixel-peeping, smooth when fitted smaller.
-        let magnification = if frame.is_preview() {
-            egui::TextureFilter::Linear
-        } else {
+        // A preview's blocks are stretched smoothly (bilinear); a pass's pixels too, unless
+        // the view shows them as squares (a whole zoom of 2 or more, `ViewState::sharp`).
+        let magnification = if sharp && !frame.is_preview() {
             egui::TextureFilter::Nearest
+        } else {
+            egui::TextureFilter::Linear
         };
         let options = egui::TextureOptions {
             magnification,
@@ -135,7 +146,7 @@ impl Side {
             Some(t) => t.set(image, options),
             None => self.texture = Some(ctx.load_texture(self.name, image, options)),
         }
-        self.shown = Some((exposure, cost));
+        self.shown = Some((exposure, cost, sharp));
     }
 
     /// Pauses a running engine or resumes a paused one.

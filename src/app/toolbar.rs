@@ -152,6 +152,14 @@ impl RaylabApp {
             }
             ui.separator();
             ui.label(format!("{}×{}", f.width, f.height));
+            ui.separator();
+            ui.label(format!("zoom {:.0} %", self.view.scale * 100.0))
+                .on_hover_text("Screen pixels per image pixel. Pixels are sharp squares at whole zooms of 2 or more (wheel to zoom, 1 for 1:1, F to fit), smoothly filtered otherwise.");
+            if let Some(text) = pixel_readout(f, self.view.hover, self.settings.params.exposure) {
+                ui.separator();
+                ui.label(RichText::new(text).monospace())
+                    .on_hover_text("The pixel under the cursor: its mean linear radiance, and the sRGB value shown (after the exposure).");
+            }
         });
     }
 
@@ -270,4 +278,26 @@ fn scene_files(dir: &Path) -> Vec<PathBuf> {
         .unwrap_or_default();
     files.sort();
     files
+}
+
+/// The pixel of `frame` at image position `hover` (0..1 across and down): its coordinates,
+/// linear radiance and displayed sRGB value at `exposure`. None for a preview (its values
+/// are blocks, not pixels) or off the image.
+pub(crate) fn pixel_readout(
+    frame: &crate::render::Frame,
+    hover: Option<egui::Vec2>,
+    exposure: f32,
+) -> Option<String> {
+    let h = hover?;
+    if frame.is_preview() {
+        return None;
+    }
+    let x = ((h.x * frame.width as f32) as u32).min(frame.width - 1);
+    let y = ((h.y * frame.height as f32) as u32).min(frame.height - 1);
+    let c = *frame.pixels.get((y * frame.width + x) as usize)?;
+    let shown = (c * exposure.exp2()).to_array().map(crate::render::srgb8);
+    Some(format!(
+        "({x}, {y}) linear {:.4} {:.4} {:.4} · sRGB {} {} {}",
+        c.x, c.y, c.z, shown[0], shown[1], shown[2]
+    ))
 }

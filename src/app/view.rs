@@ -15,12 +15,27 @@ pub(crate) struct ViewState {
     pub zoom: Option<f32>,
     /// The image point (in pixels) at the view's centre; `None` is the image's centre.
     pub center: Option<Vec2>,
+    /// Screen pixels per image pixel as last drawn (the zoom level shown).
+    pub scale: f32,
+    /// The image position under the cursor, (0, 0) top left to (1, 1) bottom right.
+    pub hover: Option<Vec2>,
 }
 
 impl ViewState {
     /// Fit the whole image into the view.
     pub fn fit(&mut self) {
-        *self = ViewState::default();
+        *self = ViewState {
+            scale: self.scale,
+            ..ViewState::default()
+        };
+    }
+
+    /// Whether image pixels are shown as sharp squares: only at a whole zoom of 2 or more,
+    /// for pixel-peeping. At any other scale they are filtered smoothly, so that a fitted
+    /// image shows no uneven stair steps (at ×1.67 nearest-neighbour doubles every third
+    /// pixel: the very artefact the antialiasing slide is about).
+    pub fn sharp(&self) -> bool {
+        self.scale >= 1.99 && (self.scale - self.scale.round()).abs() < 0.01
     }
 
     /// One image pixel per screen pixel.
@@ -60,6 +75,11 @@ pub(crate) fn image_ui(
     let to_image = |s: Pos2| center + (s - area.center()) / zoom;
     let rect = Rect::from_min_max(to_screen(Vec2::ZERO), to_screen(image));
 
+    view.scale = zoom * ui.ctx().pixels_per_point();
+    view.hover = response
+        .hover_pos()
+        .map(|pos| to_image(pos) / image)
+        .filter(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
     let painter = ui.painter_at(area);
     painter.rect_filled(area, 0.0, Color32::from_gray(24));
     match texture {
@@ -225,6 +245,18 @@ pub(crate) fn dolly(camera: &mut Camera, amount: f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pixels_are_squares_only_at_whole_zooms_of_two_or_more() {
+        let at = |scale| ViewState {
+            scale,
+            ..ViewState::default()
+        };
+        assert!(!at(1.0).sharp(), "1:1 needs no squares");
+        assert!(!at(1.67).sharp(), "a fitted ×1.67 is filtered");
+        assert!(!at(2.5).sharp());
+        assert!(at(2.0).sharp() && at(3.0).sharp() && at(8.0).sharp());
+    }
 
     #[test]
     fn orbit_keeps_the_distance_and_dolly_changes_it() {
