@@ -591,3 +591,41 @@ fn the_status_bar_reads_out_the_pixel_under_the_cursor_and_the_zoom() {
         "{readout} against {pixel}"
     );
 }
+
+#[test]
+fn ctrl_z_undoes_a_parameter_change_and_ctrl_shift_z_redoes_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.run_steps(2);
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, Some(2.0));
+    h.get_by_label("Water").click();
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, Some(1.33));
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, Some(2.0), "undo: back to 2.0");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, None, "undo again: the scene's own");
+    assert_eq!(
+        h.state().engine().params().ior,
+        None,
+        "and the engine follows"
+    );
+    h.key_press_modifiers(
+        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+        egui::Key::Z,
+    );
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, Some(2.0), "redo");
+    // The toolbar's buttons do the same.
+    h.get_by_label("Undo").click();
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, None);
+    h.get_by_label("Redo").click();
+    h.run_steps(3);
+    assert_eq!(h.state().params().ior, Some(2.0));
+}

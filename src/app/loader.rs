@@ -160,6 +160,7 @@ impl RaylabApp {
             let mut slide = None;
             match loaded.purpose {
                 LoadPurpose::Open => {
+                    self.history.clear();
                     s.params = scene.params.clone();
                     s.camera = scene.camera.clone();
                     slide = self.lecture.arrived(&scene);

@@ -11,6 +11,7 @@
 mod compare;
 mod controls;
 mod files;
+mod history;
 mod instruments;
 mod lecture;
 mod loader;
@@ -32,6 +33,7 @@ use compare::Compare;
 use controls::{Controls, controls_ui};
 use egui::{CentralPanel, Panel};
 use files::FileDialog;
+use history::History;
 use instruments::Instruments;
 use lecture::Lecture;
 use loader::Loader;
@@ -106,6 +108,7 @@ pub struct RaylabApp {
     hall: Hall,
     // egui's zoom factor (the UI scale), remembered between runs.
     ui_scale: f32,
+    history: History,
 }
 
 /// The lecture's slides in order: each one's title and built-in scene.
@@ -219,6 +222,7 @@ impl RaylabApp {
             error,
             hall: Hall::default(),
             ui_scale,
+            history: History::default(),
         })
     }
 
@@ -313,6 +317,27 @@ impl RaylabApp {
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
     }
 
+    /// Undoes the last parameter change (`redo` false) or redoes the last undone.
+    fn step_history(&mut self, redo: bool) {
+        let current = &self.settings.params;
+        let to = if redo {
+            self.history.redo(current)
+        } else {
+            self.history.undo(current)
+        };
+        match to {
+            Some(p) => {
+                self.settings.params = p;
+                self.keep_side_a();
+            }
+            None => self.toasts.info(if redo {
+                "Nothing to redo"
+            } else {
+                "Nothing to undo"
+            }),
+        }
+    }
+
     /// Parameters and camera back to the scene's.
     fn reset_to_defaults(&mut self) {
         self.settings.params = self.scene.params.clone();
@@ -371,6 +396,8 @@ impl eframe::App for RaylabApp {
         self.shortcuts(&ctx);
         self.hall_keys(&ctx);
         self.ui_scale = ctx.zoom_factor();
+        let held = ctx.input(|i| i.pointer.any_down());
+        self.history.observe(&self.settings.params, held);
         if self.hall.presenting {
             self.presentation_ui(ui);
             self.toasts.ui(&ctx);

@@ -28,6 +28,8 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
     ("R", "restart refining from the first sample"),
     ("F", "fit the image to the window"),
     ("1", "one image pixel per screen pixel"),
+    ("Ctrl+Z", "undo the last parameter change"),
+    ("Ctrl+Shift+Z or Ctrl+Y", "redo the change last undone"),
     ("Ctrl+S", "save a snapshot (image and parameters)"),
     ("Ctrl+O", "open a scene file"),
     (

@@ -35,6 +35,21 @@ impl RaylabApp {
             {
                 self.main.restart();
             }
+            let (can_undo, can_redo) = self.history.can();
+            if ui
+                .add_enabled(can_undo, egui::Button::new("Undo"))
+                .on_hover_text("Undo the last parameter change (Ctrl+Z).")
+                .clicked()
+            {
+                self.step_history(false);
+            }
+            if ui
+                .add_enabled(can_redo, egui::Button::new("Redo"))
+                .on_hover_text("Redo the change last undone (Ctrl+Shift+Z or Ctrl+Y).")
+                .clicked()
+            {
+                self.step_history(true);
+            }
             if ui
                 .button("Reset")
                 .on_hover_text("Every parameter and the camera back to the scene's defaults.")
@@ -179,6 +194,20 @@ impl RaylabApp {
         }
         if ctx.egui_wants_keyboard_input() || self.dialog.is_some() {
             return;
+        }
+        // Ctrl+Shift+Z first: Ctrl+Z would match it too (extra Shift is allowed).
+        let (redo, undo) = ctx.input_mut(|i| {
+            let redo = i.consume_shortcut(&KeyboardShortcut::new(
+                Modifiers::COMMAND | Modifiers::SHIFT,
+                Key::Z,
+            )) || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
+            (
+                redo,
+                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Z)),
+            )
+        });
+        if undo || redo {
+            self.step_history(redo);
         }
         let (space, r, f, one) = ctx.input(|i| {
             let plain = i.modifiers.is_none();
