@@ -96,6 +96,9 @@ enum Command {
     /// Measure the progressive engine: latency from a parameter change to the first frame
     /// of the new generation, the time of a full-resolution 1-spp pass, and rays per second.
     Bench(BenchArgs),
+    /// List the lecture's slides: number, title, scene, and the two sides of those that
+    /// compare (render one with `raylab render --slide N`).
+    Lecture,
 }
 
 #[derive(clap::Args)]
@@ -202,6 +205,11 @@ struct RenderArgs {
     /// reproduce its image bit for bit. Other options override it.
     #[arg(long, value_name = "SIDECAR.json")]
     params: Option<PathBuf>,
+    /// Render slide N of the lecture (`raylab lecture` lists them) as the window shows it:
+    /// its scene and parameters; a slide that compares two things as its split image, side
+    /// A left and B right (no sidecar: no one set of parameters makes it).
+    #[arg(long, value_name = "N", conflicts_with_all = ["scene", "params"])]
+    slide: Option<usize>,
     /// No progress bar and no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -274,6 +282,15 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Fresnel(args)) => fresnel_command(&args),
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
+        Some(Command::Lecture) => {
+            for (i, (title, scene, sides)) in raylab::app::lecture_slides().enumerate() {
+                match sides {
+                    Some((a, b)) => say!("{:2}. {title} (scene {scene}; {a} | {b})", i + 1),
+                    None => say!("{:2}. {title} (scene {scene})", i + 1),
+                }
+            }
+            Ok(())
+        }
         None => window(cli.scene, cli.threads),
     }
 }
@@ -311,15 +328,24 @@ impl PassObserver for Progress {
 
 fn render_command(args: RenderArgs) -> Result<()> {
     let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
-    let scene_ref = match (&args.scene, &sidecar) {
-        (Some(s), _) => s.clone(),
-        (None, Some(sc)) => sc.scene.clone(),
-        (None, None) => BUILTIN_SCENES[0].name.to_string(),
-    };
-    let scene = Scene::load(&scene_ref)?;
-    let mut params = match &sidecar {
-        Some(sc) => sc.params.clone(),
-        None => scene.params.clone(),
+    let (scene, mut params, side_b) = match args.slide.map(raylab::app::slide_setup) {
+        Some(slide) => {
+            let s = slide?;
+            (s.scene, s.params, s.side_b)
+        }
+        None => {
+            let scene_ref = match (&args.scene, &sidecar) {
+                (Some(s), _) => s.clone(),
+                (None, Some(sc)) => sc.scene.clone(),
+                (None, None) => BUILTIN_SCENES[0].name.to_string(),
+            };
+            let scene = Scene::load(&scene_ref)?;
+            let params = match &sidecar {
+                Some(sc) => sc.params.clone(),
+                None => scene.params.clone(),
+            };
+            (scene, params, None)
+        }
     };
     let (mut width, mut height) = match &sidecar {
         Some(sc) => (sc.width, sc.height),
@@ -343,9 +369,12 @@ fn render_command(args: RenderArgs) -> Result<()> {
         params.seed = seed;
     }
     params.set_all(&args.set).context("--set")?;
+    let params_b = side_b.map(|b| b(&params));
     check_output(&args.output)?;
     let json = sidecar_path(&args.output);
-    Sidecar::check_target(&json, args.params.as_deref())?;
+    if params_b.is_none() {
+        Sidecar::check_target(&json, args.params.as_deref())?;
+    }
 
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0) as usize)
@@ -354,7 +383,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         .map_err(runtime)?;
     let show_progress = !args.quiet && std::io::stderr().is_terminal();
     let bar = if show_progress {
-        ProgressBar::new(height as u64)
+        ProgressBar::new(height as u64 * (1 + params_b.is_some() as u64))
     } else {
         ProgressBar::hidden()
     };
@@ -371,7 +400,14 @@ fn render_command(args: RenderArgs) -> Result<()> {
             let mut film = Film::new(width, height);
             let n = samples.unwrap_or(params.spp);
             let observer = Progress(bar.clone());
-            render_pass(&scene, &camera, &params, &mut film, n, &observer).map(|s| (film, s))
+            let mut stats = render_pass(&scene, &camera, &params, &mut film, n, &observer)?;
+            if let Some(b) = &params_b {
+                // The A/B view's split, at the window's starting divider: the middle.
+                let mut right = Film::new(width, height);
+                stats += render_pass(&scene, &camera, b, &mut right, b.spp, &observer)?;
+                film.split_with(&right, width / 2);
+            }
+            Ok::<_, raylab::render::Cancelled>((film, stats))
         })
         .map_err(runtime)?;
     let seconds = start.elapsed().as_secs_f64();
@@ -384,6 +420,16 @@ fn render_command(args: RenderArgs) -> Result<()> {
         ""
     };
     film.save(&args.output, params.exposure).map_err(runtime)?;
+    if params_b.is_some() {
+        if !args.quiet {
+            eprintln!(
+                "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
+                args.slide.unwrap_or(0),
+                args.output.display()
+            );
+        }
+        return Ok(());
+    }
     Sidecar {
         raylab_version: raylab::VERSION.to_string(),
         scene: Sidecar::scene_reference(&scene.source, &json),

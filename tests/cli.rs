@@ -228,9 +228,67 @@ fn scenes_lists_builtins_and_files_and_help_documents_everything() {
         "--threads",
         "--set",
         "--params",
+        "--slide",
     ] {
         assert!(help.contains(flag), "{flag} missing from render --help");
     }
+}
+
+#[test]
+fn lecture_lists_the_slides_and_render_slide_makes_the_windows_split() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raylab(&["lecture"], dir.path());
+    assert!(o.status.success());
+    let list = String::from_utf8_lossy(&o.stdout).into_owned();
+    let lines: Vec<&str> = list.lines().collect();
+    assert!(lines.len() >= 13, "{list}");
+    assert!(lines[0].trim_start().starts_with("1. "), "{list}");
+    let split = lines
+        .iter()
+        .position(|l| l.contains("What the ray tree misses"))
+        .expect("the A/B slide is listed")
+        + 1;
+    // The split slide: its left half is the lecture's tracer, its right half path tracing
+    // with photons, each exactly as rendered on its own.
+    let n = split.to_string();
+    let size = ["--size", "64x36", "--spp", "2", "-q"];
+    let run = |args: &[&str]| {
+        let o = raylab(&[args, &size[..]].concat(), dir.path());
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    };
+    run(&["render", "--slide", &n, "-o", "slide.png"]);
+    assert!(
+        !dir.path().join("slide.png.json").exists(),
+        "no sidecar for a split"
+    );
+    run(&["render", "default", "-o", "a.png"]);
+    run(&[
+        "render",
+        "default",
+        "--set",
+        "transport=photons",
+        "-o",
+        "b.png",
+    ]);
+    let img = |f: &str| image::open(dir.path().join(f)).unwrap().to_rgb8();
+    let (slide, a, b) = (img("slide.png"), img("a.png"), img("b.png"));
+    for y in 0..36 {
+        for x in 0..64 {
+            let want = if x < 32 {
+                a.get_pixel(x, y)
+            } else {
+                b.get_pixel(x, y)
+            };
+            assert_eq!(slide.get_pixel(x, y), want, "({x}, {y})");
+        }
+    }
+    assert_ne!(a, b, "the two sides differ");
+    // A slide that is not there is bad input, said once.
+    fails(
+        &["render", "--slide", "99", "-o", "x.png"],
+        dir.path(),
+        "there is no slide 99",
+    );
 }
 
 fn fresnel_rows(args: &[&str]) -> Vec<Vec<String>> {

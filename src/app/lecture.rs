@@ -4,7 +4,7 @@
 use super::RaylabApp;
 use super::compare::CompareKind;
 use crate::params::{ParamError, Params};
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneError};
 use egui::Color32;
 
 /// One slide of the lecture: a scene, parameters, and what to look at.
@@ -132,6 +132,63 @@ impl Slide {
         }
         Ok(p)
     }
+}
+
+/// Side B's parameters from side A's, in a slide that compares two things.
+pub type SideB = Box<dyn Fn(&Params) -> Params>;
+
+/// A slide set up without the window (`raylab render --slide N`).
+pub struct SlideSetup {
+    /// Its title.
+    pub title: &'static str,
+    /// Its scene.
+    pub scene: Scene,
+    /// The scene's parameters with the slide's on top (side A, where it compares).
+    pub params: Params,
+    /// Where the slide compares two things: side B's parameters from side A's.
+    pub side_b: Option<SideB>,
+    /// Its caption.
+    pub caption: &'static str,
+}
+
+/// A slide that cannot be set up.
+#[derive(Debug, thiserror::Error)]
+pub enum SlideError {
+    /// The number is not a slide's.
+    #[error(
+        "there is no slide {0}: the lecture's slides are 1 to {1} (`raylab lecture` lists them)"
+    )]
+    NoSuchSlide(usize, usize),
+    /// Its scene does not load.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// Its parameters are refused.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+}
+
+/// Slide `number` (from 1, as the Lecture menu numbers them), set up as the window shows it.
+pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
+    let slide = number
+        .checked_sub(1)
+        .and_then(|i| LECTURE.get(i))
+        .ok_or(SlideError::NoSuchSlide(number, LECTURE.len()))?;
+    let scene = Scene::load(&slide.reference())?;
+    let mut params = slide.apply(&scene.params)?;
+    if let Some(kind) = &slide.compare {
+        params = kind.side_a(&params);
+    }
+    let side_b = slide.compare.clone().map(|kind| {
+        let b: SideB = Box::new(move |a| kind.side_b(a));
+        b
+    });
+    Ok(SlideSetup {
+        title: slide.title,
+        scene,
+        params,
+        side_b,
+        caption: slide.caption,
+    })
 }
 
 /// The slide asked for and the caption shown.

@@ -226,6 +226,19 @@ impl Film {
         if self.spp == 0 { &[] } else { &self.pixels }
     }
 
+    /// The A/B view as one image: this film left of column `x0`, `other` (of the same
+    /// size) from there on.
+    pub fn split_with(&mut self, other: &Film, x0: u32) {
+        if (other.width, other.height) != (self.width, self.height) {
+            return;
+        }
+        let w = self.width as usize;
+        for (row, theirs) in self.pixels.chunks_mut(w).zip(other.pixels.chunks(w)) {
+            let x0 = (x0 as usize).min(w);
+            row[x0..].copy_from_slice(&theirs[x0..]);
+        }
+    }
+
     /// The mean radiance of pixel (x, y); black before any sample.
     pub fn pixel(&self, x: u32, y: u32) -> Color {
         self.accums()
