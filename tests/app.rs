@@ -500,19 +500,22 @@ fn the_cost_heat_map_shows_rays_per_sample() {
     );
 }
 
+/// Steps until slide `i` is shown: its scene loaded, its caption up.
+fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
+    let (title, scene, _) = raylab::app::lecture_slides().nth(i).unwrap();
+    step_until(h, title, |a| {
+        a.slide() == Some(i)
+            && a.scene().source.reference() == format!("builtin:{scene}")
+            && a.caption().is_some()
+    });
+}
+
 #[test]
 fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("default", dir.path());
     h.step();
-    let slides: Vec<_> = raylab::app::lecture_slides().collect();
-    let shows = |h: &mut Harness<'static, RaylabApp>, i: usize| {
-        step_until(h, slides[i].0, |a| {
-            a.slide() == Some(i)
-                && a.scene().source.reference() == format!("builtin:{}", slides[i].1)
-                && a.caption().is_some()
-        });
-    };
+    let shows = wait_for_slide;
     h.key_press(egui::Key::F5);
     h.step();
     assert!(h.state().presenting(), "F5 enters presentation mode");
@@ -628,4 +631,43 @@ fn ctrl_z_undoes_a_parameter_change_and_ctrl_shift_z_redoes_it() {
     h.get_by_label("Redo").click();
     h.run_steps(3);
     assert_eq!(h.state().params().ior, Some(2.0));
+}
+
+/// Whether `text` names the control `label` as the panel writes it (a whole word or
+/// words, same case: "raise Max depth", not "the ray tree").
+fn names(text: &str, label: &str) -> bool {
+    text.match_indices(label).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = text[i + label.len()..].chars().next();
+        !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+    })
+}
+
+#[test]
+fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    for (i, (title, _, sides)) in raylab::app::lecture_slides().enumerate() {
+        h.get_by_label("Lecture").click();
+        h.run_steps(3);
+        h.get_by_label(&format!("{}. {title}", i + 1)).click();
+        wait_for_slide(&mut h, i);
+        h.run_steps(3);
+        assert_eq!(
+            h.state().compare_side_b().is_some(),
+            sides.is_some(),
+            "{title}: the A/B view as the slide says"
+        );
+        let caption = h.state().caption().unwrap();
+        for spec in raylab::params::TABLE {
+            if names(&caption, spec.label) {
+                assert!(
+                    h.query_all_by_label_contains(spec.label).next().is_some(),
+                    "slide `{title}` names `{}`, which is not in view",
+                    spec.label
+                );
+            }
+        }
+    }
 }

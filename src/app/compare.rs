@@ -25,6 +25,9 @@ pub(crate) enum CompareKind {
     WhittedPath,
     /// The lecture's tracer against path tracing with photons (point lights' caustics).
     WhittedPhotons,
+    /// One sample at each pixel's centre against four jittered samples: supersampling
+    /// (a slide's, not a preset: the sides differ in their sample counts).
+    Supersampling,
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
@@ -56,6 +59,7 @@ impl CompareKind {
             CompareKind::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
             CompareKind::WhittedPath => ("A: Whitted", "B: path tracing"),
             CompareKind::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
+            CompareKind::Supersampling => ("A: 1 sample, centre", "B: 4 jittered"),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
@@ -71,6 +75,10 @@ impl CompareKind {
             CompareKind::WhittedTransmissive
             | CompareKind::WhittedPath
             | CompareKind::WhittedPhotons => p.transport = Transport::Whitted,
+            CompareKind::Supersampling => {
+                p.spp = 1;
+                p.pattern = Pattern::Regular;
+            }
             CompareKind::Frozen(_) => {}
         }
         p
@@ -88,6 +96,10 @@ impl CompareKind {
             CompareKind::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
             CompareKind::WhittedPath => p.transport = Transport::Path,
             CompareKind::WhittedPhotons => p.transport = Transport::Photons,
+            CompareKind::Supersampling => {
+                p.spp = 4;
+                p.pattern = Pattern::Jittered;
+            }
             CompareKind::Frozen(b) => return b.clone(),
         }
         p

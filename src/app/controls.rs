@@ -23,6 +23,18 @@ pub(crate) struct Controls<'a> {
     pub resolution: &'a mut f32,
     /// The scene, for its own values (shown while a parameter keeps them).
     pub scene: &'a Scene,
+    /// Sections to open now (a lecture slide just arrived that names their controls).
+    pub open: &'a [&'static str],
+}
+
+/// The panel section `name`, opened now if `open` asks for it.
+fn section(open: &[&str], name: &str) -> CollapsingHeader {
+    let header = CollapsingHeader::new(name);
+    if open.contains(&name) {
+        header.open(Some(true))
+    } else {
+        header
+    }
 }
 
 /// The IOR the `ior` parameter would replace: the first dielectric's that is not fixed.
@@ -107,7 +119,7 @@ fn tip(name: &str) -> String {
 /// Draws the side panel's sections.
 pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
     let p = &mut *c.params;
-    CollapsingHeader::new("Dielectrics and Fresnel").default_open(true).show(ui, |ui| {
+    section(c.open, "Dielectrics and Fresnel").default_open(true).show(ui, |ui| {
         let own = scene_ior(c.scene);
         let mut ior = p.ior.or(own).unwrap_or(1.5);
         let slider = ui
@@ -177,7 +189,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         }
     });
 
-    CollapsingHeader::new("Ray tree").default_open(true).show(ui, |ui| {
+    section(c.open, "Ray tree").default_open(true).show(ui, |ui| {
         ui.add(param_slider(&mut p.max_depth, "max_depth"))
             .on_hover_text(tip("max_depth"));
         // A path tracer follows one path and ends it by Russian roulette: the tree's
@@ -213,7 +225,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             .on_hover_text(tip("transport"));
     });
 
-    CollapsingHeader::new("Sampling and antialiasing")
+    section(c.open, "Sampling and antialiasing")
         .default_open(true)
         .show(ui, |ui| {
             ui.add(param_slider(&mut p.spp, "spp"))
@@ -237,14 +249,14 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             });
         });
 
-    CollapsingHeader::new("Soft shadows")
+    section(c.open, "Soft shadows")
         .default_open(false)
         .show(ui, |ui| {
             ui.add(param_slider(&mut p.light_size, "light_size"))
                 .on_hover_text(tip("light_size"));
         });
 
-    CollapsingHeader::new("Glossy reflection")
+    section(c.open, "Glossy reflection")
         .default_open(false)
         .show(ui, |ui| {
             let own = scene_exponent(c.scene);
@@ -265,7 +277,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             }
         });
 
-    CollapsingHeader::new("Camera and depth of field").default_open(true).show(ui, |ui| {
+    section(c.open, "Camera and depth of field").default_open(true).show(ui, |ui| {
         ui.add(Slider::new(&mut c.camera.fov_deg, 5.0..=120.0).text("Field of view °"))
             .on_hover_text("The vertical angle the image spans.");
         ui.add(param_slider(&mut p.aperture, "aperture"))
@@ -294,7 +306,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
     CollapsingHeader::new("Polariser")
         .default_open(false)
         // Kept open while a polariser is on, so the image never hides why it changed.
-        .open(p.polarizer.is_some().then_some(true))
+        .open((p.polarizer.is_some() || c.open.contains(&"Polariser")).then_some(true))
         .show(ui, |ui| {
             let mut on = p.polarizer.is_some();
             if ui
@@ -328,7 +340,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             ));
         });
 
-    CollapsingHeader::new("Motion blur")
+    section(c.open, "Motion blur")
         .default_open(false)
         .show(ui, |ui| {
             ui.add(param_slider(&mut p.shutter_open, "shutter_open"))
@@ -341,7 +353,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 .on_hover_text(tip("shutter"));
         });
 
-    CollapsingHeader::new("Display").default_open(true).show(ui, |ui| {
+    section(c.open, "Display").default_open(true).show(ui, |ui| {
         ui.add(param_slider(&mut p.exposure, "exposure"))
             .on_hover_text(tip("exposure"));
         ComboBox::from_label("Resolution")

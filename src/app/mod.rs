@@ -19,6 +19,7 @@ mod persist;
 mod present;
 mod sheet;
 mod side;
+mod slides;
 mod snapshot;
 mod toasts;
 mod toolbar;
@@ -299,9 +300,9 @@ impl RaylabApp {
         self.compare.as_ref().is_some_and(|c| c.side.settled())
     }
 
-    /// The caption of the lecture slide shown, if any.
-    pub fn caption(&self) -> Option<&str> {
-        self.lecture.caption()
+    /// The caption of the lecture slide shown, if any, as it reads now.
+    pub fn caption(&self) -> Option<String> {
+        self.lecture.caption(&self.settings.params)
     }
 
     /// Whether a scene is loading.
@@ -427,6 +428,7 @@ impl eframe::App for RaylabApp {
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     let s = &mut self.settings;
+                    let open = self.lecture.take_open();
                     controls_ui(
                         ui,
                         &mut Controls {
@@ -436,6 +438,7 @@ impl eframe::App for RaylabApp {
                             click_to_focus: &mut self.instruments.click_to_focus,
                             resolution: &mut s.resolution,
                             scene: &self.scene,
+                            open,
                         },
                     );
                 });

@@ -118,7 +118,7 @@ impl RaylabApp {
     /// it covers nothing), the slide's number and title small above it, the image above.
     pub(super) fn presentation_ui(&mut self, ui: &mut egui::Ui) {
         let height = ui.ctx().content_rect().height();
-        let caption = self.lecture.caption();
+        let caption = self.caption();
         let title = self.lecture.current().map(|i| (i, LECTURE[i].title));
         egui::Panel::bottom("caption")
             .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
@@ -131,7 +131,8 @@ impl RaylabApp {
                             .color(Color32::GRAY),
                     );
                 }
-                let text = caption.unwrap_or("Page Down: the first slide. Esc: leave.");
+                let text =
+                    caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
                 ui.label(
                     RichText::new(text)
                         .size(caption_size(height))

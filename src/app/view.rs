@@ -181,8 +181,8 @@ impl RaylabApp {
             );
         }
         // Presentation mode shows the caption in a strip of its own.
-        if let Some(caption) = self.lecture.caption().filter(|_| !self.hall.presenting) {
-            lecture::caption_ui(ui, ui.min_rect(), caption);
+        if let Some(caption) = self.caption().filter(|_| !self.hall.presenting) {
+            lecture::caption_ui(ui, ui.min_rect(), &caption);
         }
         for event in events {
             match event {
