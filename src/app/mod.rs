@@ -320,9 +320,13 @@ impl RaylabApp {
         }
     }
 
-    /// The cost heat map's scale: the smallest and largest rays per sample over both sides,
-    /// so that the two sides of an A/B view are coloured alike.
+    /// The cost heat map's scale: 0 to the chosen top, or (fitting each image) the
+    /// smallest and largest rays per sample over both sides, so that the two sides of an
+    /// A/B view are coloured alike.
     fn cost_scale(&self) -> Option<(f32, f32)> {
+        if let Some(top) = self.instruments.cost_top {
+            return Some((0.0, top));
+        }
         std::iter::once(self.main.cost_range())
             .chain(self.compare.as_ref().map(|c| c.side.cost_range()))
             .flatten()

@@ -163,7 +163,8 @@ impl RaylabApp {
             }
             if let Some((lo, hi)) = self.instruments.show_cost.then(|| self.cost_scale()).flatten() {
                 ui.separator();
-                ui.label(format!("cost: {lo:.1} (black) to {hi:.1} (yellow) rays per sample"));
+                ui.label(format!("cost {lo:.0}–{hi:.0} rays/sample"))
+                    .on_hover_text("The heat map's scale: black at the first, pale yellow at the second (Instruments > Heat map).");
             }
             ui.separator();
             ui.label(format!("{}×{}", f.width, f.height));
@@ -326,7 +327,7 @@ pub(crate) fn pixel_readout(
     let c = *frame.pixels.get((y * frame.width + x) as usize)?;
     let shown = (c * exposure.exp2()).to_array().map(crate::render::srgb8);
     Some(format!(
-        "({x}, {y}) linear {:.4} {:.4} {:.4} · sRGB {} {} {}",
+        "({x}, {y}) lin {:.3} {:.3} {:.3} · sRGB {} {} {}",
         c.x, c.y, c.z, shown[0], shown[1], shown[2]
     ))
 }

@@ -180,6 +180,14 @@ impl RaylabApp {
                 &i.tree,
             );
         }
+        if let Some(scale) = self
+            .instruments
+            .show_cost
+            .then(|| self.cost_scale())
+            .flatten()
+        {
+            instruments::draw_colour_bar(&ui.painter_at(image_rect), image_rect, scale);
+        }
         // Presentation mode shows the caption in a strip of its own.
         if let Some(caption) = self.caption().filter(|_| !self.hall.presenting) {
             lecture::caption_ui(ui, ui.min_rect(), &caption);

@@ -6,7 +6,7 @@ mod heat;
 mod inspector;
 mod patterns;
 
-pub(crate) use heat::{cost_range, heat_map_rgba};
+pub(crate) use heat::{cost_range, draw_colour_bar, heat_map_rgba};
 pub(crate) use inspector::draw_tree_overlay;
 
 use super::RaylabApp;
@@ -14,7 +14,6 @@ use crate::tracer::{RayTree, Tracer};
 use inspector::Inspection;
 
 /// Which instruments are on, and the inspected tree.
-#[derive(Default)]
 pub(crate) struct Instruments {
     pub(crate) show_fresnel: bool,
     /// The measured metal (an index into `METALS`) the Fresnel plot compares, if any.
@@ -24,8 +23,29 @@ pub(crate) struct Instruments {
     pub(crate) inspection: Option<Inspection>,
     pub(crate) show_patterns: bool,
     pub(crate) show_cost: bool,
+    /// The heat map's top, in rays per sample (black at 0): one fixed scale, so the same
+    /// cost has the same colour whatever the rest of the image; `None` fits each image.
+    pub(crate) cost_top: Option<f32>,
     /// The next click on the image sets the focus distance.
     pub(crate) click_to_focus: bool,
+}
+
+/// The heat map's scales offered: its top in rays per sample.
+pub(crate) const COST_TOPS: [f32; 6] = [4.0, 8.0, 16.0, 32.0, 64.0, 256.0];
+
+impl Default for Instruments {
+    fn default() -> Self {
+        Instruments {
+            show_fresnel: false,
+            fresnel_metal: None,
+            inspect_mode: false,
+            inspection: None,
+            show_patterns: false,
+            show_cost: false,
+            cost_top: Some(32.0),
+            click_to_focus: false,
+        }
+    }
 }
 
 impl Instruments {
@@ -46,6 +66,21 @@ impl RaylabApp {
             .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
         ui.checkbox(&mut i.show_cost, "Cost heat map")
             .on_hover_text("Rays traced per sample in each pixel, black (few) to yellow (many): where the ray tree is deep. Compare pruning by depth and by weight.");
+        ui.horizontal(|ui| {
+            ui.label("Heat map: 0 to");
+            let text = i.cost_top.map_or("fit image".to_string(), |t| format!("{t:.0}"));
+            egui::ComboBox::from_id_salt("cost-top")
+                .selected_text(text)
+                .show_ui(ui, |ui| {
+                    for top in COST_TOPS {
+                        ui.selectable_value(&mut i.cost_top, Some(top), format!("{top:.0} rays/sample"));
+                    }
+                    ui.selectable_value(&mut i.cost_top, None, "fit each image")
+                        .on_hover_text("From the image's fewest to most rays per sample: every frame its own scale.");
+                });
+        })
+        .response
+        .on_hover_text("The heat map's scale, fixed so that the same cost has the same colour as you change the tree.");
         ui.menu_button("A/B compare", |ui| self.compare_menu_ui(ui));
         if ui
             .button("Contact sheet…")
