@@ -299,10 +299,16 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     h.run_steps(3);
     h.key_press(egui::Key::Escape);
     h.run_steps(3);
-    // Click the glass sphere: a little left of the image's centre, above the middle.
-    let image = h.get_by_role_and_label(Role::Slider, "IOR").rect(); // the panel's left edge
-    let (w, hgt) = (1280.0, 800.0);
-    let centre = egui::pos2((image.max.x + w) / 2.0 - 50.0, hgt / 2.0 - 60.0);
+    // Click the glass sphere: a little left of the image's centre, above the middle. The
+    // image lies between the controls and the instruments' dock.
+    // The controls panel is 320 points wide; the dock starts left of its heading.
+    let left = 320.0;
+    let right = h.get_by_label("Ray-tree inspector").rect().min.x - 8.0;
+    let shown_width = right - left;
+    let centre = egui::pos2(
+        (left + right) / 2.0 - 0.05 * shown_width,
+        800.0 / 2.0 - 0.11 * shown_width * 9.0 / 16.0,
+    );
     h.hover_at(centre);
     h.run_steps(2);
     h.event(egui::Event::PointerButton {

@@ -172,7 +172,9 @@ impl RaylabApp {
         let (events, image_rect) = image_ui(ui, &mut self.view, self.main.texture(), size);
         self.compare_overlay_ui(ui, image_rect);
         if let Some(i) = &self.instruments.inspection {
-            let painter = ui.painter_at(ui.min_rect());
+            // Clipped to the image: rays leaving it stop at its edge, off the caption and
+            // the status bar.
+            let painter = ui.painter_at(image_rect.intersect(ui.min_rect()));
             instruments::draw_tree_overlay(
                 &painter,
                 image_rect,

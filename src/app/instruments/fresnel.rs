@@ -105,8 +105,10 @@ fn curve<R>(rows: &[R], point: impl Fn(&R) -> (f32, f32)) -> PlotPoints<'static>
 
 /// The plot both kinds of curve share: reflectance 0..1 against 0..90 degrees.
 fn reflectance_plot(id: impl std::hash::Hash + std::fmt::Debug) -> Plot<'static> {
+    // Top left, where a dielectric's curves are low (R under 0.1 below 30°): the legend
+    // covers none of them, nor the rise towards grazing it is there to explain.
     Plot::new(id)
-        .legend(Legend::default())
+        .legend(Legend::default().position(egui_plot::Corner::LeftTop))
         .height(230.0)
         .include_x(0.0)
         .include_x(90.0)

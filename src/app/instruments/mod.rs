@@ -125,8 +125,23 @@ impl RaylabApp {
         }
     }
 
-    /// The instruments' windows.
-    pub(super) fn instruments_ui(&mut self, ctx: &egui::Context) {
+    /// The instruments' dock: a panel right of the image holding each open instrument, so
+    /// that none covers the image it explains or the controls it follows.
+    pub(super) fn instruments_dock_ui(&mut self, ui: &mut egui::Ui) {
+        let i = &self.instruments;
+        if !(i.show_fresnel || i.inspect_mode || i.inspection.is_some() || i.show_patterns) {
+            return;
+        }
+        egui::Panel::right("instruments")
+            .resizable(true)
+            .default_size(420.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| self.instruments_ui(ui));
+            });
+    }
+
+    /// Each open instrument under its heading, with a button that closes it.
+    fn instruments_ui(&mut self, ui: &mut egui::Ui) {
         let params = &self.settings.params;
         let i = &mut self.instruments;
         if i.show_fresnel {
@@ -142,43 +157,54 @@ impl RaylabApp {
                 .and_then(|t| t.nodes.first())
                 .and_then(|n| n.hit)
                 .map(|h| (h.theta_i, h.n1_n2.is_none_or(|(n1, n2)| n1 <= n2)));
-            egui::Window::new("Fresnel plot")
-                .open(&mut i.show_fresnel)
-                .default_width(520.0)
-                .show(ctx, |ui| {
-                    fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal)
-                });
+            if !heading(ui, "Fresnel plot") {
+                i.show_fresnel = false;
+            }
+            fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal);
+            ui.separator();
         }
         if i.inspect_mode || i.inspection.is_some() {
-            let mut open = true;
-            egui::Window::new("Ray-tree inspector")
-                .open(&mut open)
-                .default_width(460.0)
-                .show(ctx, |ui| {
-                    ui.checkbox(&mut i.inspect_mode, "Clicking the image inspects a pixel");
-                    match &i.inspection {
-                        Some(inspection) => inspector::inspector_ui(
-                            ui,
-                            inspection,
-                            &self.scene.object_names,
-                            &self.scene.material_names,
-                        ),
-                        None => {
-                            ui.label("Click a pixel of the image.");
-                        }
-                    }
-                });
-            if !open {
+            if !heading(ui, "Ray-tree inspector") {
                 i.inspect_mode = false;
                 i.inspection = None;
             }
+            ui.checkbox(&mut i.inspect_mode, "Clicking the image inspects a pixel");
+            match &i.inspection {
+                Some(inspection) => inspector::inspector_ui(
+                    ui,
+                    inspection,
+                    &self.scene.object_names,
+                    &self.scene.material_names,
+                ),
+                None => {
+                    ui.label("Click a pixel of the image.");
+                }
+            }
+            ui.separator();
         }
         if i.show_patterns {
-            egui::Window::new("Sample patterns")
-                .open(&mut i.show_patterns)
-                .show(ctx, |ui| {
-                    patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
-                });
+            if !heading(ui, "Sample patterns") {
+                i.show_patterns = false;
+            }
+            patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
         }
     }
+}
+
+/// An instrument's heading in the dock; false once its Close button is clicked.
+fn heading(ui: &mut egui::Ui, title: &str) -> bool {
+    let mut open = true;
+    ui.horizontal(|ui| {
+        ui.heading(title);
+        ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+            if ui
+                .button("Close")
+                .on_hover_text(format!("Close the {title}."))
+                .clicked()
+            {
+                open = false;
+            }
+        });
+    });
+    open
 }
