@@ -204,7 +204,9 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
     // egui's test harness refuses to draw a glyph its fonts lack: showing every section,
     // the tooltips with formulas, the dialogs and the scene list finds any.
     let dir = tempfile::tempdir().unwrap();
-    let mut h = app("glossy", dir.path());
+    // A scene with glass and glazes: without them the dielectric controls are off, and
+    // a control that is off shows no tooltip.
+    let mut h = app("metals", dir.path());
     h.step();
     for section in [
         "Soft shadows",
@@ -701,4 +703,26 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
             }
         }
     }
+}
+
+#[test]
+fn dielectric_controls_show_the_scenes_values_and_rest_without_glass() {
+    let dir = tempfile::tempdir().unwrap();
+    // The glazed scene's constant sphere has k = 0.10: the slider says so.
+    let mut h = app("glazed", dir.path());
+    h.run_steps(3);
+    let k = h
+        .get_by_role_and_label(Role::Slider, "k (constant)")
+        .accesskit_node()
+        .numeric_value();
+    assert_eq!(k, Some(0.1f32 as f64));
+    // Soft shadows has no glass, water or glaze: the IOR slider is off, with a reason.
+    let mut h = app("soft-shadows", dir.path());
+    h.run_steps(3);
+    assert!(
+        h.get_by_role_and_label(Role::Slider, "IOR")
+            .accesskit_node()
+            .is_disabled()
+    );
+    h.get_by_label("No glass, water or glaze in this scene.");
 }

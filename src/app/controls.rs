@@ -53,6 +53,16 @@ fn scene_abbe(scene: &Scene) -> Option<f32> {
     })
 }
 
+/// The reflectance k the `constant_reflectance` parameter replaces: the scene's first
+/// constant-model interface's (a dielectric or glaze), else its first interface's.
+fn scene_k(scene: &Scene) -> Option<f32> {
+    let interfaces = || scene.materials.iter().filter_map(Material::dielectric);
+    interfaces()
+        .find(|d| d.fresnel == FresnelMode::Constant)
+        .or_else(|| interfaces().next())
+        .map(|d| d.constant_reflectance)
+}
+
 fn scene_exponent(scene: &Scene) -> Option<f32> {
     scene.materials.iter().find_map(Material::phong_exponent)
 }
@@ -120,73 +130,80 @@ fn tip(name: &str) -> String {
 pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
     let p = &mut *c.params;
     section(c.open, "Dielectrics and Fresnel").default_open(true).show(ui, |ui| {
-        let own = scene_ior(c.scene);
-        let mut ior = p.ior.or(own).unwrap_or(1.5);
-        let slider = ui
-            .add(param_slider(&mut ior, "ior").fixed_decimals(3))
-            .on_hover_text(tip("ior"));
-        if slider.changed() {
-            p.ior = Some(ior);
+        // Without glass, water or a glaze these controls would only restart the same image.
+        let interfaces = c.scene.materials.iter().any(|m| m.dielectric().is_some());
+        if !interfaces {
+            ui.label("No glass, water or glaze in this scene.");
         }
-        ui.horizontal(|ui| {
-            for (name, value, tip) in [("Water", 1.33, "n = 1.33"), ("Glass", 1.5, "n = 1.5"), ("Diamond", 2.42, "n = 2.42")] {
-                if ui.selectable_label(p.ior == Some(value), name).on_hover_text(tip).clicked() {
-                    p.ior = Some(value);
-                }
+        ui.add_enabled_ui(interfaces, |ui| {
+            let own = scene_ior(c.scene);
+            let mut ior = p.ior.or(own).unwrap_or(1.5);
+            let slider = ui
+                .add(param_slider(&mut ior, "ior").fixed_decimals(3))
+                .on_hover_text(tip("ior"));
+            if slider.changed() {
+                p.ior = Some(ior);
             }
+            ui.horizontal(|ui| {
+                for (name, value, tip) in [("Water", 1.33, "n = 1.33"), ("Glass", 1.5, "n = 1.5"), ("Diamond", 2.42, "n = 2.42")] {
+                    if ui.selectable_label(p.ior == Some(value), name).on_hover_text(tip).clicked() {
+                        p.ior = Some(value);
+                    }
+                }
+                if ui
+                    .add_enabled(p.ior.is_some(), egui::Button::new("Scene IOR"))
+                    .on_hover_text("Each material's own index of refraction, as in the scene file.")
+                    .clicked()
+                {
+                    p.ior = None;
+                }
+            });
+            let crit = critical_angle(ior, 1.0).map_or("none".to_string(), |a| format!("{:.1}°", a.to_degrees()));
+            ui.label(format!("Brewster {:.1}°, critical (inside to air) {crit}", brewster_angle(1.0, ior).to_degrees()))
+                .on_hover_text(
+                    "Brewster's angle atan(n2/n1): p-polarized light is not reflected (Fp = 0). \
+                     Critical angle asin(n2/n1), from the denser side: beyond it light is totally reflected.",
+                );
+            ComboBox::from_label("Fresnel")
+                .selected_text(fresnel_label(p.fresnel))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut p.fresnel, None, fresnel_label(None))
+                        .on_hover_text("Keep each material's own reflectance model.");
+                    for (mode, tip) in [
+                        (FresnelMode::Exact, "R = (Fs² + Fp²)/2, Fs = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt), Fp = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt)."),
+                        (FresnelMode::Schlick, "R ≈ R0 + (1 − R0)(1 − cos θ)^5, with θ on the less dense side, so it reaches 1 at the critical angle."),
+                        (FresnelMode::SchlickNaive, "Schlick with the incident angle always, as some textbooks write it: from inside it stays near R0 until it jumps to 1 at the critical angle."),
+                        (FresnelMode::Constant, "The same reflectance k at every angle: no brighter rim (the lecture's 'constant' black glazed sphere)."),
+                    ] {
+                        ui.selectable_value(&mut p.fresnel, Some(mode), fresnel_label(Some(mode))).on_hover_text(tip);
+                    }
+                })
+                .response
+                .on_hover_text(tip("fresnel"));
+            let mut k = p.constant_reflectance.or(scene_k(c.scene)).unwrap_or(0.04);
             if ui
-                .add_enabled(p.ior.is_some(), egui::Button::new("Scene IOR"))
-                .on_hover_text("Each material's own index of refraction, as in the scene file.")
-                .clicked()
+                .add(param_slider(&mut k, "constant_reflectance"))
+                .on_hover_text(tip("constant_reflectance"))
+                .changed()
             {
-                p.ior = None;
+                p.constant_reflectance = Some(k);
             }
-        });
-        let crit = critical_angle(ior, 1.0).map_or("none".to_string(), |a| format!("{:.1}°", a.to_degrees()));
-        ui.label(format!("Brewster {:.1}°, critical (inside to air) {crit}", brewster_angle(1.0, ior).to_degrees()))
-            .on_hover_text(
-                "Brewster's angle atan(n2/n1): p-polarized light is not reflected (Fp = 0). \
-                 Critical angle asin(n2/n1), from the denser side: beyond it light is totally reflected.",
-            );
-        ComboBox::from_label("Fresnel")
-            .selected_text(fresnel_label(p.fresnel))
-            .show_ui(ui, |ui| {
-                ui.selectable_value(&mut p.fresnel, None, fresnel_label(None))
-                    .on_hover_text("Keep each material's own reflectance model.");
-                for (mode, tip) in [
-                    (FresnelMode::Exact, "R = (Fs² + Fp²)/2, Fs = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt), Fp = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt)."),
-                    (FresnelMode::Schlick, "R ≈ R0 + (1 − R0)(1 − cos θ)^5, with θ on the less dense side, so it reaches 1 at the critical angle."),
-                    (FresnelMode::SchlickNaive, "Schlick with the incident angle always, as some textbooks write it: from inside it stays near R0 until it jumps to 1 at the critical angle."),
-                    (FresnelMode::Constant, "The same reflectance k at every angle: no brighter rim (the lecture's 'constant' black glazed sphere)."),
-                ] {
-                    ui.selectable_value(&mut p.fresnel, Some(mode), fresnel_label(Some(mode))).on_hover_text(tip);
-                }
-            })
-            .response
-            .on_hover_text(tip("fresnel"));
-        let mut k = p.constant_reflectance.unwrap_or(0.04);
-        if ui
-            .add(param_slider(&mut k, "constant_reflectance"))
-            .on_hover_text(tip("constant_reflectance"))
-            .changed()
-        {
-            p.constant_reflectance = Some(k);
-        }
-        ui.add(param_slider(&mut p.absorption_scale, "absorption_scale"))
-            .on_hover_text(tip("absorption_scale"));
-        let mut abbe = p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0);
-        if ui
-            .add(param_slider(&mut abbe, "abbe").fixed_decimals(1))
-            .on_hover_text(tip("abbe"))
-            .changed()
-        {
-            p.abbe = Some(abbe);
-        }
-        if abbe > 0.0 {
-            let n = |lambda| crate::optics::dispersion::ior_at(ior, abbe, lambda);
-            ui.label(format!("n = {:.4} at 450 nm, {:.4} at 650 nm", n(450.0), n(650.0)))
-                .on_hover_text("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
-        }
+            ui.add(param_slider(&mut p.absorption_scale, "absorption_scale"))
+                .on_hover_text(tip("absorption_scale"));
+            let mut abbe = p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0);
+            if ui
+                .add(param_slider(&mut abbe, "abbe").fixed_decimals(1))
+                .on_hover_text(tip("abbe"))
+                .changed()
+            {
+                p.abbe = Some(abbe);
+            }
+            if abbe > 0.0 {
+                let n = |lambda| crate::optics::dispersion::ior_at(ior, abbe, lambda);
+                ui.label(format!("n = {:.4} at 450 nm, {:.4} at 650 nm", n(450.0), n(650.0)))
+                    .on_hover_text("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
+            }
+            });
     });
 
     section(c.open, "Ray tree").default_open(true).show(ui, |ui| {

@@ -60,7 +60,13 @@ impl Toasts {
                         .corner_radius(4.0)
                         .inner_margin(8.0)
                         .show(ui, |ui| {
-                            ui.label(RichText::new(&t.text).color(Color32::WHITE));
+                            // An area anchored at the right edge starts narrow: give the
+                            // text room, so it wraps into lines, not a word per line.
+                            ui.set_max_width(420.0);
+                            ui.add(
+                                egui::Label::new(RichText::new(&t.text).color(Color32::WHITE))
+                                    .wrap_mode(egui::TextWrapMode::Extend),
+                            );
                         });
                 }
             });
