@@ -181,6 +181,7 @@ mod tests {
             caption: |_| String::new(),
             compare: None,
             open: &[],
+            plot: None,
         };
         assert!(matches!(
             slide.apply(&Params::default()),

@@ -169,8 +169,12 @@ impl RaylabApp {
                             Ok(p) => s.params = p,
                             Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
                         }
-                        // A slide opens its own comparison, or none.
+                        // A slide opens its own comparison and plot, or none.
                         self.compare = None;
+                        self.instruments.show_fresnel = slide.plot.is_some();
+                        self.instruments.fresnel_metal = slide.plot.flatten().and_then(|name| {
+                            crate::material::METALS.iter().position(|m| m.name == name)
+                        });
                     }
                 }
                 LoadPurpose::Reload => {

@@ -19,6 +19,9 @@ pub(crate) struct Slide {
     pub open: &'static [&'static str],
     /// The A/B comparison the slide opens, if it compares two things.
     pub compare: Option<CompareKind>,
+    /// The Fresnel plot, if the slide shows it: `Some(None)` for the dielectric's curves,
+    /// `Some(Some(metal))` compared with a measured metal's.
+    pub plot: Option<Option<&'static str>>,
 }
 
 /// The lecture, slide by slide.
@@ -32,16 +35,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
-    },
-    Slide {
-        title: "Fresnel reflection on the black glazed sphere",
-        scene: "glazed",
-        params: &[],
-        caption: |_| {
-            "Left: constant reflectance, 10% at every angle. Right: Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed.".into()
-        },
-        compare: None,
-        open: &[],
+        plot: None,
     },
     Slide {
         title: "Snell's law",
@@ -52,6 +46,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
     },
     Slide {
         title: "Total internal reflection",
@@ -62,6 +57,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
     },
     Slide {
         title: "Pruning the ray tree",
@@ -82,6 +78,55 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
+    },
+    Slide {
+        title: "Reflectance against angle: metal and glass",
+        scene: "metals",
+        params: &[],
+        caption: |_| {
+            "The Fresnel plot: gold (top, per colour channel) reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass (below) 4% head-on, rising to 100% only at grazing. Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.".into()
+        },
+        compare: None,
+        open: &[],
+        plot: Some(Some("gold")),
+    },
+    Slide {
+        title: "Fresnel reflection on the black glazed sphere",
+        scene: "glazed",
+        params: &[],
+        caption: |_| {
+            "Left: constant reflectance, 10% at every angle. Right: Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed.".into()
+        },
+        compare: None,
+        open: &[],
+        plot: None,
+    },
+    Slide {
+        title: "Fresnel's formulas and Schlick's approximation",
+        scene: "glazed",
+        params: &[],
+        caption: |_| {
+            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: the exact (Fs² + Fp²)/2. The plot's Schlick − exact curve shows the error for n = 1.5: under 0.01 up to 47°, at most 0.036 (at 85°), on the rims, where both are bright: the images barely differ.".into()
+        },
+        compare: Some(CompareKind::SchlickExact),
+        open: &[],
+        plot: Some(None),
+    },
+    Slide {
+        title: "The basic ray tracer",
+        scene: "default",
+        params: &[("spp", "1"), ("pattern", "regular")],
+        caption: |p| {
+            format!(
+                "One ray through each pixel's centre ({} sample{} per pixel), a shadow ray to the point light: hard shadows, jagged edges. Everything after this slide adds rays: more per pixel, per light, per reflection.",
+                p.spp,
+                if p.spp == 1 { "" } else { "s" }
+            )
+        },
+        compare: None,
+        open: &[],
+        plot: None,
     },
     Slide {
         title: "Antialiasing: 1 against 4 samples",
@@ -92,6 +137,21 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: Some(CompareKind::Supersampling),
         open: &[],
+        plot: None,
+    },
+    Slide {
+        title: "Regular, random and jittered samples",
+        scene: "antialiasing",
+        params: &[("spp", "4")],
+        caption: |p| {
+            format!(
+                "{} samples per pixel. Left: random, independent in each pixel: clumps and gaps, noisier edges. Right: jittered, one in each cell of a 2 × 2 grid: the same cost, less noise. Regular (each cell's centre) would alias again: the Pattern menu has it.",
+                p.spp
+            )
+        },
+        compare: Some(CompareKind::RandomJittered),
+        open: &[],
+        plot: None,
     },
     Slide {
         title: "Soft shadows",
@@ -102,6 +162,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &["Soft shadows"],
+        plot: None,
     },
     Slide {
         title: "Glossy reflection",
@@ -112,6 +173,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
     },
     Slide {
         title: "Depth of field",
@@ -122,6 +184,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
     },
     Slide {
         title: "Motion blur",
@@ -132,6 +195,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &["Motion blur"],
+        plot: None,
     },
     Slide {
         title: "F_s and F_p: polarisation at Brewster's angle",
@@ -143,6 +207,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &["Polariser"],
+        plot: None,
     },
     Slide {
         title: "Dispersion",
@@ -153,6 +218,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: None,
         open: &[],
+        plot: None,
     },
     Slide {
         title: "What the ray tree misses",
@@ -163,6 +229,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         },
         compare: Some(CompareKind::WhittedPhotons),
         open: &[],
+        plot: None,
     },
 ];
 
