@@ -311,22 +311,8 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
         (left + right) / 2.0 - 0.05 * shown_width,
         800.0 / 2.0 - 0.11 * shown_width * 9.0 / 16.0,
     );
-    h.hover_at(centre);
-    h.run_steps(2);
-    h.event(egui::Event::PointerButton {
-        pos: centre,
-        button: egui::PointerButton::Primary,
-        pressed: true,
-        modifiers: egui::Modifiers::NONE,
-    });
+    click_at(&mut h, centre);
     h.run_steps(1);
-    h.event(egui::Event::PointerButton {
-        pos: centre,
-        button: egui::PointerButton::Primary,
-        pressed: false,
-        modifiers: egui::Modifiers::NONE,
-    });
-    h.run_steps(3);
     let tree = h.state().inspected_tree().expect("a tree");
     let root = &tree.nodes[0];
     let hit = root.hit.expect("the camera ray hits something");
@@ -737,4 +723,62 @@ fn dielectric_controls_show_the_scenes_values_and_rest_without_glass() {
             .is_disabled()
     );
     h.get_by_label("No glass, water or glaze in this scene.");
+}
+
+/// A click at `pos` as a user makes it: hover, press, release.
+fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
+    h.hover_at(pos);
+    h.run_steps(2);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(2);
+    }
+}
+
+#[test]
+fn the_fresnel_plot_marks_an_inspected_ray_only_where_it_meets_glass() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    for item in ["Fresnel plot", "Ray-tree inspector: click a pixel"] {
+        h.get_by_label("Instruments").click();
+        h.run_steps(3);
+        h.get_by_label(item).click();
+        h.run_steps(3);
+        h.key_press(egui::Key::Escape);
+        h.run_steps(2);
+    }
+    // The image lies between the 320-point controls and the dock.
+    let (left, right) = (320.0, h.get_by_label("Fresnel plot").rect().min.x - 8.0);
+    let width = right - left;
+    let (mid_x, mid_y) = ((left + right) / 2.0, 400.0);
+    // The floor, near the image's bottom edge.
+    click_at(&mut h, egui::pos2(mid_x, mid_y + 0.22 * width * 9.0 / 16.0));
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(h.state().scene().object_names[hit.object as usize], "floor");
+    assert!(
+        h.query_all_by_label_contains("inspected ray")
+            .next()
+            .is_none()
+    );
+    // The glass sphere: marked at its angle of incidence.
+    click_at(
+        &mut h,
+        egui::pos2(mid_x - 0.05 * width, mid_y - 0.11 * width * 9.0 / 16.0),
+    );
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(
+        h.state().scene().object_names[hit.object as usize],
+        "glass sphere"
+    );
+    h.query_all_by_label_contains("inspected ray")
+        .next()
+        .expect("the plot marks the ray on glass");
 }

@@ -189,9 +189,14 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Motion blur",
         scene: "motion-blur",
-        params: &[],
-        caption: |_| {
-            "Each sample has a time in the shutter interval; moving spheres smear over their travel. Set the Shutter interval to 0 to freeze them.".into()
+        // A fifth of the frame: the spheres smear over a fifth of their travel and stay
+        // solid enough to see (over the whole frame they were faint ghosts).
+        params: &[("shutter", "0.2")],
+        caption: |p| {
+            format!(
+                "Each sample has a time in the shutter interval, open for {:.2} of the frame: the moving spheres smear over their travel in that time, the still one stays sharp. Drag the Shutter interval: 0 freezes them, 1 smears them over the whole frame.",
+                p.shutter
+            )
         },
         compare: None,
         open: &["Motion blur"],

@@ -58,6 +58,16 @@ pub(crate) fn draw_tree_overlay(
             .map(|f| image.min + egui::vec2(f.x * image.width(), f.y * image.height()))
     };
     for n in &tree.nodes {
+        // The camera ray runs along the line of sight: it would project to a dot. A ring
+        // marks where it meets the scene instead.
+        if n.kind == crate::tracer::RayKind::Camera {
+            if let Some(b) = to_screen(n.end_point) {
+                let stroke = egui::Stroke::new(2.0, kind_color(n.kind));
+                painter.circle_stroke(b, 9.0, stroke);
+                painter.circle_stroke(b, 10.5, egui::Stroke::new(1.0, egui::Color32::BLACK));
+            }
+            continue;
+        }
         // A segment behind the camera cannot be drawn; pruned branches have no length.
         let (Some(a), Some(b)) = (to_screen(n.ray.origin), to_screen(n.end_point)) else {
             continue;

@@ -152,11 +152,13 @@ impl RaylabApp {
                     .iter()
                     .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
             });
+            // The inspected ray's angle, where it meets a dielectric interface (a diffuse
+            // floor has no reflectance curve to mark).
             let marker = i
                 .tree()
                 .and_then(|t| t.nodes.first())
                 .and_then(|n| n.hit)
-                .map(|h| (h.theta_i, h.n1_n2.is_none_or(|(n1, n2)| n1 <= n2)));
+                .and_then(|h| h.n1_n2.map(|(n1, n2)| (h.theta_i, n1 <= n2)));
             if !heading(ui, "Fresnel plot") {
                 i.show_fresnel = false;
             }
