@@ -61,12 +61,16 @@ impl Toasts {
                         .inner_margin(8.0)
                         .show(ui, |ui| {
                             // An area anchored at the right edge starts narrow: give the
-                            // text room, so it wraps into lines, not a word per line.
-                            ui.set_max_width(420.0);
-                            ui.add(
-                                egui::Label::new(RichText::new(&t.text).color(Color32::WHITE))
-                                    .wrap_mode(egui::TextWrapMode::Extend),
-                            );
+                            // text its own width up to 420 points, so a long message wraps
+                            // into lines, not a word per line.
+                            let font = egui::TextStyle::Body.resolve(ui.style());
+                            let natural = ui
+                                .painter()
+                                .layout_no_wrap(t.text.clone(), font, Color32::WHITE)
+                                .size()
+                                .x;
+                            ui.set_width(natural.min(420.0));
+                            ui.label(RichText::new(&t.text).color(Color32::WHITE));
                         });
                 }
             });
