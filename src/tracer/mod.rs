@@ -135,6 +135,8 @@ pub struct Tracer<'a> {
     emitters: Emitters,
     // The pass's photons, with transport = "photons" (see `prepare_photons`).
     photons: Option<photons::PhotonMap>,
+    // The photons' target cones and the targets' mean radius, found at the first pass.
+    photon_targets: Option<(Vec<photons::Target>, f32)>,
     frame: CameraFrame,
     width: u32,
     height: u32,
@@ -170,6 +172,7 @@ impl<'a> Tracer<'a> {
             materials,
             emitters,
             photons: None,
+            photon_targets: None,
             lights: scene
                 .lights
                 .iter()

@@ -156,6 +156,8 @@ impl Tracer<'_> {
         let mut came: Option<f32> = None;
         let mut kind = RayKind::Camera;
         let mut parent = None;
+        // Kept for the inspector only: no allocation per path when nothing records.
+        let recording = w.rec.on();
         let mut segments = Vec::new();
         let seen = |pol: &Option<P>, c: Color| pol.as_ref().map_or(c, |p| p.seen(c));
         for depth in 0.. {
@@ -206,14 +208,18 @@ impl Tracer<'_> {
                 let mis = came.map_or(1.0, |pdf| power_heuristic(pdf, light.pdf(&ray, nearest)));
                 let l = throughput * transmittance(sigma, nearest) * radiance * mis;
                 end(w.rec, &mut total, &mut segment, l, End::LightHit);
-                segments.push(segment);
+                if recording {
+                    segments.push(segment);
+                }
                 break;
             }
             let Some(hit) = hit else {
                 let l = self.scene.background.radiance(ray.dir);
                 let l = throughput * transmittance(sigma, f32::INFINITY) * l;
                 end(w.rec, &mut total, &mut segment, l, End::Miss);
-                segments.push(segment);
+                if recording {
+                    segments.push(segment);
+                }
                 break;
             };
             w.rec.finish(id, &|n| n.end_point = end_point);
@@ -234,7 +240,9 @@ impl Tracer<'_> {
                     throughput * radiance * mis,
                     End::LightHit,
                 );
-                segments.push(segment);
+                if recording {
+                    segments.push(segment);
+                }
                 break;
             }
             if let Some(i) = scatter.interface {
@@ -248,7 +256,9 @@ impl Tracer<'_> {
             let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
             if sum <= 0.0 {
                 w.rec.finish(id, &|n| n.end = End::Absorbed);
-                segments.push(segment);
+                if recording {
+                    segments.push(segment);
+                }
                 break;
             }
             let u = w.rng.next_1d() * sum;
@@ -286,7 +296,9 @@ impl Tracer<'_> {
             if last {
                 w.stats.pruned_by_depth += 1;
                 w.rec.finish(id, &|n| n.end = End::DepthLimit);
-                segments.push(segment);
+                if recording {
+                    segments.push(segment);
+                }
                 break;
             }
             // The next direction and what the path carries along it.
@@ -297,7 +309,9 @@ impl Tracer<'_> {
                     let (f_cos, pdf) = part.eval(&at, dir);
                     if pdf <= 0.0 || f_cos == Color::ZERO {
                         w.rec.finish(id, &|n| n.end = End::Absorbed);
-                        segments.push(segment);
+                        if recording {
+                            segments.push(segment);
+                        }
                         break;
                     }
                     came = Some(pdf);
@@ -321,7 +335,9 @@ impl Tracer<'_> {
             };
             pol = next_pol;
             throughput *= weight / p_choice;
-            segments.push(segment);
+            if recording {
+                segments.push(segment);
+            }
             if depth >= ROULETTE_AFTER {
                 let q = throughput.max_element().min(1.0);
                 if q <= 0.0 || w.rng.next_1d() >= q {

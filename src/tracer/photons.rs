@@ -57,7 +57,8 @@ pub(super) struct PhotonMap {
 
 /// A cone of directions from a light towards an object's bounding sphere, and the share of
 /// the photons it gets.
-struct Target {
+#[derive(Debug)]
+pub(super) struct Target {
     light: usize,
     axis: Vec3,
     cos_max: f32,
@@ -160,7 +161,14 @@ impl Tracer<'_> {
         if !self.gathers_photons() {
             return;
         }
-        let (targets, mean_radius) = self.targets();
+        // The cones depend on the scene only: found once per tracer, not per sample (a
+        // glass mesh's bounds take a pass over its triangles).
+        if self.photon_targets.is_none() {
+            self.photon_targets = Some(self.targets());
+        }
+        let Some((targets, mean_radius)) = &self.photon_targets else {
+            return;
+        };
         if targets.is_empty() {
             return;
         }
@@ -168,7 +176,7 @@ impl Tracer<'_> {
         // Collected in photon order whatever the threads: the same map every time.
         let photons: Vec<Photon> = (0..PHOTONS_PER_SAMPLE)
             .into_par_iter()
-            .flat_map_iter(|k| self.shoot(k, sample, &targets))
+            .flat_map_iter(|k| self.shoot(k, sample, targets))
             .collect();
         self.photons = Some(PhotonMap::new(photons, radius));
     }
