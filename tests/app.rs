@@ -523,11 +523,30 @@ fn the_cost_heat_map_shows_rays_per_sample() {
     assert_eq!(scale(&h), "cost 0–32 rays/sample");
 }
 
+/// Opens the toolbar menu `menu` and clicks its entry `item`, once the menu shows it (a
+/// scene still loading can hold the menu's first frames back).
+fn choose_from_menu(h: &mut Harness<'static, RaylabApp>, menu: &str, item: &str) {
+    for _ in 0..20 {
+        if h.query_by_label(item).is_none() {
+            h.get_by_label(menu).click();
+            h.run_steps(3);
+        }
+        if let Some(entry) = h.query_by_label(item) {
+            entry.click();
+            h.run_steps(2);
+            return;
+        }
+    }
+    panic!("the {menu} menu never showed `{item}`");
+}
+
 /// Steps until slide `i` is shown: its scene loaded, its caption up.
 fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
     let (title, scene, _) = raylab::app::lecture_slides().nth(i).unwrap();
     step_until(h, title, |a| {
-        a.slide() == Some(i)
+        // Not loading: a slide on the scene already shown must still arrive.
+        !a.is_loading()
+            && a.slide() == Some(i)
             && a.scene().source.reference() == format!("builtin:{scene}")
             && a.caption().is_some()
     });
@@ -672,9 +691,7 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
     let mut h = app("default", dir.path());
     h.step();
     for (i, (title, _, sides)) in raylab::app::lecture_slides().enumerate() {
-        h.get_by_label("Lecture").click();
-        h.run_steps(3);
-        h.get_by_label(&format!("{}. {title}", i + 1)).click();
+        choose_from_menu(&mut h, "Lecture", &format!("{}. {title}", i + 1));
         wait_for_slide(&mut h, i);
         h.run_steps(3);
         assert_eq!(

@@ -79,15 +79,17 @@ pub(crate) struct Lecture {
 
 impl Lecture {
     /// A scene arrived: the pending slide, if it is that slide's scene (its caption is
-    /// shown from now on); any other scene takes the caption down.
+    /// shown from now on). A scene asked for before the slide (a quick Page Down twice)
+    /// leaves the slide pending; any other scene takes the caption down.
     pub(crate) fn arrived(&mut self, scene: &Scene) -> Option<&'static Slide> {
         let slide = self
             .pending
-            .take()
             .filter(|s| scene.source.reference() == s.reference());
         self.shown = slide;
         self.open = slide.map_or(&[], |s| s.open);
-        if slide.is_none() {
+        if slide.is_some() {
+            self.pending = None;
+        } else if self.pending.is_none() {
             // Another scene opened: no slide is shown.
             self.current = None;
         }
