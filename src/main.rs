@@ -450,9 +450,13 @@ fn render_command(args: RenderArgs) -> Result<()> {
 
     if !args.quiet {
         let pixels = (width as u64 * height as u64) as f64;
+        // The status bar's estimate, so a render's noise can be judged without a window.
+        let noise = film
+            .noise()
+            .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
         let rays = stats.total_rays();
         eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped; wrote {}{replaced} and {}",
+            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise} wrote {}{replaced} and {}",
             scene.name,
             width,
             height,

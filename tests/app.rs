@@ -27,7 +27,14 @@ fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
 fn step_until(h: &mut Harness<'static, RaylabApp>, what: &str, done: impl Fn(&RaylabApp) -> bool) {
     let deadline = Instant::now() + Duration::from_secs(30);
     while !done(h.state()) {
-        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        assert!(
+            Instant::now() < deadline,
+            "timed out waiting for {what} (slide {:?}, loading {}, scene {}, caption {})",
+            h.state().slide(),
+            h.state().is_loading(),
+            h.state().scene().source.reference(),
+            h.state().caption().is_some()
+        );
         h.step();
         std::thread::sleep(Duration::from_millis(5));
     }
@@ -574,6 +581,26 @@ fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
     h.key_press(egui::Key::ArrowLeft);
     h.run_steps(3);
     assert_eq!(h.state().slide(), Some(0));
+    // Three presses that land in one frame (a quick clicker, xdotool) step three slides.
+    // (The harness's own key_press gives each event a frame of its own.)
+    let three_in_one_frame = |h: &mut Harness<'static, RaylabApp>, key| {
+        for pressed in [true, true, true, false] {
+            h.input_mut().events.push(egui::Event::Key {
+                key,
+                pressed,
+                modifiers: egui::Modifiers::NONE,
+                repeat: false,
+                physical_key: None,
+            });
+        }
+        h.step();
+    };
+    three_in_one_frame(&mut h, egui::Key::PageDown);
+    assert_eq!(h.state().slide(), Some(3));
+    shows(&mut h, 3);
+    three_in_one_frame(&mut h, egui::Key::PageUp);
+    assert_eq!(h.state().slide(), Some(0));
+    shows(&mut h, 0);
     // The caption is on screen, in the strip below the image.
     let caption = h.state().caption().unwrap().to_string();
     h.get_by_label(&caption);
@@ -798,4 +825,49 @@ fn the_fresnel_plot_marks_an_inspected_ray_only_where_it_meets_glass() {
     h.query_all_by_label_contains("inspected ray")
         .next()
         .expect("the plot marks the ray on glass");
+}
+
+#[test]
+fn a_sliders_tooltip_shows_on_hover_but_not_while_it_is_dragged() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    h.run_steps(3);
+    let tip = raylab::params::TABLE
+        .iter()
+        .find(|s| s.name == "ior")
+        .unwrap()
+        .tooltip();
+    let slider = h.get_by_role_and_label(Role::Slider, "IOR").rect();
+    let (from, to) = (slider.left_center(), slider.center());
+    // Resting on the slider shows its explanation (each step is a quarter second).
+    h.hover_at(from);
+    h.run_steps(6);
+    assert!(
+        h.query_by_label(&tip).is_some(),
+        "the tooltip shows on hover"
+    );
+    // Pressed there, dragged and held still: the tooltip goes, and the readouts beside
+    // the slider stay in view.
+    h.event(egui::Event::PointerButton {
+        pos: from,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(1);
+    h.hover_at(to);
+    h.run_steps(8);
+    assert!(h.query_by_label(&tip).is_none(), "no tooltip mid-drag");
+    h.event(egui::Event::PointerButton {
+        pos: to,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: egui::Modifiers::NONE,
+    });
+    h.run_steps(2);
+    let ior = h.state().params().ior;
+    assert!(
+        ior.is_some_and(|n| n > 1.2),
+        "the drag moved the IOR: {ior:?}"
+    );
 }

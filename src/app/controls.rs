@@ -27,6 +27,22 @@ pub(crate) struct Controls<'a> {
     pub open: &'a [&'static str],
 }
 
+/// A tooltip that stays away while a mouse button is held: mid-drag it would pop up over
+/// the readouts the drag is about (the Brewster and critical angles, the f-number).
+trait Hint {
+    fn hint(self, text: impl Into<egui::WidgetText>) -> Self;
+}
+
+impl Hint for egui::Response {
+    fn hint(self, text: impl Into<egui::WidgetText>) -> Self {
+        if self.ctx.input(|i| i.pointer.any_down()) {
+            self
+        } else {
+            self.on_hover_text(text)
+        }
+    }
+}
+
 /// The panel section `name`, opened now if `open` asks for it.
 fn section(open: &[&str], name: &str) -> CollapsingHeader {
     let header = CollapsingHeader::new(name);
@@ -140,19 +156,19 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             let mut ior = p.ior.or(own).unwrap_or(1.5);
             let slider = ui
                 .add(param_slider(&mut ior, "ior").fixed_decimals(3))
-                .on_hover_text(tip("ior"));
+                .hint(tip("ior"));
             if slider.changed() {
                 p.ior = Some(ior);
             }
             ui.horizontal(|ui| {
                 for (name, value, tip) in [("Water", 1.33, "n = 1.33"), ("Glass", 1.5, "n = 1.5"), ("Diamond", 2.42, "n = 2.42")] {
-                    if ui.selectable_label(p.ior == Some(value), name).on_hover_text(tip).clicked() {
+                    if ui.selectable_label(p.ior == Some(value), name).hint(tip).clicked() {
                         p.ior = Some(value);
                     }
                 }
                 if ui
                     .add_enabled(p.ior.is_some(), egui::Button::new("Scene IOR"))
-                    .on_hover_text("Each material's own index of refraction, as in the scene file.")
+                    .hint("Each material's own index of refraction, as in the scene file.")
                     .clicked()
                 {
                     p.ior = None;
@@ -160,7 +176,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             });
             let crit = critical_angle(ior, 1.0).map_or("none".to_string(), |a| format!("{:.1}°", a.to_degrees()));
             ui.label(format!("Brewster {:.1}°, critical (inside to air) {crit}", brewster_angle(1.0, ior).to_degrees()))
-                .on_hover_text(
+                .hint(
                     "Brewster's angle atan(n2/n1): p-polarized light is not reflected (Fp = 0). \
                      Critical angle asin(n2/n1), from the denser side: beyond it light is totally reflected.",
                 );
@@ -168,32 +184,32 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 .selected_text(fresnel_label(p.fresnel))
                 .show_ui(ui, |ui| {
                     ui.selectable_value(&mut p.fresnel, None, fresnel_label(None))
-                        .on_hover_text("Keep each material's own reflectance model.");
+                        .hint("Keep each material's own reflectance model.");
                     for (mode, tip) in [
                         (FresnelMode::Exact, "R = (Fs² + Fp²)/2, Fs = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt), Fp = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt)."),
                         (FresnelMode::Schlick, "R ≈ R0 + (1 − R0)(1 − cos θ)^5, with θ on the less dense side, so it reaches 1 at the critical angle."),
                         (FresnelMode::SchlickNaive, "Schlick with the incident angle always, as some textbooks write it: from inside it stays near R0 until it jumps to 1 at the critical angle."),
                         (FresnelMode::Constant, "The same reflectance k at every angle: no brighter rim (the lecture's 'constant' black glazed sphere)."),
                     ] {
-                        ui.selectable_value(&mut p.fresnel, Some(mode), fresnel_label(Some(mode))).on_hover_text(tip);
+                        ui.selectable_value(&mut p.fresnel, Some(mode), fresnel_label(Some(mode))).hint(tip);
                     }
                 })
                 .response
-                .on_hover_text(tip("fresnel"));
+                .hint(tip("fresnel"));
             let mut k = p.constant_reflectance.or(scene_k(c.scene)).unwrap_or(0.04);
             if ui
                 .add(param_slider(&mut k, "constant_reflectance"))
-                .on_hover_text(tip("constant_reflectance"))
+                .hint(tip("constant_reflectance"))
                 .changed()
             {
                 p.constant_reflectance = Some(k);
             }
             ui.add(param_slider(&mut p.absorption_scale, "absorption_scale"))
-                .on_hover_text(tip("absorption_scale"));
+                .hint(tip("absorption_scale"));
             let mut abbe = p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0);
             if ui
                 .add(param_slider(&mut abbe, "abbe").fixed_decimals(1))
-                .on_hover_text(tip("abbe"))
+                .hint(tip("abbe"))
                 .changed()
             {
                 p.abbe = Some(abbe);
@@ -201,28 +217,28 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             if abbe > 0.0 {
                 let n = |lambda| crate::optics::dispersion::ior_at(ior, abbe, lambda);
                 ui.label(format!("n = {:.4} at 450 nm, {:.4} at 650 nm", n(450.0), n(650.0)))
-                    .on_hover_text("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
+                    .hint("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
             }
             });
     });
 
     section(c.open, "Ray tree").default_open(true).show(ui, |ui| {
         ui.add(param_slider(&mut p.max_depth, "max_depth"))
-            .on_hover_text(tip("max_depth"));
+            .hint(tip("max_depth"));
         // A path tracer follows one path and ends it by Russian roulette: the tree's
         // weight limit and branching do not apply.
         let tree = !p.transport.traces_paths();
         let no_tree = "Path tracing follows one path per sample (Russian roulette ends the faint ones): there is no tree to prune or split.";
         ui.add_enabled(tree, param_slider(&mut p.min_weight, "min_weight"))
-            .on_hover_text(tip("min_weight"))
+            .hint(tip("min_weight"))
             .on_disabled_hover_text(no_tree);
         ui.add_enabled_ui(tree, |ui| {
             ui.horizontal(|ui| {
                 ui.radio_value(&mut p.tree, TreeMode::Split, "Split")
-                    .on_hover_text("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.")
+                    .hint("At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.")
                     .on_disabled_hover_text(no_tree);
                 ui.radio_value(&mut p.tree, TreeMode::Stochastic, "Stochastic")
-                    .on_hover_text("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.")
+                    .hint("Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.")
                     .on_disabled_hover_text(no_tree);
             });
         });
@@ -235,33 +251,31 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                     (Transport::Path, "Path tracing: light is gathered at every diffuse or glossy surface, by light samples and by the path itself finding lights (through glass too). Colour bleeding, sky light in shadows, caustics from area lights; not from point lights."),
                     (Transport::Photons, "Path tracing, plus photons from the point lights through glass and mirrors, gathered where they land: the caustics a path cannot find. Blurred at first, sharper with every pass."),
                 ] {
-                    ui.selectable_value(&mut p.transport, t, transport_label(t)).on_hover_text(hint);
+                    ui.selectable_value(&mut p.transport, t, transport_label(t)).hint(hint);
                 }
             })
             .response
-            .on_hover_text(tip("transport"));
+            .hint(tip("transport"));
     });
 
     section(c.open, "Sampling and antialiasing")
         .default_open(true)
         .show(ui, |ui| {
-            ui.add(param_slider(&mut p.spp, "spp"))
-                .on_hover_text(tip("spp"));
+            ui.add(param_slider(&mut p.spp, "spp")).hint(tip("spp"));
             ui.checkbox(c.unlimited, "Keep refining")
-                .on_hover_text("Run on past the target, until paused.");
+                .hint("Run on past the target, until paused.");
             ComboBox::from_label("Pattern")
                 .selected_text(p.pattern.name())
                 .show_ui(ui, |ui| {
                     for pattern in Pattern::ALL {
                         ui.selectable_value(&mut p.pattern, pattern, pattern.name())
-                            .on_hover_text(pattern_tip(pattern));
+                            .hint(pattern_tip(pattern));
                     }
                 })
                 .response
-                .on_hover_text(pattern_tip(p.pattern));
+                .hint(pattern_tip(p.pattern));
             ui.horizontal(|ui| {
-                ui.add(DragValue::new(&mut p.seed))
-                    .on_hover_text(tip("seed"));
+                ui.add(DragValue::new(&mut p.seed)).hint(tip("seed"));
                 ui.label("Seed");
             });
         });
@@ -270,7 +284,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         .default_open(false)
         .show(ui, |ui| {
             ui.add(param_slider(&mut p.light_size, "light_size"))
-                .on_hover_text(tip("light_size"));
+                .hint(tip("light_size"));
         });
 
     section(c.open, "Glossy reflection")
@@ -280,14 +294,14 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             let mut n = p.phong_exponent.or(own).unwrap_or(100.0);
             if ui
                 .add(param_slider(&mut n, "phong_exponent"))
-                .on_hover_text(tip("phong_exponent"))
+                .hint(tip("phong_exponent"))
                 .changed()
             {
                 p.phong_exponent = Some(n);
             }
             if ui
                 .add_enabled(p.phong_exponent.is_some(), egui::Button::new("Scene n"))
-                .on_hover_text("Each glossy material's own exponent.")
+                .hint("Each glossy material's own exponent.")
                 .clicked()
             {
                 p.phong_exponent = None;
@@ -296,24 +310,24 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
 
     section(c.open, "Camera and depth of field").default_open(true).show(ui, |ui| {
         ui.add(Slider::new(&mut c.camera.fov_deg, 5.0..=120.0).text("Field of view °"))
-            .on_hover_text("The vertical angle the image spans.");
+            .hint("The vertical angle the image spans.");
         ui.add(param_slider(&mut p.aperture, "aperture"))
-            .on_hover_text(tip("aperture"));
+            .hint(tip("aperture"));
         let f = c.camera.f_number(p.aperture).map_or("pinhole".to_string(), |n| format!("f/{n:.1}"));
         ui.label(format!("{f} (35 mm equivalent, 1 unit = 1 m)"));
         let own = c.camera.look_distance();
         let mut d = p.focus_distance.unwrap_or(own);
         if ui
             .add(param_slider(&mut d, "focus_distance"))
-            .on_hover_text(tip("focus_distance"))
+            .hint(tip("focus_distance"))
             .changed()
         {
             p.focus_distance = Some(d);
         }
         ui.horizontal(|ui| {
             ui.toggle_value(c.click_to_focus, "Click to focus")
-                .on_hover_text("Then click the image: the focus distance becomes the depth of the point clicked.");
-            if ui.add_enabled(p.focus_distance.is_some(), egui::Button::new("Look-at")).on_hover_text("Focus on the camera's look-at point.").clicked() {
+                .hint("Then click the image: the focus distance becomes the depth of the point clicked.");
+            if ui.add_enabled(p.focus_distance.is_some(), egui::Button::new("Look-at")).hint("Focus on the camera's look-at point.").clicked() {
                 p.focus_distance = None;
             }
         });
@@ -328,7 +342,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             let mut on = p.polarizer.is_some();
             if ui
                 .checkbox(&mut on, "Linear polariser in front of the lens")
-                .on_hover_text(tip("polarizer"))
+                .hint(tip("polarizer"))
                 .changed()
             {
                 p.polarizer = on.then_some(90.0);
@@ -336,7 +350,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
             let mut angle = p.polarizer.unwrap_or(90.0);
             let slider = ui
                 .add_enabled(on, param_slider(&mut angle, "polarizer").fixed_decimals(0))
-                .on_hover_text(tip("polarizer"));
+                .hint(tip("polarizer"));
             if slider.changed() {
                 p.polarizer = Some(angle);
             }
@@ -345,7 +359,7 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                     ("Horizontal", 0.0, "Passes horizontally polarised light: the glare off a floor or water stays."),
                     ("Vertical", 90.0, "Passes vertically polarised light: the s-polarised glare off a floor or water at Brewster's angle is cut."),
                 ] {
-                    if ui.add_enabled(on, egui::Button::selectable(p.polarizer == Some(a), label)).on_hover_text(hint).clicked() {
+                    if ui.add_enabled(on, egui::Button::selectable(p.polarizer == Some(a), label)).hint(hint).clicked() {
                         p.polarizer = Some(a);
                     }
                 }
@@ -361,18 +375,18 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
         .default_open(false)
         .show(ui, |ui| {
             ui.add(param_slider(&mut p.shutter_open, "shutter_open"))
-                .on_hover_text(tip("shutter_open"));
+                .hint(tip("shutter_open"));
             p.shutter = p.shutter.min(1.0 - p.shutter_open);
             let max = 1.0 - p.shutter_open;
             // The interval ends within the frame: the slider stops at 1 − opening.
             let label = spec("shutter").map_or("shutter", |s| s.label);
             ui.add(Slider::new(&mut p.shutter, 0.0..=max).text(label))
-                .on_hover_text(tip("shutter"));
+                .hint(tip("shutter"));
         });
 
     section(c.open, "Display").default_open(true).show(ui, |ui| {
         ui.add(param_slider(&mut p.exposure, "exposure"))
-            .on_hover_text(tip("exposure"));
+            .hint(tip("exposure"));
         ComboBox::from_label("Resolution")
             .selected_text(format!("{:.0}%", *c.resolution * 100.0))
             .show_ui(ui, |ui| {
@@ -381,6 +395,6 @@ pub(crate) fn controls_ui(ui: &mut Ui, c: &mut Controls) {
                 }
             })
             .response
-            .on_hover_text("Render resolution, as a fraction of the scene's image size. Lower is faster to refine.");
+            .hint("Render resolution, as a fraction of the scene's image size. Lower is faster to refine.");
     });
 }

@@ -21,6 +21,8 @@ pub(crate) enum LoadPurpose {
 /// A finished load.
 pub(crate) struct Loaded {
     purpose: LoadPurpose,
+    // The number of Opens asked for when this load was: a later Open overtakes it.
+    opens: u64,
     result: Result<Scene, SceneError>,
 }
 
@@ -35,6 +37,10 @@ pub(crate) struct Loader {
     tx: Sender<Loaded>,
     rx: Receiver<Loaded>,
     loading: usize,
+    // Opens asked for so far. Loads run on threads of their own and can finish out of
+    // order: the scene of an older Open (two slides asked for quickly) must not arrive
+    // after the newer one and replace it.
+    opens: u64,
     watched: Arc<Mutex<Watched>>,
     changed: Receiver<(PathBuf, LoadPurpose)>,
     // The file of the last Open, to watch if it fails.
@@ -72,6 +78,7 @@ impl Loader {
             tx,
             rx,
             loading: 0,
+            opens: 0,
             watched,
             changed,
             opening: None,
@@ -83,7 +90,9 @@ impl Loader {
     pub(crate) fn load(&mut self, reference: String, purpose: LoadPurpose) {
         if purpose == LoadPurpose::Open {
             self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
+            self.opens += 1;
         }
+        let opens = self.opens;
         let tx = self.tx.clone();
         let wake = self.ctx.clone();
         self.loading += 1;
@@ -94,7 +103,11 @@ impl Loader {
                     e,
                 ))
             });
-            let _ = tx.send(Loaded { purpose, result });
+            let _ = tx.send(Loaded {
+                purpose,
+                opens,
+                result,
+            });
             wake.request_repaint();
         });
     }
@@ -123,10 +136,16 @@ impl Loader {
         }
     }
 
-    /// The next finished load. A file that failed to open is watched from now on.
+    /// The next finished load that no later Open has overtaken (those are dropped). A
+    /// file that failed to open is watched from now on.
     fn receive(&mut self) -> Option<Loaded> {
-        let loaded = self.rx.try_recv().ok()?;
-        self.loading = self.loading.saturating_sub(1);
+        let loaded = loop {
+            let loaded = self.rx.try_recv().ok()?;
+            self.loading = self.loading.saturating_sub(1);
+            if loaded.opens == self.opens {
+                break loaded;
+            }
+        };
         if loaded.purpose == LoadPurpose::Open
             && loaded.result.is_err()
             && let Some(path) = self.opening.take()
@@ -234,6 +253,24 @@ fn modified(path: &Path) -> Option<SystemTime> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_open_overtaken_by_a_later_one_is_dropped() {
+        let mut loader = Loader::new(&egui::Context::default());
+        // The first is the slowest to load (a 100k-triangle mesh), the second quick.
+        loader.load("bunny".into(), LoadPurpose::Open);
+        loader.load("glass".into(), LoadPurpose::Open);
+        let deadline = std::time::Instant::now() + Duration::from_secs(60);
+        let mut arrived = Vec::new();
+        while loader.is_loading() {
+            assert!(std::time::Instant::now() < deadline, "loads never ended");
+            match loader.receive() {
+                Some(l) => arrived.push(l.result.map(|s| s.name).unwrap_or_default()),
+                None => std::thread::sleep(Duration::from_millis(5)),
+            }
+        }
+        assert_eq!(arrived, ["glass"]);
+    }
 
     #[test]
     fn reload_keeps_what_the_user_changed_and_takes_new_defaults() {

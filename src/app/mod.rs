@@ -133,7 +133,10 @@ pub fn run(options: AppOptions) -> eframe::Result {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("raylab")
-            .with_inner_size([1280.0, 800.0])
+            // Maximized on the first run (a 1280×800 window overflows a 720p laptop's
+            // screen); afterwards eframe restores the size and state the user left.
+            .with_maximized(true)
+            .with_inner_size([1280.0, 720.0])
             .with_min_inner_size([640.0, 400.0])
             .with_drag_and_drop(true),
         persist_window: options.persist,

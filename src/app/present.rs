@@ -86,11 +86,23 @@ impl RaylabApp {
             }
         }
         if self.hall.presenting {
-            if pressed(&[Key::PageDown, Key::ArrowRight, Key::ArrowDown]) {
-                self.step_slide(1);
-            }
-            if pressed(&[Key::PageUp, Key::ArrowLeft, Key::ArrowUp]) {
-                self.step_slide(-1);
+            // Every press counts: three quick clicks (or xdotool's three keys) can land in
+            // one frame, where `key_pressed` would see one.
+            let presses = |keys: &[Key]| {
+                ctx.input(|i| {
+                    i.events
+                        .iter()
+                        .filter(|e| {
+                            matches!(e, egui::Event::Key { key, pressed: true, modifiers, .. }
+                                if keys.contains(key) && modifiers.is_none())
+                        })
+                        .count() as i32
+                })
+            };
+            let by = presses(&[Key::PageDown, Key::ArrowRight, Key::ArrowDown])
+                - presses(&[Key::PageUp, Key::ArrowLeft, Key::ArrowUp]);
+            if by != 0 {
+                self.step_slide(by);
             }
         }
     }
