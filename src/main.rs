@@ -452,7 +452,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
         let pixels = (width as u64 * height as u64) as f64;
         // The status bar's estimate, so a render's noise can be judged without a window.
         let noise = film
-            .noise()
+            .noise(params.exposure)
             .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
         let rays = stats.total_rays();
         eprintln!(

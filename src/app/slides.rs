@@ -10,7 +10,9 @@ pub(crate) struct Slide {
     pub title: &'static str,
     /// The built-in scene.
     pub scene: &'static str,
-    /// Parameters set on top of the scene's, as `--set` would.
+    /// Parameters set on top of the scene's, as `--set` would. The slide's `spp` is its
+    /// target: enough for the status bar's noise under 2 % (tests/slides.rs), except where
+    /// the slide is about the noise of few samples.
     pub params: &'static [(&'static str, &'static str)],
     /// The caption shown under or over the image, from the parameters as they are now:
     /// it follows what the lecturer changes.
@@ -29,7 +31,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Metals vs dielectrics",
         scene: "metals",
-        params: &[],
+        params: &[("spp", "32")],
         caption: |_| {
             "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. Instruments > Fresnel plot > Compare with a metal.".into()
         },
@@ -40,7 +42,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Snell's law",
         scene: "glass",
-        params: &[],
+        params: &[("spp", "128")],
         caption: |_| {
             "n1 sin θi = n2 sin θt: the refracted rays bend towards the normal going in and away coming out, so the sphere is a lens and shows the floor upside down. Drag the IOR.".into()
         },
@@ -51,7 +53,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Total internal reflection",
         scene: "tir",
-        params: &[],
+        params: &[("spp", "32")],
         caption: |_| {
             "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.".into()
         },
@@ -62,7 +64,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Pruning the ray tree",
         scene: "ray-tree",
-        params: &[("max_depth", "2")],
+        params: &[("max_depth", "2"), ("spp", "64")],
         caption: |p| {
             let d = p.max_depth;
             if d <= 3 {
@@ -83,7 +85,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Reflectance against angle: metal and glass",
         scene: "metals",
-        params: &[],
+        params: &[("spp", "32")],
         caption: |_| {
             "The Fresnel plot: gold (top, per colour channel) reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass (below) 4% head-on, rising to 100% only at grazing. Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.".into()
         },
@@ -94,7 +96,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Fresnel reflection on the black glazed sphere",
         scene: "glazed",
-        params: &[],
+        params: &[("spp", "32")],
         caption: |_| {
             "Left: constant reflectance, 10% at every angle. Right: Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed.".into()
         },
@@ -156,7 +158,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Soft shadows",
         scene: "soft-shadows",
-        params: &[],
+        params: &[("spp", "256")],
         caption: |_| {
             "Each sample's shadow ray goes to a different point of the area light: the penumbra. Drag Light size; at 0 the light is a point and shadows are hard.".into()
         },
@@ -167,7 +169,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Glossy reflection",
         scene: "glossy",
-        params: &[],
+        params: &[("spp", "512")],
         caption: |_| {
             "Reflected rays jittered over a Phong lobe cos^n around the mirror direction: n = 10 to 10,000 from left to right.".into()
         },
@@ -178,7 +180,7 @@ pub(crate) const LECTURE: &[Slide] = &[
     Slide {
         title: "Depth of field",
         scene: "depth-of-field",
-        params: &[],
+        params: &[("spp", "256")],
         caption: |_| {
             "Eye rays from random points on the lens meet on the plane of focus: the blue sphere is sharp, the others blur by their circle of confusion. Try Click to focus.".into()
         },

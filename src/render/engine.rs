@@ -544,7 +544,7 @@ impl Controller {
                 0.0
             },
             eta,
-            noise: self.film.noise(),
+            noise: self.film.noise(self.params.exposure),
             stats: self.stats,
             paused: self.paused,
             failure: self.failure.clone(),

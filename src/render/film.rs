@@ -263,25 +263,33 @@ impl Film {
             .map(move |a| if empty { Color::ZERO } else { a.mean() })
     }
 
-    /// The estimated noise of the image, relative to its mean brightness: the standard
-    /// error of each pixel's mean, estimated from the difference of its even- and
-    /// odd-numbered samples' means (|A − B|/2 for halves of equal size), as an RMS over the
-    /// image divided by the mean luminance. `None` before two samples per pixel.
-    pub fn noise(&self) -> Option<f32> {
+    /// The estimated noise of the image as shown: the standard error of each pixel's
+    /// displayed value (scaled by 2^exposure, clipped to [0, 1], sRGB encoded), estimated
+    /// from the difference of its even- and odd-numbered samples' means (|A − B|/2 for
+    /// halves of equal size), as an RMS over the image divided by the mean displayed
+    /// brightness. Displayed, not linear: a highlight far above white is clipped and its
+    /// noise cannot be seen, while a dark region's noise is (the sRGB curve is steep
+    /// there). `None` before two samples per pixel.
+    pub fn noise(&self, exposure: f32) -> Option<f32> {
         if self.spp < 2 {
             return None;
         }
-        let luminance = |c: [f64; 3]| 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+        let scale = exposure.exp2() as f64;
+        // Rec. 709 weights on the encoded values (luma): brightness as shown.
+        let luma = |c: [f64; 3], count: u32| {
+            let shown = |v: f64| srgb_encode((v * scale / count as f64).clamp(0.0, 1.0) as f32);
+            0.2126 * shown(c[0]) as f64 + 0.7152 * shown(c[1]) as f64 + 0.0722 * shown(c[2]) as f64
+        };
         let (mut err2, mut total, mut n) = (0.0f64, 0.0f64, 0usize);
         for p in self.accums() {
             let even_count = p.count - p.odd_count;
             if p.odd_count == 0 || even_count == 0 {
                 continue;
             }
-            let odd = luminance(p.odd_sum) / p.odd_count as f64;
-            let even = (luminance(p.sum) - luminance(p.odd_sum)) / even_count as f64;
+            let even_sum = [0, 1, 2].map(|i| p.sum[i] - p.odd_sum[i]);
+            let (odd, even) = (luma(p.odd_sum, p.odd_count), luma(even_sum, even_count));
             err2 += (odd - even).powi(2) / 4.0;
-            total += luminance(p.sum) / p.count as f64;
+            total += luma(p.sum, p.count);
             n += 1;
         }
         (n > 0 && total > 0.0).then(|| ((err2 / n as f64).sqrt() / (total / n as f64)) as f32)
@@ -332,19 +340,37 @@ mod tests {
     }
 
     #[test]
-    fn noise_estimate_matches_the_standard_error() {
-        // Samples alternating a ± d: every half-mean differs by 2d, so the standard error
-        // estimate is d; relative to the mean a, d/a.
+    fn noise_estimate_matches_the_standard_error_of_what_is_shown() {
+        // Samples alternating v ± d: every half-mean differs by 2d. Where the display is
+        // nearly linear (sRGB's slope at 0.5 of full scale, over a small d), the standard
+        // error of the shown value is d·s'(v), relative to s(v).
+        let (v, d) = (0.5f32, 0.001f32);
         let mut f = Film::new(4, 4);
         for p in &mut f.pixels {
             for i in 0..8 {
-                p.add(i, Color::splat(if i % 2 == 0 { 1.1 } else { 0.9 }));
+                p.add(i, Color::splat(if i % 2 == 0 { v + d } else { v - d }));
             }
         }
         f.set_spp(8);
-        assert!((f.noise().unwrap() - 0.1).abs() < 1e-6);
+        let slope = (srgb_encode(v + d) - srgb_encode(v - d)) / (2.0 * d);
+        let expected = d * slope / srgb_encode(v);
+        assert!((f.noise(0.0).unwrap() / expected - 1.0).abs() < 1e-3);
+        // Two stops darker, the same samples are noisier as shown (sRGB is steeper there).
+        assert!(f.noise(-2.0).unwrap() > f.noise(0.0).unwrap());
         f.set_spp(1);
-        assert_eq!(f.noise(), None);
+        assert_eq!(f.noise(0.0), None);
+    }
+
+    #[test]
+    fn noise_in_a_highlight_clipped_to_white_does_not_count() {
+        // A pixel whose samples swing between 5 and 50 shows white all the same.
+        let mut f = Film::new(2, 1);
+        for i in 0..8 {
+            f.pixels[0].add(i, Color::splat(if i % 2 == 0 { 5.0 } else { 50.0 }));
+            f.pixels[1].add(i, Color::splat(0.5));
+        }
+        f.set_spp(8);
+        assert_eq!(f.noise(0.0), Some(0.0));
     }
 
     #[test]

@@ -18,7 +18,8 @@ pub struct Progress {
     pub rays_per_second: f64,
     /// Estimated time to reach the target.
     pub eta: Option<Duration>,
-    /// Estimated noise relative to the image's brightness (see [`super::Film::noise`]).
+    /// Estimated noise of the image as shown, relative to its brightness (see
+    /// [`super::Film::noise`]).
     pub noise: Option<f32>,
     /// What the tracer did in this generation.
     pub stats: Stats,
