@@ -734,6 +734,12 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
             plotted,
             "{title}: the Fresnel plot as the slide needs"
         );
+        // The slide about the tree opens the inspector on its pixel; no other.
+        assert_eq!(
+            h.state().inspected_tree().is_some(),
+            title == "The ray tree",
+            "{title}: the inspector as the slide needs"
+        );
         let caption = h.state().caption().unwrap();
         for spec in raylab::params::TABLE {
             if names(&caption, spec.label) {

@@ -28,7 +28,8 @@ fn every_slide_reaches_noise_under_2_percent_at_its_target() {
             Some(setup.params.clone()),
             setup.side_b.map(|b| b(&setup.params)),
         ];
-        for params in sides.into_iter().flatten() {
+        // One ray through each pixel's centre has nothing to estimate noise from.
+        for params in sides.into_iter().flatten().filter(|p| p.spp > 1) {
             let mut film = Film::new(scene.width / 2, scene.height / 2);
             render_pass(scene, &scene.camera, &params, &mut film, params.spp, &()).unwrap();
             let noise = film.noise(params.exposure).unwrap();

@@ -28,6 +28,9 @@ pub(crate) enum CompareKind {
     /// One sample at each pixel's centre against four jittered samples: supersampling
     /// (a slide's, not a preset: the sides differ in their sample counts).
     Supersampling,
+    /// One ray per pixel to a point light against 256 averaged over the pixel and the
+    /// area light: distribution ray tracing's blurs (a slide's, not a preset).
+    Blurring,
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
@@ -60,6 +63,7 @@ impl CompareKind {
             CompareKind::WhittedPath => ("A: Whitted", "B: path tracing"),
             CompareKind::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
             CompareKind::Supersampling => ("A: 1 sample, centre", "B: 4 jittered"),
+            CompareKind::Blurring => ("A: 1 ray, point light", "B: 256 rays, area light"),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
@@ -78,6 +82,11 @@ impl CompareKind {
             CompareKind::Supersampling => {
                 p.spp = 1;
                 p.pattern = Pattern::Regular;
+            }
+            CompareKind::Blurring => {
+                p.spp = 1;
+                p.pattern = Pattern::Regular;
+                p.light_size = 0.0;
             }
             CompareKind::Frozen(_) => {}
         }
@@ -99,6 +108,11 @@ impl CompareKind {
             CompareKind::Supersampling => {
                 p.spp = 4;
                 p.pattern = Pattern::Jittered;
+            }
+            CompareKind::Blurring => {
+                p.spp = 256;
+                p.pattern = Pattern::Sobol;
+                p.light_size = 1.0;
             }
             CompareKind::Frozen(b) => return b.clone(),
         }

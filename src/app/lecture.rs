@@ -184,6 +184,7 @@ mod tests {
             compare: None,
             open: &[],
             plot: None,
+            inspect: None,
         };
         assert!(matches!(
             slide.apply(&Params::default()),

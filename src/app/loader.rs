@@ -218,6 +218,16 @@ impl RaylabApp {
             if let Some(kind) = slide.and_then(|s| s.compare.clone()) {
                 self.start_compare(ctx, kind);
             }
+            // A slide about the ray tree opens the inspector on its pixel; the others
+            // leave clicks on the image to the view.
+            if let Some(slide) = slide {
+                self.instruments.inspect_mode = slide.inspect.is_some();
+                if let Some((fx, fy)) = slide.inspect {
+                    let size = super::render_size(&self.scene, self.settings.resolution);
+                    let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n - 1);
+                    self.inspect((at(fx, size.0), at(fy, size.1)), size);
+                }
+            }
         }
     }
 }

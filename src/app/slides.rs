@@ -24,6 +24,9 @@ pub(crate) struct Slide {
     /// The Fresnel plot, if the slide shows it: `Some(None)` for the dielectric's curves,
     /// `Some(Some(metal))` compared with a measured metal's.
     pub plot: Option<Option<&'static str>>,
+    /// The pixel whose ray tree the inspector shows, as a fraction of the image's width
+    /// and height, if the slide is about the tree.
+    pub inspect: Option<(f32, f32)>,
 }
 
 /// The lecture, slide by slide.
@@ -38,6 +41,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Snell's law",
@@ -49,6 +53,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Total internal reflection",
@@ -60,6 +65,19 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
+    },
+    Slide {
+        title: "The ray tree",
+        scene: "ray-tree",
+        params: &[("spp", "32")],
+        caption: |_| {
+            "Every hit on glass spawns two rays, reflected (weight R) and refracted (weight 1 − R), and each of those spawns two more: a tree per pixel. The inspector (right) lists the tree of the pixel marked through the front sphere, and draws it over the image: the reflections off its front and back, the rays through it to the amber sphere and beyond. Click another pixel to see its tree.".into()
+        },
+        compare: None,
+        open: &[],
+        plot: None,
+        inspect: Some((0.42, 0.5)),
     },
     Slide {
         title: "Pruning the ray tree",
@@ -81,6 +99,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Reflectance against angle: metal and glass",
@@ -92,17 +111,19 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: Some(Some("gold")),
+        inspect: None,
     },
     Slide {
         title: "Fresnel reflection on the black glazed sphere",
         scene: "glazed",
-        params: &[("spp", "32")],
+        params: &[("spp", "32"), ("constant_reflectance", "0.1")],
         caption: |_| {
-            "Left: constant reflectance, 10% at every angle. Right: Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed.".into()
+            "Left of the divider (A): constant reflectance, 10% at every angle. Right (B): Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed. Drag the divider across a sphere to see it change.".into()
         },
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Fresnel's formulas and Schlick's approximation",
@@ -114,6 +135,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: Some(CompareKind::SchlickExact),
         open: &[],
         plot: Some(None),
+        inspect: None,
     },
     Slide {
         title: "The basic ray tracer",
@@ -129,6 +151,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Antialiasing: 1 against 4 samples",
@@ -140,6 +163,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: Some(CompareKind::Supersampling),
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Regular, random and jittered samples",
@@ -154,6 +178,19 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: Some(CompareKind::RandomJittered),
         open: &[],
         plot: None,
+        inspect: None,
+    },
+    Slide {
+        title: "Blurring to improve images",
+        scene: "soft-shadows",
+        params: &[],
+        caption: |_| {
+            "Left (A): one ray through each pixel's centre, one shadow ray to a point light: jagged edges, hard shadows. Right (B): 256 rays per pixel, each through its own point of the pixel and to its own point of the area light, averaged: edges blur into smooth lines, shadows into penumbrae. Distribution ray tracing blurs on purpose, averaging rays spread over the pixel, the light, the lens and the shutter.".into()
+        },
+        compare: Some(CompareKind::Blurring),
+        open: &[],
+        plot: None,
+        inspect: None,
     },
     Slide {
         title: "Soft shadows",
@@ -165,6 +202,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &["Soft shadows"],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Glossy reflection",
@@ -176,6 +214,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Depth of field",
@@ -187,6 +226,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Motion blur",
@@ -203,6 +243,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &["Motion blur"],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "F_s and F_p: polarisation at Brewster's angle",
@@ -215,6 +256,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &["Polariser"],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "Dispersion",
@@ -226,6 +268,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: None,
         open: &[],
         plot: None,
+        inspect: None,
     },
     Slide {
         title: "What the ray tree misses",
@@ -237,6 +280,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         compare: Some(CompareKind::WhittedPhotons),
         open: &[],
         plot: None,
+        inspect: None,
     },
 ];
 

@@ -57,14 +57,18 @@ pub(crate) fn draw_tree_overlay(
             .project(p)
             .map(|f| image.min + egui::vec2(f.x * image.width(), f.y * image.height()))
     };
+    // Widths grow with the image: 2-point rays on a 540-point image, thicker on a
+    // projector's full-screen image, where 1 px lines vanish from the back of the hall.
+    let u = (image.height() / 540.0).max(1.0);
     for n in &tree.nodes {
         // The camera ray runs along the line of sight: it would project to a dot. A ring
         // marks where it meets the scene instead.
         if n.kind == crate::tracer::RayKind::Camera {
             if let Some(b) = to_screen(n.end_point) {
-                let stroke = egui::Stroke::new(2.0, kind_color(n.kind));
-                painter.circle_stroke(b, 9.0, stroke);
-                painter.circle_stroke(b, 10.5, egui::Stroke::new(1.0, egui::Color32::BLACK));
+                let stroke = egui::Stroke::new(2.0 * u, kind_color(n.kind));
+                painter.circle_stroke(b, 9.0 * u, stroke);
+                let rim = egui::Stroke::new(u, egui::Color32::BLACK);
+                painter.circle_stroke(b, 10.5 * u, rim);
             }
             continue;
         }
@@ -73,13 +77,13 @@ pub(crate) fn draw_tree_overlay(
             continue;
         };
         let width = if n.kind == crate::tracer::RayKind::Shadow {
-            1.0
+            u
         } else {
-            2.0
+            2.0 * u
         };
         painter.line_segment([a, b], egui::Stroke::new(width, kind_color(n.kind)));
         if n.hit.is_some() {
-            painter.circle_filled(b, 3.0, kind_color(n.kind));
+            painter.circle_filled(b, 3.0 * u, kind_color(n.kind));
         }
     }
 }
