@@ -120,7 +120,7 @@ pub(crate) const LECTURE: &[Slide] = &[
         caption: |_| {
             "Left of the divider (A): constant reflectance, 10% at every angle. Right (B): Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed. Drag the divider across a sphere to see it change.".into()
         },
-        compare: None,
+        compare: Some(CompareKind::ConstantFresnel),
         open: &[],
         plot: None,
         inspect: None,
