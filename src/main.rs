@@ -210,6 +210,9 @@ struct RenderArgs {
     /// A left and B right (no sidecar: no one set of parameters makes it).
     #[arg(long, value_name = "N", conflicts_with_all = ["scene", "params"])]
     slide: Option<usize>,
+    /// With --slide: the slide's caption under the image, in a strip of its own (PNG only).
+    #[arg(long, requires = "slide")]
+    caption: bool,
     /// No progress bar and no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -328,10 +331,10 @@ impl PassObserver for Progress {
 
 fn render_command(args: RenderArgs) -> Result<()> {
     let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
-    let (scene, mut params, side_b) = match args.slide.map(raylab::app::slide_setup) {
+    let (scene, mut params, side_b, caption) = match args.slide.map(raylab::app::slide_setup) {
         Some(slide) => {
             let s = slide?;
-            (s.scene, s.params, s.side_b)
+            (s.scene, s.params, s.side_b, Some(s.caption))
         }
         None => {
             let scene_ref = match (&args.scene, &sidecar) {
@@ -344,7 +347,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
                 Some(sc) => sc.params.clone(),
                 None => scene.params.clone(),
             };
-            (scene, params, None)
+            (scene, params, None, None)
         }
     };
     let (mut width, mut height) = match &sidecar {
@@ -371,6 +374,16 @@ fn render_command(args: RenderArgs) -> Result<()> {
     params.set_all(&args.set).context("--set")?;
     let params_b = side_b.map(|b| b(&params));
     check_output(&args.output)?;
+    let png = args
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if args.caption && !png {
+        bail!(
+            "{}: --caption draws text into the picture, so it needs a .png output",
+            args.output.display()
+        );
+    }
     let json = sidecar_path(&args.output);
     if params_b.is_none() {
         Sidecar::check_target(&json, args.params.as_deref())?;
@@ -419,7 +432,17 @@ fn render_command(args: RenderArgs) -> Result<()> {
     } else {
         ""
     };
-    film.save(&args.output, params.exposure).map_err(runtime)?;
+    match caption.filter(|_| args.caption) {
+        // The caption as it reads for the parameters rendered (after any --set).
+        Some(caption) => {
+            let image =
+                raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
+            raylab::render::output::save_image(&image, &args.output, image::ImageFormat::Png)
+                .with_context(|| format!("cannot write {}", args.output.display()))
+                .map_err(runtime)?;
+        }
+        None => film.save(&args.output, params.exposure).map_err(runtime)?,
+    }
     if params_b.is_some() {
         if !args.quiet {
             eprintln!(

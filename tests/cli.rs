@@ -283,6 +283,30 @@ fn lecture_lists_the_slides_and_render_slide_makes_the_windows_split() {
         }
     }
     assert_ne!(a, b, "the two sides differ");
+    // --caption adds the caption under the same picture, in a strip of its own.
+    run(&["render", "--slide", &n, "--caption", "-o", "captioned.png"]);
+    let captioned = img("captioned.png");
+    assert_eq!(captioned.width(), 64);
+    assert!(
+        captioned.height() > 36 + 12,
+        "a strip of text under the image"
+    );
+    for y in 0..36 {
+        for x in 0..64 {
+            assert_eq!(captioned.get_pixel(x, y), slide.get_pixel(x, y));
+        }
+    }
+    let lit = (36..captioned.height())
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .filter(|&(x, y)| captioned.get_pixel(x, y).0[0] > 128)
+        .count();
+    assert!(lit > 50, "text drawn: {lit} bright pixels");
+    // Text cannot go into a file of linear radiance.
+    fails(
+        &["render", "--slide", &n, "--caption", "-o", "x.exr"],
+        dir.path(),
+        "needs a .png output",
+    );
     // A slide that is not there is bad input, said once.
     fails(
         &["render", "--slide", "99", "-o", "x.png"],

@@ -20,8 +20,9 @@ pub struct SlideSetup {
     pub params: Params,
     /// Where the slide compares two things: side B's parameters from side A's.
     pub side_b: Option<SideB>,
-    /// Its caption.
-    pub caption: String,
+    /// Its caption as it reads for the parameters given: it follows them, as in the
+    /// window.
+    pub caption: fn(&Params) -> String,
 }
 
 /// A slide that cannot be set up.
@@ -58,7 +59,7 @@ pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
     Ok(SlideSetup {
         title: slide.title,
         scene,
-        caption: (slide.caption)(&params),
+        caption: slide.caption,
         params,
         side_b,
     })

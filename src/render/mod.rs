@@ -9,6 +9,7 @@ mod kernel;
 pub mod output;
 mod sheet;
 mod snapshot;
+mod text;
 
 pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
@@ -17,6 +18,7 @@ pub use frame::{Frame, Progress};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
 pub use sheet::{SheetError, contact_sheet, parse_sweep};
 pub use snapshot::{Sidecar, SidecarError, sidecar_path};
+pub use text::with_caption;
 
 use crate::params::Params;
 use crate::scene::Scene;
