@@ -734,6 +734,19 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
             plotted,
             "{title}: the Fresnel plot as the slide needs"
         );
+        // Its instruments sit in the dock beside the image, clear of it and of the
+        // controls (the IOR slider the Fresnel plot follows among them).
+        let image = h.get_by_label("Image").rect();
+        let ior = h.get_by_role_and_label(Role::Slider, "IOR").rect();
+        for instrument in ["Fresnel plot", "Ray-tree inspector"] {
+            for node in h.query_all_by_label(instrument) {
+                let r = node.rect();
+                assert!(
+                    !r.intersects(image) && !r.intersects(ior) && r.left() >= image.right(),
+                    "{title}: {instrument} at {r:?} covers the image {image:?} or IOR {ior:?}"
+                );
+            }
+        }
         // The slide about the tree opens the inspector on its pixel; no other.
         assert_eq!(
             h.state().inspected_tree().is_some(),
