@@ -66,7 +66,7 @@ pub(crate) fn image_ui(
     let area = ui.available_rect_before_wrap();
     let response = ui.allocate_rect(area, Sense::click_and_drag());
     // Named for assistive tools (and for tests that check nothing covers it).
-    response.widget_info(|| egui::WidgetInfo::labeled(egui::WidgetType::Image, true, "Image"));
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, "Image"));
     let image = vec2(size.0 as f32, size.1 as f32);
     let fit = (area.width() / image.x)
         .min(area.height() / image.y)
