@@ -35,6 +35,7 @@ macro_rules! say_raw {
 mod cli;
 
 use cli::bench::{BenchArgs, bench_command};
+use cli::output::check_output;
 
 /// A failure while working (a file that cannot be written, threads that cannot start), as
 /// against bad input: the program exits with status 1, not 2.
@@ -373,17 +374,7 @@ fn render_command(args: RenderArgs) -> Result<()> {
     }
     params.set_all(&args.set).context("--set")?;
     let params_b = side_b.map(|b| b(&params));
-    check_output(&args.output)?;
-    let png = args
-        .output
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if args.caption && !png {
-        bail!(
-            "{}: --caption draws text into the picture, so it needs a .png output",
-            args.output.display()
-        );
-    }
+    check_output(&args.output, args.caption)?;
     let json = sidecar_path(&args.output);
     if params_b.is_none() {
         Sidecar::check_target(&json, args.params.as_deref())?;
@@ -496,28 +487,6 @@ fn render_command(args: RenderArgs) -> Result<()> {
             stats.non_finite,
             args.output.display(),
             json.display()
-        );
-    }
-    Ok(())
-}
-
-/// Refuses an output the film cannot write before spending time on the render.
-fn check_output(path: &Path) -> Result<()> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if !matches!(ext.as_deref(), Some("png") | Some("exr")) {
-        bail!("{}: the output must end in .png or .exr", path.display());
-    }
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        bail!(
-            "{}: the folder {} does not exist",
-            path.display(),
-            dir.display()
         );
     }
     Ok(())

@@ -1,3 +1,4 @@
 //! The `raylab` command's larger subcommands, one file each.
 
 pub mod bench;
+pub mod output;
