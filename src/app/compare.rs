@@ -79,14 +79,14 @@ impl CompareKind {
             CompareKind::WhittedTransmissive
             | CompareKind::WhittedPath
             | CompareKind::WhittedPhotons => p.transport = Transport::Whitted,
-            CompareKind::Supersampling => {
+            // The lecture's basic tracer: one ray through each pixel's centre (and, to show
+            // what blurring adds, a point light).
+            CompareKind::Supersampling | CompareKind::Blurring => {
                 p.spp = 1;
                 p.pattern = Pattern::Regular;
-            }
-            CompareKind::Blurring => {
-                p.spp = 1;
-                p.pattern = Pattern::Regular;
-                p.light_size = 0.0;
+                if *self == CompareKind::Blurring {
+                    p.light_size = 0.0;
+                }
             }
             CompareKind::Frozen(_) => {}
         }

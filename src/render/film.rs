@@ -91,6 +91,24 @@ pub fn srgb_encode(linear: f32) -> f32 {
     }
 }
 
+/// sRGB encoding of a linear value clamped to [0, 1], from a table of 4096 steps with
+/// linear interpolation (within 2e-5 of [`srgb_encode`]): the noise estimate runs it nine
+/// times a pixel for every frame, where `powf` took 42 ms at 960×540.
+#[inline]
+fn srgb_encode_table(linear: f32) -> f32 {
+    static TABLE: std::sync::OnceLock<Vec<f32>> = std::sync::OnceLock::new();
+    const N: usize = 4096;
+    let table = TABLE.get_or_init(|| {
+        (0..=N + 1)
+            .map(|i| srgb_encode((i as f32 / N as f32).min(1.0)))
+            .collect()
+    });
+    let x = linear.clamp(0.0, 1.0) * N as f32;
+    let i = x as usize;
+    let t = x - i as f32;
+    table[i] + (table[i + 1] - table[i]) * t
+}
+
 /// 8-bit sRGB of a linear value, clamped to [0, 1] (NaN is black), exactly rounded.
 #[inline]
 pub fn srgb8_exact(linear: f32) -> u8 {
@@ -277,7 +295,7 @@ impl Film {
         let scale = exposure.exp2() as f64;
         // Rec. 709 weights on the encoded values (luma): brightness as shown.
         let luma = |c: [f64; 3], count: u32| {
-            let shown = |v: f64| srgb_encode((v * scale / count as f64).clamp(0.0, 1.0) as f32);
+            let shown = |v: f64| srgb_encode_table((v * scale / count as f64) as f32);
             0.2126 * shown(c[0]) as f64 + 0.7152 * shown(c[1]) as f64 + 0.0722 * shown(c[2]) as f64
         };
         let (mut err2, mut total, mut n) = (0.0f64, 0.0f64, 0usize);
@@ -359,6 +377,17 @@ mod tests {
         assert!(f.noise(-2.0).unwrap() > f.noise(0.0).unwrap());
         f.set_spp(1);
         assert_eq!(f.noise(0.0), None);
+    }
+
+    #[test]
+    fn the_srgb_table_follows_the_curve() {
+        for i in 0..=100_000 {
+            let v = i as f32 / 100_000.0;
+            let err = (srgb_encode_table(v) - srgb_encode(v)).abs();
+            assert!(err < 2e-5, "at {v}: {err}");
+        }
+        assert_eq!(srgb_encode_table(7.0), srgb_encode(1.0));
+        assert_eq!(srgb_encode_table(-1.0), 0.0);
     }
 
     #[test]

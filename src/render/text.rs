@@ -144,9 +144,21 @@ mod tests {
 
     #[test]
     fn a_tiny_image_gets_a_legible_size_and_nothing_is_drawn_outside() {
+        // Words wider than the image are clipped at its edge (a write outside it would
+        // panic), and the text is 12 px however small the image: one line per word here.
         let image = RgbImage::new(40, 20);
         let out = with_caption(&image, "Snell's law: n1 sin θi = n2 sin θt");
         assert_eq!(out.width(), 40);
-        assert!(out.height() > 20);
+        let lines = 8.0;
+        assert!(
+            out.height() as f32 >= 20.0 + lines * 12.0,
+            "{}",
+            out.height()
+        );
+        let lit = (20..out.height())
+            .flat_map(|y| (0..40).map(move |x| (x, y)))
+            .filter(|&(x, y)| out.get_pixel(x, y).0[0] > 128)
+            .count();
+        assert!(lit > 50, "text drawn: {lit}");
     }
 }
