@@ -6,9 +6,9 @@ use raylab::geometry::{Shape, Sphere};
 use raylab::light::Background;
 use raylab::material::{Dielectric, Material};
 use raylab::math::{Color, Vec3};
-use raylab::optics::dispersion::ior_at;
-use raylab::params::{MAX_DEPTH, Params};
-use raylab::render::render;
+use raylab::optics::dispersion::{channel, ior_at};
+use raylab::params::{MAX_DEPTH, Params, TreeMode};
+use raylab::render::{Film, render};
 use raylab::scene::{Scene, SceneDesc};
 
 #[test]
@@ -26,12 +26,22 @@ fn white_furnace_a_dispersive_clear_sphere_in_a_uniform_environment_vanishes() {
     );
     desc.background = Background::Constant(Color::ONE);
     let scene = desc.build();
-    // One sample carries one wavelength from its first hit on: one channel, times 3.
-    let one = Params {
+    // The ray tree splits into three wavelengths at the first hit, one per channel: one
+    // sample already brings back white.
+    let split = Params {
         spp: 1,
         max_depth: MAX_DEPTH,
         min_weight: 0.0,
         ..Params::default()
+    };
+    let (film, _) = render(&scene, &split, 8, 8, &()).unwrap();
+    let centre = film.pixel(4, 4);
+    assert!((centre - Color::ONE).abs().max_element() < 1e-3, "{centre}");
+    // One path (stochastic tree) carries one wavelength from its first hit on: one
+    // channel, times 3.
+    let one = Params {
+        tree: TreeMode::Stochastic,
+        ..split
     };
     let (film, _) = render(&scene, &one, 8, 8, &()).unwrap();
     let centre = film.pixel(4, 4);
@@ -120,57 +130,126 @@ fn through_prism(angle: f64, n: f64) -> Option<([f64; 2], [f64; 2])> {
     Some((exit, out))
 }
 
-#[test]
-fn a_prism_spreads_a_white_slit_where_snells_law_puts_each_wavelength() {
-    // A weakly dispersive glass of high index, so that the whole spectrum fits in the
-    // prism's face as the camera sees it.
-    let (ior, abbe) = (1.785f32, 90.0f32);
-    let (width, height) = (400u32, 2u32);
-    // 30° across the image; the vertical field of view follows from the aspect ratio.
-    let half_h = 15f64.to_radians().tan();
-    let fov = 2.0 * (half_h * height as f64 / width as f64).atan().to_degrees();
-    // The slit: 30 units beyond the prism along the exit ray of a camera ray at 10° for
-    // n_d, square to it, 0.25 wide (about half a degree seen through the prism).
-    let (exit, dir) = through_prism(10f64.to_radians(), ior as f64).unwrap();
-    let centre = [exit[0] + 30.0 * dir[0], exit[1] + 30.0 * dir[1]];
-    let across = [-dir[1], dir[0]];
-    let slit_width = 0.25;
-    let corner = [
-        centre[0] - across[0] * slit_width / 2.0,
-        centre[1] - across[1] * slit_width / 2.0,
-    ];
-    let p = prism_corners();
-    let dir_obj = tempfile::tempdir().unwrap();
-    let mut obj = String::new();
-    for y in [-3.0, 3.0] {
-        for [x, z] in p {
-            obj += &format!("v {x} {y} {z}\n");
+/// A white slit 30 units beyond the prism, seen through it by a camera at the origin
+/// looking down -z over a 400×2 image, 30° across.
+struct SlitThroughPrism {
+    ior: f32,
+    abbe: f32,
+    width: u32,
+    height: u32,
+    // tan of half the horizontal field of view.
+    half_h: f64,
+    centre: [f64; 2],
+    // The exit direction of the ray at 10°, and across it (along the slit's width).
+    dir: [f64; 2],
+    across: [f64; 2],
+    slit_width: f64,
+    scene: Scene,
+    _models: tempfile::TempDir,
+}
+
+impl SlitThroughPrism {
+    fn new() -> Self {
+        // A weakly dispersive glass of high index, so that the whole spectrum fits in the
+        // prism's face as the camera sees it.
+        let (ior, abbe) = (1.785f32, 90.0f32);
+        let (width, height) = (400u32, 2u32);
+        // 30° across the image; the vertical field of view follows from the aspect ratio.
+        let half_h = 15f64.to_radians().tan();
+        let fov = 2.0 * (half_h * height as f64 / width as f64).atan().to_degrees();
+        // The slit: 30 units beyond the prism along the exit ray of a camera ray at 10° for
+        // n_d, square to it, 0.25 wide (about half a degree seen through the prism).
+        let (exit, dir) = through_prism(10f64.to_radians(), ior as f64).unwrap();
+        let centre = [exit[0] + 30.0 * dir[0], exit[1] + 30.0 * dir[1]];
+        let across = [-dir[1], dir[0]];
+        let slit_width = 0.25;
+        let corner = [
+            centre[0] - across[0] * slit_width / 2.0,
+            centre[1] - across[1] * slit_width / 2.0,
+        ];
+        let p = prism_corners();
+        let models = tempfile::tempdir().unwrap();
+        let mut obj = String::new();
+        for y in [-3.0, 3.0] {
+            for [x, z] in p {
+                obj += &format!("v {x} {y} {z}\n");
+            }
+        }
+        obj += "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 2 5 6 3\nf 3 6 4 1\n";
+        std::fs::write(models.path().join("prism.obj"), obj).unwrap();
+        let text = format!(
+            "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = {fov}\n\
+             [background]\ncolor = [0, 0, 0]\n\
+             [material.flint]\ntype = \"dielectric\"\nior = {ior}\nabbe = {abbe}\n\
+             fresnel = \"constant\"\nconstant_reflectance = 0\n\
+             [material.white]\ntype = \"emissive\"\ncolor = [1, 1, 1]\n\
+             [[mesh]]\nfile = \"prism.obj\"\nmaterial = \"flint\"\n\
+             [[quad]]\ncorner = [{}, -3, {}]\nedge_u = [{}, 0, {}]\nedge_v = [0, 6, 0]\nmaterial = \"white\"\n",
+            corner[0],
+            corner[1],
+            across[0] * slit_width,
+            across[1] * slit_width,
+        );
+        let scene = Scene::from_toml_str(&text, "prism.toml", models.path()).unwrap();
+        SlitThroughPrism {
+            ior,
+            abbe,
+            width,
+            height,
+            half_h,
+            centre,
+            dir,
+            across,
+            slit_width,
+            scene,
+            _models: models,
         }
     }
-    obj += "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 2 5 6 3\nf 3 6 4 1\n";
-    std::fs::write(dir_obj.path().join("prism.obj"), obj).unwrap();
-    let text = format!(
-        "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = {fov}\n\
-         [background]\ncolor = [0, 0, 0]\n\
-         [material.flint]\ntype = \"dielectric\"\nior = {ior}\nabbe = {abbe}\n\
-         fresnel = \"constant\"\nconstant_reflectance = 0\n\
-         [material.white]\ntype = \"emissive\"\ncolor = [1, 1, 1]\n\
-         [[mesh]]\nfile = \"prism.obj\"\nmaterial = \"flint\"\n\
-         [[quad]]\ncorner = [{}, -3, {}]\nedge_u = [{}, 0, {}]\nedge_v = [0, 6, 0]\nmaterial = \"white\"\n",
-        corner[0],
-        corner[1],
-        across[0] * slit_width,
-        across[1] * slit_width,
-    );
-    let scene = Scene::from_toml_str(&text, "prism.toml", dir_obj.path()).unwrap();
-    // Only camera -> prism -> slit: no reflections (R = 0), nothing deeper than the exit.
-    let params = Params {
-        spp: 4096,
-        max_depth: 2,
-        min_weight: 0.0,
-        ..Params::default()
-    };
-    let (film, _) = render(&scene, &params, width, height, &()).unwrap();
+
+    /// The image at `spp` samples by the ray tree `tree`: only camera -> prism -> slit, no
+    /// reflections (R = 0), nothing deeper than the exit.
+    fn render(&self, spp: u32, tree: TreeMode) -> Film {
+        let params = Params {
+            spp,
+            max_depth: 2,
+            min_weight: 0.0,
+            tree,
+            ..Params::default()
+        };
+        render(&self.scene, &params, self.width, self.height, &())
+            .unwrap()
+            .0
+    }
+
+    /// The column (pixels from the left edge) of the centroid of `channel`.
+    fn centroid(&self, film: &Film, channel: usize) -> f64 {
+        let (mut sum, mut weight) = (0.0, 0.0);
+        for y in 0..self.height {
+            for x in 0..self.width {
+                let v = film.pixel(x, y)[channel] as f64;
+                sum += (x as f64 + 0.5) * v;
+                weight += v;
+            }
+        }
+        sum / weight
+    }
+}
+
+#[test]
+fn a_prism_spreads_a_white_slit_where_snells_law_puts_each_wavelength() {
+    let setup = SlitThroughPrism::new();
+    let SlitThroughPrism {
+        ior,
+        abbe,
+        width,
+        half_h,
+        centre,
+        dir,
+        across,
+        slit_width,
+        ..
+    } = setup;
+    let film = setup.render(4096, TreeMode::Split);
 
     // The image column (0 at the left edge) of a camera ray at `angle`.
     let column = |angle: f64| width as f64 / 2.0 * (1.0 + angle.tan() / half_h);
@@ -213,17 +292,7 @@ fn a_prism_spreads_a_white_slit_where_snells_law_puts_each_wavelength() {
         }
         sum / weight
     };
-    let measured = |channel: usize| {
-        let (mut sum, mut weight) = (0.0, 0.0);
-        for y in 0..height {
-            for x in 0..width {
-                let v = film.pixel(x, y)[channel] as f64;
-                sum += (x as f64 + 0.5) * v;
-                weight += v;
-            }
-        }
-        sum / weight
-    };
+    let measured = |channel: usize| setup.centroid(&film, channel);
     let deviation = |lambda: f32| {
         let (_, d) = through_prism(10f64.to_radians(), ior_at(ior, abbe, lambda) as f64).unwrap();
         let a = 10f64.to_radians();
@@ -241,4 +310,87 @@ fn a_prism_spreads_a_white_slit_where_snells_law_puts_each_wavelength() {
     // The bands lie well apart: the slit is spread into its spectrum.
     assert!((blue_expected - red_expected).abs() > 10.0, "{report}");
     println!("{report}");
+}
+
+#[test]
+fn three_wavelengths_per_sample_and_one_give_the_same_spectrum_with_less_noise() {
+    // The ray tree splits into three wavelengths, one in each channel's box; a single
+    // path (stochastic tree) takes one, its channel times 3. With R = 0 the stochastic
+    // tree always refracts: the two differ only in how they sample wavelengths.
+    let setup = SlitThroughPrism::new();
+    let spp = 1024;
+    let three = setup.render(spp, TreeMode::Split);
+    let one = setup.render(spp, TreeMode::Stochastic);
+    let reference = setup.render(4096, TreeMode::Split);
+    let total = |film: &Film, c: usize| film.pixels().map(|p| p[c] as f64).sum::<f64>();
+    for c in 0..3 {
+        // Both estimate the same integral over the channel's box, so the channel's total
+        // over the image agrees within the noise of one wavelength per sample: a sample's
+        // channel is 3× a box's value with probability 1/3, relative variance
+        // 3 − 1 = 2 per sample, 2 / (spp × lit pixels) for the total. Within 4 standard
+        // errors (Sobol's stratification only makes it smaller).
+        let lit = reference.pixels().filter(|p| p[c] > 0.0).count() as f64;
+        let tolerance = 4.0 * (2.0 / (spp as f64 * lit)).sqrt();
+        let (a, b) = (total(&three, c), total(&one, c));
+        assert!(
+            (a / b - 1.0).abs() < tolerance,
+            "channel {c}: {a} vs {b} (tolerance {tolerance})"
+        );
+        // And the centroids: within half a pixel.
+        let (a, b) = (setup.centroid(&three, c), setup.centroid(&one, c));
+        assert!((a - b).abs() < 0.5, "channel {c}: centroid {a} vs {b}");
+    }
+    // Per pixel, splitting is the cleaner estimator: the summed squared difference from
+    // the 4096-sample reference is less than half.
+    let err = |film: &Film| {
+        film.pixels()
+            .zip(reference.pixels())
+            .map(|(p, r)| (p - r).length_squared() as f64)
+            .sum::<f64>()
+    };
+    assert!(
+        err(&three) < 0.5 * err(&one),
+        "{} vs {}",
+        err(&three),
+        err(&one)
+    );
+}
+
+#[test]
+fn the_inspector_shows_the_three_wavelengths_the_tree_splits_into() {
+    let setup = SlitThroughPrism::new();
+    let params = Params::default();
+    let tracer = raylab::tracer::Tracer::with_camera(
+        &setup.scene,
+        &setup.scene.camera,
+        &params,
+        setup.width,
+        setup.height,
+    );
+    // The centre column's camera ray meets the prism's first face.
+    let (tree, radiance) = tracer.inspect(setup.width / 2, 0, 0);
+    assert_eq!(
+        tree.nodes[0].wavelength, None,
+        "the camera ray has none yet"
+    );
+    // Below the prism's face, three refracted rays, one in each channel's box, each
+    // carrying its wavelength down its subtree.
+    let refracted: Vec<_> = tree
+        .children(0)
+        .filter(|(_, n)| n.kind == raylab::tracer::RayKind::Refract)
+        .collect();
+    let mut channels: Vec<usize> = refracted
+        .iter()
+        .map(|(_, n)| channel(n.wavelength.unwrap()))
+        .collect();
+    channels.sort();
+    assert_eq!(channels, [0, 1, 2]);
+    for (id, n) in &refracted {
+        for (_, child) in tree.children(*id) {
+            if child.kind != raylab::tracer::RayKind::Shadow {
+                assert_eq!(child.wavelength, n.wavelength);
+            }
+        }
+    }
+    assert!(radiance.is_finite());
 }

@@ -56,18 +56,6 @@ pub(crate) const LECTURE: &[Slide] = &[
         inspect: None,
     },
     Slide {
-        title: "Total internal reflection",
-        scene: "tir",
-        params: &[("spp", "32")],
-        caption: |_| {
-            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.".into()
-        },
-        compare: None,
-        open: &[],
-        plot: None,
-        inspect: None,
-    },
-    Slide {
         title: "The ray tree",
         scene: "ray-tree",
         params: &[("spp", "32")],
@@ -78,6 +66,18 @@ pub(crate) const LECTURE: &[Slide] = &[
         open: &[],
         plot: None,
         inspect: Some((0.42, 0.5)),
+    },
+    Slide {
+        title: "Total internal reflection",
+        scene: "tir",
+        params: &[("spp", "32")],
+        caption: |_| {
+            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.".into()
+        },
+        compare: None,
+        open: &[],
+        plot: None,
+        inspect: None,
     },
     Slide {
         title: "Pruning the ray tree",

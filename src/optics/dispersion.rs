@@ -4,10 +4,13 @@
 //! Spectra are the three boxes of the RGB channels: blue is 400–500 nm, green 500–600 nm,
 //! red 600–700 nm, each flat inside its box. An RGB colour is the spectrum that is its
 //! channel's value across each box, and a spectrum's RGB is its mean over each box, so the
-//! round trip is exact and white stays white (a white furnace stays uniform). A sample
-//! that meets a dispersive surface picks one wavelength, uniform over 400–700 nm: it then
-//! carries only its box's channel, times 3 (the probability of that box is 1/3), so the
-//! expected value of every channel is unchanged.
+//! round trip is exact and white stays white (a white furnace stays uniform). At a
+//! sample's first dispersive surface the ray tree splits into three wavelengths, one
+//! uniform in each box from one random number ([`wavelength_in`]), each carrying its
+//! box's channel: no colour noise. A single path (stochastic tree, path tracing, photons)
+//! picks one wavelength uniform over 400–700 nm instead and carries only its box's
+//! channel, times 3 (the probability of that box is 1/3). Either way the expected value
+//! of every channel is unchanged.
 
 use crate::math::Color;
 
@@ -43,6 +46,14 @@ pub fn ior_at(ior: f32, abbe: f32, lambda_nm: f32) -> f32 {
 /// The wavelength (nm) for a uniform number `u` in [0, 1): uniform over 400–700 nm.
 pub fn wavelength(u: f32) -> f32 {
     LAMBDA_MIN + (LAMBDA_MAX - LAMBDA_MIN) * u
+}
+
+/// The wavelength (nm) in the box of `channel` (0 red, 1 green, 2 blue) for a uniform
+/// number `u` in [0, 1): uniform over that box, so that one `u` gives a sample one
+/// wavelength in each of the three (stratified).
+pub fn wavelength_in(channel: usize, u: f32) -> f32 {
+    let width = (LAMBDA_MAX - LAMBDA_MIN) / 3.0;
+    LAMBDA_MAX - width * (channel as f32 + 1.0 - u)
 }
 
 /// The RGB channel whose box holds `lambda_nm`: 0 (red), 1 (green) or 2 (blue).
@@ -110,5 +121,19 @@ mod tests {
             .fold(Color::ZERO, |a, b| a + b)
             / n as f32;
         assert!((mean - Color::ONE).abs().max_element() < 1e-6, "{mean}");
+    }
+
+    #[test]
+    fn one_number_puts_a_wavelength_in_each_box() {
+        for u in [0.0, 0.25, 0.5, 0.999] {
+            for c in 0..3 {
+                assert_eq!(channel(wavelength_in(c, u)), c, "u = {u}, channel {c}");
+            }
+        }
+        assert_eq!(wavelength_in(0, 0.0), 600.0);
+        assert_eq!(wavelength_in(1, 0.5), 550.0);
+        assert_eq!(wavelength_in(2, 0.0), 400.0);
+        // At the top of a box, within rounding of the next one's bottom.
+        assert!((wavelength_in(2, 1.0 - f32::EPSILON) - 500.0).abs() < 1e-3);
     }
 }

@@ -117,6 +117,7 @@ impl Branch {
             end,
             radiance: Color::ZERO,
             stokes_weights: None,
+            wavelength: self.wavelength,
         }
     }
 }
@@ -351,27 +352,19 @@ impl<'a> Tracer<'a> {
         } else if let Some(hit) = &hit {
             // Beer–Lambert along the segment just travelled.
             let tr = transmittance(sigma, hit.surface.t);
-            let mut b = Branch {
+            let b = Branch {
                 weight: b.weight * tr.max_element(),
                 ..b
             };
-            // The first dispersive surface on a branch picks the one wavelength it carries
-            // from there on (see optics::dispersion): only that wavelength's channel, times
-            // 3. Other branches are left as they are, so without dispersion nothing changes.
-            let mut spectral = None;
-            if self.dispersive
+            let (l, end) = if self.dispersive
                 && b.wavelength.is_none()
                 && self.materials[hit.material as usize].disperses()
             {
-                let lambda = dispersion::wavelength(w.rng.next_1d());
-                b.wavelength = Some(lambda);
-                spectral = Some(dispersion::channel_weight(lambda));
-            }
-            let (l, end) = self.shade(ray, hit, b, id, media, w, pol);
-            match spectral {
-                Some(s) => (tr * s * l, end),
-                None => (tr * l, end),
-            }
+                self.shade_spectral(b, w, |b, w| self.shade(ray, hit, b, id, media, w, pol))
+            } else {
+                self.shade(ray, hit, b, id, media, w, pol)
+            };
+            (tr * l, end)
         } else {
             let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
             (pol.seen(l), End::Miss)
@@ -391,6 +384,42 @@ impl<'a> Tracer<'a> {
             });
         }
         radiance
+    }
+
+    /// [`Self::shade`] at the first dispersive surface on a branch, where the branch takes
+    /// the wavelength it carries from there on (see optics::dispersion). The ray tree
+    /// splits into three, one wavelength in each channel's box from one u (stratified):
+    /// every sample brings back all three colours, each from one wavelength of its box
+    /// (weight 1). In stochastic mode, one path per sample, it takes
+    /// one wavelength uniform over 400–700 nm and brings back its box's channel times 3.
+    /// Either way each channel's mean is its box's mean: the same image.
+    fn shade_spectral<R: Recorder>(
+        &self,
+        b: Branch,
+        w: &mut Walk<R>,
+        shade: impl Fn(Branch, &mut Walk<R>) -> (Color, End),
+    ) -> (Color, End) {
+        let u = w.rng.next_1d();
+        let shade_at = |lambda: f32, w: &mut Walk<R>| {
+            let b = Branch {
+                wavelength: Some(lambda),
+                ..b
+            };
+            shade(b, w)
+        };
+        if self.params.tree == TreeMode::Stochastic {
+            let lambda = dispersion::wavelength(u);
+            let (l, end) = shade_at(lambda, w);
+            return (dispersion::channel_weight(lambda) * l, end);
+        }
+        let mut sum = Color::ZERO;
+        let mut end = End::Split;
+        for c in 0..3 {
+            let (l, e) = shade_at(dispersion::wavelength_in(c, u), w);
+            sum[c] = l[c];
+            end = e;
+        }
+        (sum, end)
     }
 
     /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
@@ -464,6 +493,7 @@ impl<'a> Tracer<'a> {
                     end: End::TotalInternalReflection,
                     radiance: Color::ZERO,
                     stokes_weights: None,
+                    wavelength: b.wavelength,
                 });
             }
         }

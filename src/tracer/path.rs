@@ -173,6 +173,7 @@ impl Tracer<'_> {
                 end: End::Miss,
                 radiance: Color::ZERO,
                 stokes_weights: pol.as_ref().and_then(P::weights),
+                wavelength,
             });
             let mut segment = Segment {
                 id,

@@ -99,6 +99,8 @@ pub struct TreeNode {
     /// relative to the unpolarised weights. Unpolarised light counts w₀; light polarised
     /// along s counts w₀ + w₁, along p w₀ − w₁.
     pub stokes_weights: Option<[f32; 4]>,
+    /// The wavelength (nm) it carries since the first dispersive surface above it.
+    pub wavelength: Option<f32>,
 }
 
 /// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of
@@ -210,5 +212,6 @@ pub(super) fn shadow_node(
         end: if blocked { End::Occluded } else { End::Lit },
         radiance: contribution,
         stokes_weights: None,
+        wavelength: None,
     }
 }

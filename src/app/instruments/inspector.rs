@@ -131,8 +131,11 @@ fn node_ui(
                 .map_or("?", |s| s.as_str())
         )
     });
+    let colour = n
+        .wavelength
+        .map_or(String::new(), |l| format!(" at {l:.0} nm"));
     let title = format!(
-        "{:?} ray, level {}: {} — {}",
+        "{:?} ray{colour}, level {}: {} — {}",
         n.kind,
         n.depth,
         target,
