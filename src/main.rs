@@ -1,15 +1,11 @@
 //! The `raylab` command: the previewer window, and headless rendering, scene listing, the
 //! Fresnel table and the engine benchmark.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use indicatif::{ProgressBar, ProgressStyle};
-use raylab::render::{Film, PassObserver, Sidecar, render_pass, sidecar_path};
-use raylab::scene::{BUILTIN_SCENES, Scene};
-use std::io::IsTerminal;
+use raylab::scene::BUILTIN_SCENES;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// Writes a line to stdout. When the reader has gone (`raylab params | head`), the program
 /// ends quietly instead of panicking on the closed pipe.
@@ -35,7 +31,8 @@ macro_rules! say_raw {
 mod cli;
 
 use cli::bench::{BenchArgs, bench_command};
-use cli::output::check_output;
+use cli::render::{RenderArgs, render_command};
+use cli::sweep::{SweepArgs, sweep_command};
 
 /// A failure while working (a file that cannot be written, threads that cannot start), as
 /// against bad input: the program exits with status 1, not 2.
@@ -103,24 +100,6 @@ enum Command {
 }
 
 #[derive(clap::Args)]
-struct SweepArgs {
-    /// A scene file or built-in name.
-    scene: String,
-    /// The parameter and its values, e.g. spp=1,4,16 or fresnel=schlick,exact.
-    #[arg(long, value_name = "NAME=V1,V2,...")]
-    param: String,
-    /// The sheet to write (.png).
-    #[arg(short, long, value_name = "SHEET.png")]
-    output: PathBuf,
-    /// Size of each image [default: the scene's, halved].
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Set other parameters for every image (repeatable).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    set: Vec<String>,
-}
-
-#[derive(clap::Args)]
 struct FresnelArgs {
     /// Index of refraction on the side the light comes from.
     #[arg(long, default_value_t = 1.0, value_parser = parse_ior)]
@@ -177,46 +156,6 @@ fn parse_step(s: &str) -> Result<f64, String> {
         Ok(d) => Err(format!("{d} is out of range (0.01 to 90 degrees)")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
-}
-
-#[derive(clap::Args)]
-struct RenderArgs {
-    /// A scene file, or the name of a built-in scene [default: the default scene, or the
-    /// scene of --params].
-    scene: Option<String>,
-    /// The image to write: .png (8-bit sRGB) or .exr (linear radiance).
-    #[arg(short, long, value_name = "OUT.png|OUT.exr")]
-    output: PathBuf,
-    /// Samples per pixel (same as --set spp=N).
-    #[arg(long, value_name = "N")]
-    spp: Option<u32>,
-    /// Image size in pixels.
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Random seed (same as --set seed=S).
-    #[arg(long, value_name = "S")]
-    seed: Option<u64>,
-    /// Worker threads [default: all cores].
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    threads: Option<u32>,
-    /// Set any parameter by name, e.g. --set max_depth=3 --set min_weight=0.01 (repeatable).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    set: Vec<String>,
-    /// Start from a snapshot's sidecar JSON: its scene, size and every parameter, to
-    /// reproduce its image bit for bit. Other options override it.
-    #[arg(long, value_name = "SIDECAR.json")]
-    params: Option<PathBuf>,
-    /// Render slide N of the lecture (`raylab lecture` lists them) as the window shows it:
-    /// its scene and parameters; a slide that compares two things as its split image, side
-    /// A left and B right (no sidecar: no one set of parameters makes it).
-    #[arg(long, value_name = "N", conflicts_with_all = ["scene", "params"])]
-    slide: Option<usize>,
-    /// With --slide: the slide's caption under the image, in a strip of its own (PNG only).
-    #[arg(long, requires = "slide")]
-    caption: bool,
-    /// No progress bar and no summary line.
-    #[arg(short, long)]
-    quiet: bool,
 }
 
 fn window(scene: Option<String>, threads: Option<u32>) -> Result<()> {
@@ -321,177 +260,6 @@ fn exit_code(result: Result<()>) -> ExitCode {
     }
 }
 
-/// Counts finished rows on a progress bar.
-struct Progress(ProgressBar);
-
-impl PassObserver for Progress {
-    fn band_done(&self, rows: u32) {
-        self.0.inc(rows as u64);
-    }
-}
-
-fn render_command(args: RenderArgs) -> Result<()> {
-    let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
-    let (scene, mut params, side_b, caption) = match args.slide.map(raylab::app::slide_setup) {
-        Some(slide) => {
-            let s = slide?;
-            (s.scene, s.params, s.side_b, Some(s.caption))
-        }
-        None => {
-            let scene_ref = match (&args.scene, &sidecar) {
-                (Some(s), _) => s.clone(),
-                (None, Some(sc)) => sc.scene.clone(),
-                (None, None) => BUILTIN_SCENES[0].name.to_string(),
-            };
-            let scene = Scene::load(&scene_ref)?;
-            let params = match &sidecar {
-                Some(sc) => sc.params.clone(),
-                None => scene.params.clone(),
-            };
-            (scene, params, None, None)
-        }
-    };
-    let (mut width, mut height) = match &sidecar {
-        Some(sc) => (sc.width, sc.height),
-        None => (scene.width, scene.height),
-    };
-    if let Some((w, h)) = args.size {
-        (width, height) = (w, h);
-    }
-    // A snapshot from the window may have moved the camera.
-    let camera = sidecar
-        .as_ref()
-        .and_then(|sc| sc.camera.clone())
-        .unwrap_or_else(|| scene.camera.clone());
-    // A snapshot of a render still refining holds fewer samples than its target.
-    let mut samples = sidecar.as_ref().and_then(|sc| sc.samples);
-    if let Some(spp) = args.spp {
-        params.set("spp", &spp.to_string()).context("--spp")?;
-        samples = None;
-    }
-    if let Some(seed) = args.seed {
-        params.seed = seed;
-    }
-    params.set_all(&args.set).context("--set")?;
-    let params_b = side_b.map(|b| b(&params));
-    check_output(&args.output, args.caption)?;
-    let json = sidecar_path(&args.output);
-    if params_b.is_none() {
-        Sidecar::check_target(&json, args.params.as_deref())?;
-    }
-
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0) as usize)
-        .build()
-        .context("cannot start the worker threads")
-        .map_err(runtime)?;
-    let show_progress = !args.quiet && std::io::stderr().is_terminal();
-    let bar = if show_progress {
-        ProgressBar::new(height as u64 * (1 + params_b.is_some() as u64))
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{spinner} rendering [{bar:40}] {percent}% rows, {elapsed} elapsed, ~{eta} left",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
-    );
-    let start = Instant::now();
-    let (film, stats) = pool
-        .install(|| {
-            let mut film = Film::new(width, height);
-            let n = samples.unwrap_or(params.spp);
-            let observer = Progress(bar.clone());
-            let mut stats = render_pass(&scene, &camera, &params, &mut film, n, &observer)?;
-            if let Some(b) = &params_b {
-                // The A/B view's split, at the window's starting divider: the middle.
-                let mut right = Film::new(width, height);
-                stats += render_pass(&scene, &camera, b, &mut right, b.spp, &observer)?;
-                film.split_with(&right, width / 2);
-            }
-            Ok::<_, raylab::render::Cancelled>((film, stats))
-        })
-        .map_err(runtime)?;
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-
-    // Replacing the file named by -o is what was asked; the summary still says so.
-    let replaced = if args.output.exists() {
-        " (replacing the file there)"
-    } else {
-        ""
-    };
-    match caption.filter(|_| args.caption) {
-        // The caption as it reads for the parameters rendered (after any --set).
-        Some(caption) => {
-            let image =
-                raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
-            raylab::render::output::save_image(&image, &args.output, image::ImageFormat::Png)
-                .with_context(|| format!("cannot write {}", args.output.display()))
-                .map_err(runtime)?;
-        }
-        None => film.save(&args.output, params.exposure).map_err(runtime)?,
-    }
-    if params_b.is_some() {
-        if !args.quiet {
-            eprintln!(
-                "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
-                args.slide.unwrap_or(0),
-                args.output.display()
-            );
-        }
-        return Ok(());
-    }
-    Sidecar {
-        raylab_version: raylab::VERSION.to_string(),
-        scene: Sidecar::scene_reference(&scene.source, &json),
-        width,
-        height,
-        params: params.clone(),
-        samples,
-        camera: (camera != scene.camera).then(|| camera.clone()),
-        image: args
-            .output
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned()),
-        seconds: Some(seconds),
-        stats: Some(stats),
-    }
-    .write(&json)
-    .map_err(runtime)?;
-
-    if !args.quiet {
-        let pixels = (width as u64 * height as u64) as f64;
-        // The status bar's estimate, so a render's noise can be judged without a window.
-        let noise = film
-            .noise(params.exposure)
-            .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
-        let rays = stats.total_rays();
-        eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise} wrote {}{replaced} and {}",
-            scene.name,
-            width,
-            height,
-            samples.unwrap_or(params.spp),
-            seconds,
-            stats.samples as f64 / 1e6,
-            rays as f64 / 1e6,
-            rays as f64 / seconds.max(1e-9) / 1e6,
-            rays as f64 / pixels,
-            stats.tir_events,
-            stats.pruned_by_depth,
-            stats.pruned_by_weight,
-            stats.pruned_by_budget,
-            stats.non_finite,
-            args.output.display(),
-            json.display()
-        );
-    }
-    Ok(())
-}
-
 fn fresnel_command(args: &FresnelArgs) -> Result<()> {
     use std::io::Write;
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
@@ -529,37 +297,6 @@ fn fresnel_command(args: &FresnelArgs) -> Result<()> {
         )?;
     }
     out.flush()?;
-    Ok(())
-}
-
-fn sweep_command(args: &SweepArgs) -> Result<()> {
-    let (name, values) = raylab::render::parse_sweep(&args.param).context("--param")?;
-    let scene = Scene::load(&args.scene)?;
-    let mut params = scene.params.clone();
-    params.set_all(&args.set).context("--set")?;
-    let ext = args
-        .output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if ext.as_deref() != Some("png") {
-        bail!("{}: a contact sheet is a .png", args.output.display());
-    }
-    let (w, h) = args
-        .size
-        .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));
-    let start = Instant::now();
-    let sheet =
-        raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
-    raylab::render::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
-        .with_context(|| format!("{}: cannot write the sheet", args.output.display()))
-        .map_err(runtime)?;
-    eprintln!(
-        "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
-        scene.name,
-        values.len(),
-        start.elapsed().as_secs_f64(),
-        args.output.display()
-    );
     Ok(())
 }
 

@@ -2,3 +2,5 @@
 
 pub mod bench;
 pub mod output;
+pub mod render;
+pub mod sweep;

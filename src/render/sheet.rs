@@ -1,11 +1,11 @@
 //! Contact sheets: one image per value of a parameter, side by side and labelled, like the
 //! lecture's comparison figures.
 
+use super::text::draw_label;
 use super::{Cancelled, Film, PassObserver, render_pass};
 use crate::camera::Camera;
 use crate::params::{ParamError, Params};
 use crate::scene::Scene;
-use font8x8::UnicodeFonts;
 use image::{Rgb, RgbImage};
 
 /// A sheet that cannot be made.
@@ -41,8 +41,12 @@ fn columns(n: usize) -> usize {
 }
 
 const GAP: u32 = 8;
-const LABEL: u32 = 28;
-const SCALE: u32 = 2;
+
+/// The height of the label strip under a tile `height` pixels tall: a tenth of it, between
+/// 16 and 40 pixels.
+fn label_height(height: u32) -> u32 {
+    (height / 10).clamp(16, 40)
+}
 
 /// Renders one `width` × `height` image of `scene` through `camera` for each value of
 /// parameter `name` (set as `--set name=value` would, on top of `base`), and lays them out
@@ -70,10 +74,11 @@ pub fn contact_sheet(
         })
         .collect::<Result<_, _>>()?;
     let cols = columns(values.len()) as u32;
+    let label = label_height(height);
     let rows = values.len().div_ceil(cols as usize) as u32;
     let mut sheet = RgbImage::from_pixel(
         cols * width + (cols + 1) * GAP,
-        rows * (height + LABEL) + (rows + 1) * GAP,
+        rows * (height + label) + (rows + 1) * GAP,
         Rgb([24, 24, 24]),
     );
     for (i, (p, value)) in params.iter().zip(values).enumerate() {
@@ -82,42 +87,15 @@ pub fn contact_sheet(
         let tile = film.to_srgb8(p.exposure);
         let (col, row) = (i as u32 % cols, i as u32 / cols);
         let x0 = GAP + col * (width + GAP);
-        let y0 = GAP + row * (height + LABEL + GAP);
+        let y0 = GAP + row * (height + label + GAP);
         image::imageops::replace(&mut sheet, &tile, x0 as i64, y0 as i64);
-        draw_text(
+        draw_label(
             &mut sheet,
-            x0 + 4,
-            y0 + height + (LABEL - 8 * SCALE) / 2,
+            (x0, y0 + height, width, label),
             &format!("{name} = {value}"),
         );
     }
     Ok(sheet)
-}
-
-/// Draws `text` in the 8×8 font at twice its size, white, with its top left at (x, y).
-fn draw_text(img: &mut RgbImage, x: u32, y: u32, text: &str) {
-    for (k, c) in text.chars().enumerate() {
-        let glyph = font8x8::BASIC_FONTS
-            .get(c)
-            .or_else(|| font8x8::BASIC_FONTS.get('?'))
-            .unwrap_or([0; 8]);
-        for (row, bits) in glyph.iter().enumerate() {
-            for col in 0..8u32 {
-                // Bit 0 is the leftmost pixel of the row.
-                if bits >> col & 1 == 1 {
-                    for dy in 0..SCALE {
-                        for dx in 0..SCALE {
-                            let px = x + (k as u32 * 8 + col) * SCALE + dx;
-                            let py = y + row as u32 * SCALE + dy;
-                            if px < img.width() && py < img.height() {
-                                img.put_pixel(px, py, Rgb([255, 255, 255]));
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
 }
 
 #[cfg(test)]
@@ -153,7 +131,8 @@ mod tests {
         )
         .unwrap();
         assert_eq!(sheet.width(), 4 * 40 + 5 * GAP);
-        assert_eq!(sheet.height(), 2 * (30 + LABEL) + 3 * GAP);
+        let label = label_height(30);
+        assert_eq!(sheet.height(), 2 * (30 + label) + 3 * GAP);
         // The fifth tile is the image with max_depth 5, in the second row's first place.
         let mut film = Film::new(40, 30);
         let p = Params {
@@ -162,13 +141,21 @@ mod tests {
         };
         render_pass(&scene, &scene.camera, &p, &mut film, 1, &()).unwrap();
         let tile = film.to_srgb8(0.0);
-        let y0 = GAP + 30 + LABEL + GAP;
+        let y0 = GAP + 30 + label + GAP;
         assert_eq!(sheet.get_pixel(GAP + 7, y0 + 11), tile.get_pixel(7, 11));
-        // Its label has white pixels.
-        let label_has_text = (0..40).any(|x| {
-            (0..LABEL).any(|y| sheet.get_pixel(GAP + x, y0 + 30 + y).0 == [255, 255, 255])
-        });
-        assert!(label_has_text);
+        // Its label has text: bright pixels in the strip under it.
+        let bright = (0..40)
+            .flat_map(|x| (0..label).map(move |y| (x, y)))
+            .filter(|&(x, y)| sheet.get_pixel(GAP + x, y0 + 30 + y).0[0] > 128)
+            .count();
+        assert!(bright > 10, "{bright} bright pixels in the label");
+        // "max_depth = 5" is wider than a 40-pixel tile at any legible size: it is cut at
+        // the tile's edge, and the gap beside it stays the sheet's grey.
+        for y in y0 + 30..y0 + 30 + label {
+            for x in GAP + 40..2 * GAP + 40 {
+                assert_eq!(sheet.get_pixel(x, y).0, [24, 24, 24], "({x}, {y})");
+            }
+        }
         // A bad value is an error before any rendering.
         assert!(
             contact_sheet(

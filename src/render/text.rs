@@ -1,5 +1,6 @@
-//! Text drawn into images (slide captions for handouts) in egui's own typeface, Ubuntu
-//! Light, rasterised with ab_glyph: anti-aliased at any size and clipped to the image.
+//! Text drawn into images (slide captions for handouts, contact sheets' labels) in egui's
+//! own typeface, Ubuntu Light, rasterised with ab_glyph: anti-aliased at any size and
+//! clipped to its place.
 
 use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
 use image::{Rgb, RgbImage};
@@ -47,14 +48,42 @@ fn wrap(font: &impl ScaleFont<FontRef<'static>>, text: &str, max_width: f32) -> 
     lines
 }
 
+/// A rectangle of an image in pixels: left, top, width, height.
+#[derive(Clone, Copy)]
+struct Clip {
+    x: u32,
+    y: u32,
+    w: u32,
+    h: u32,
+}
+
+impl Clip {
+    fn whole(img: &RgbImage) -> Clip {
+        Clip {
+            x: 0,
+            y: 0,
+            w: img.width(),
+            h: img.height(),
+        }
+    }
+
+    fn contains(&self, px: i64, py: i64) -> bool {
+        px >= self.x as i64
+            && py >= self.y as i64
+            && px < (self.x + self.w) as i64
+            && py < (self.y + self.h) as i64
+    }
+}
+
 /// Draws `line` in white on `img` with its baseline at `baseline` and its left edge at
-/// `x`, blending by each pixel's coverage; what falls outside the image is clipped.
+/// `x`, blending by each pixel's coverage; what falls outside `clip` (and the image) is
+/// clipped.
 fn draw_line(
     img: &mut RgbImage,
     font: &impl ScaleFont<FontRef<'static>>,
     line: &str,
-    x: f32,
-    baseline: f32,
+    (x, baseline): (f32, f32),
+    clip: Clip,
 ) {
     let mut caret = x;
     let mut last = None;
@@ -75,7 +104,7 @@ fn draw_line(
                 bounds.min.x as i64 + gx as i64,
                 bounds.min.y as i64 + gy as i64,
             );
-            if px < 0 || py < 0 || px >= img.width() as i64 || py >= img.height() as i64 {
+            if !clip.contains(px, py) || !Clip::whole(img).contains(px, py) {
                 return;
             }
             let p = img.get_pixel_mut(px as u32, py as u32);
@@ -101,11 +130,39 @@ pub fn with_caption(image: &RgbImage, caption: &str) -> RgbImage {
     let strip = (lines.len() as f32 * line_height + 2.0 * margin).ceil() as u32;
     let mut out = RgbImage::new(image.width(), image.height() + strip);
     image::imageops::replace(&mut out, image, 0, 0);
+    let whole = Clip::whole(&out);
     for (i, line) in lines.iter().enumerate() {
         let baseline = image.height() as f32 + margin + font.ascent() + i as f32 * line_height;
-        draw_line(&mut out, &font, line, margin, baseline);
+        draw_line(&mut out, &font, line, (margin, baseline), whole);
     }
     out
+}
+
+/// Draws `label` in white inside the `w` × `h` box at (`x`, `y`) of `img`, one line,
+/// vertically centred: as tall as the box allows (60 % of it), smaller if that would not
+/// fit the width, never under 8 px; whatever still does not fit is clipped to the box.
+pub(crate) fn draw_label(img: &mut RgbImage, (x, y, w, h): (u32, u32, u32, u32), label: &str) {
+    let Some(face) = typeface() else {
+        return;
+    };
+    let pad = (h as f32 * 0.2).max(2.0);
+    let tall = h as f32 * 0.6;
+    let natural = line_width(&face.clone().into_scaled(PxScale::from(tall)), label);
+    let room = (w as f32 - 2.0 * pad).max(1.0);
+    let px = if natural > room {
+        (tall * room / natural).max(8.0)
+    } else {
+        tall
+    };
+    let font = face.into_scaled(PxScale::from(px));
+    let baseline = y as f32 + (h as f32 + font.ascent() + font.descent()) / 2.0;
+    draw_line(
+        img,
+        &font,
+        label,
+        (x as f32 + pad, baseline),
+        Clip { x, y, w, h },
+    );
 }
 
 #[cfg(test)]
