@@ -58,14 +58,14 @@ fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
     version,
     about = "An interactive lab for dielectrics and distribution ray tracing",
     after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
-                  Scenes are TOML files (see scenes/README.md), OBJ files or built-in names; `raylab scenes` lists them.\n\
+                  Scenes are TOML files (see scenes/README.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\
                   RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).",
     args_conflicts_with_subcommands = true
 )]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// The scene to open in the window: a scene file, an OBJ file or a built-in name.
+    /// The scene to open in the window: a scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
     scene: Option<String>,
     /// Worker threads for the window [default: all cores but one].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]

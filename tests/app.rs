@@ -285,7 +285,7 @@ fn every_label_and_formula_tooltip_draws_with_the_bundled_fonts() {
     h.run_steps(3);
     h.get_by_label("Open…").click();
     h.run_steps(3);
-    h.get_by_label("Open a scene or OBJ file");
+    h.get_by_label("Open a scene or model");
     h.get_by_label("Cancel").click();
     h.run_steps(3);
     h.get_by_label("Save as…").click();

@@ -485,10 +485,55 @@ fn sweep_writes_a_labelled_contact_sheet() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let sheet = image::open(d.join("sheet.png")).unwrap();
-    // Two tiles of 60×40 with 8-pixel gaps, and a 28-pixel label band.
+    // Two tiles of 60×40 with 8-pixel gaps, and a 16-pixel label band (a tenth of the
+    // tile, at least 16).
     assert_eq!(
         (sheet.width(), sheet.height()),
-        (2 * 60 + 3 * 8, 40 + 28 + 2 * 8)
+        (2 * 60 + 3 * 8, 40 + 16 + 2 * 8)
+    );
+    // Without -o: SCENE-PARAM.png here, then numbered rather than replaced; -q says
+    // nothing.
+    let sweep = [
+        "sweep", "glazed", "--param", "spp=1,2", "--size", "16x9", "-q",
+    ];
+    for expected in ["glazed-spp.png", "glazed-spp-2.png"] {
+        let o = raylab(&sweep, d);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+        assert!(d.join(expected).is_file(), "{expected}");
+    }
+    // As an animation: one labelled frame per value; --spp and --seed apply to each.
+    let o = raylab(
+        &[
+            "sweep",
+            "glazed",
+            "--param",
+            "max_depth=1,2,3",
+            "--size",
+            "32x18",
+            "--spp",
+            "2",
+            "--seed",
+            "3",
+            "-o",
+            "deck.gif",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    use image::AnimationDecoder;
+    let gif = std::fs::File::open(d.join("deck.gif")).unwrap();
+    let frames = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif))
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert_eq!(frames.len(), 3);
+    assert_eq!(frames[0].buffer().dimensions(), (32, 18 + 16));
+    fails(
+        &["sweep", "glazed", "--param", "spp=1", "-o", "x.jpg"],
+        d,
+        ".png contact sheet or a .gif animation",
     );
     fails(
         &["sweep", "glazed", "--param", "fresnel=fancy", "-o", "x.png"],
@@ -550,4 +595,35 @@ fn a_reader_that_stops_early_ends_the_program_quietly() {
         assert!(o.status.success(), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
     }
+}
+
+#[test]
+fn render_without_o_names_the_image_after_the_scene_and_never_replaces_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("glass.png"), b"the user's own").unwrap();
+    let o = raylab(&["render", "glass", "--size", "16x9", "--spp", "1"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("wrote glass-2.png"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read(d.join("glass.png")).unwrap(),
+        b"the user's own"
+    );
+    assert!(d.join("glass-2.png.json").is_file());
+    let o = raylab(&["render", "--slide", "2", "--size", "16x9", "-q"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(d.join("slide-2.png").is_file());
+}
+
+#[test]
+fn a_model_format_raylab_does_not_read_is_named_as_such() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for name in ["bunny.ply", "scene.pbrt", "model.fbx"] {
+        std::fs::write(d.join(name), "ply\nformat ascii 1.0\n").unwrap();
+        let err = fails(&["render", name, "-o", "x.png"], d, "unsupported format");
+        assert!(err.contains(name), "{err}");
+        assert!(!err.contains("TOML"), "{err}");
+    }
+    assert!(!d.join("x.png").exists());
 }

@@ -11,7 +11,7 @@ use std::time::{SystemTime, UNIX_EPOCH};
 /// What the dialog is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Purpose {
-    /// Open a scene (.toml) or a mesh (.obj).
+    /// Open a scene (.toml) or a model (.obj, .gltf, .glb).
     Open,
     /// Save the image as PNG or EXR.
     SaveAs,
@@ -56,7 +56,7 @@ impl FileDialog {
     fn wanted(&self, name: &str) -> bool {
         let lower = name.to_ascii_lowercase();
         match self.purpose {
-            Purpose::Open => lower.ends_with(".toml") || lower.ends_with(".obj"),
+            Purpose::Open => crate::scene::opens(Path::new(&lower)),
             Purpose::SaveAs => lower.ends_with(".png") || lower.ends_with(".exr"),
         }
     }
@@ -95,7 +95,7 @@ impl FileDialog {
     pub fn ui(&mut self, ctx: &egui::Context) -> Choice {
         let mut choice = Choice::Pending;
         let title = match self.purpose {
-            Purpose::Open => "Open a scene or OBJ file",
+            Purpose::Open => "Open a scene or model",
             Purpose::SaveAs => "Save the image as…",
         };
         let modal = egui::Modal::new(egui::Id::unique("raylab-file-dialog")).show(ctx, |ui| {

@@ -86,7 +86,7 @@ impl Loader {
         }
     }
 
-    /// Loads a scene file, built-in name or OBJ file on a thread of its own.
+    /// Loads a scene file, built-in name or model file on a thread of its own.
     pub(crate) fn load(&mut self, reference: String, purpose: LoadPurpose) {
         if purpose == LoadPurpose::Open {
             self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
@@ -157,7 +157,7 @@ impl Loader {
 }
 
 impl RaylabApp {
-    /// Loads a scene file, built-in name or OBJ file; it replaces the scene when loaded.
+    /// Loads a scene file, built-in name or model file; it replaces the scene when loaded.
     pub fn open_scene(&mut self, reference: &str) {
         self.loader.load(reference.to_string(), LoadPurpose::Open);
     }

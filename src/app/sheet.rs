@@ -100,9 +100,10 @@ impl RaylabApp {
         std::thread::spawn(move || {
             let (w, h) = ((scene.width / 2).max(1), (scene.height / 2).max(1));
             let result =
-                crate::render::contact_sheet(&scene, &camera, &params, w, h, &name, &values, &())
+                crate::render::sweep_frames(&scene, &camera, &params, w, h, &name, &values, &())
                     .map_err(|e| e.to_string())
-                    .and_then(|sheet| {
+                    .and_then(|frames| {
+                        let sheet = crate::render::contact_sheet(&frames);
                         if let Some(dir) = path.parent() {
                             std::fs::create_dir_all(dir)
                                 .map_err(|e| format!("{}: {e}", dir.display()))?;

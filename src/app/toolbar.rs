@@ -271,7 +271,7 @@ impl RaylabApp {
         }
     }
 
-    /// Scene and OBJ files dropped on the window open; anything else is refused.
+    /// Scene and model files dropped on the window open; anything else is refused.
     pub(super) fn dropped_files(&mut self, ctx: &egui::Context) {
         let dropped: Vec<PathBuf> = ctx.input(|i| {
             i.raw
@@ -281,14 +281,11 @@ impl RaylabApp {
                 .collect()
         });
         for path in dropped {
-            let ext = path
-                .extension()
-                .map(|e| e.to_string_lossy().to_ascii_lowercase());
-            if matches!(ext.as_deref(), Some("toml") | Some("obj")) {
+            if crate::scene::opens(&path) {
                 self.open_scene(&path.display().to_string());
             } else {
                 self.toasts.error(format!(
-                    "{}: drop a scene (.toml) or mesh (.obj) file",
+                    "{}: drop a scene (.toml) or a model (.obj, .gltf, .glb)",
                     path.display()
                 ));
             }

@@ -2,5 +2,6 @@
 
 pub mod bench;
 pub mod output;
+pub mod progress;
 pub mod render;
 pub mod sweep;

@@ -1,23 +1,25 @@
 //! `raylab render`: a scene or a lecture slide to a PNG or EXR, with its sidecar.
 
-use crate::cli::output::check_output;
+use crate::cli::output::{check_output, default_output};
+use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
-use raylab::render::{Film, PassObserver, Sidecar, render_pass, sidecar_path};
+use raylab::render::{Film, Sidecar, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
-use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct RenderArgs {
-    /// A scene file, or the name of a built-in scene [default: the default scene, or the
-    /// scene of --params].
+    /// A scene file (.toml), a model shown on a floor under a light (.obj, .gltf, .glb)
+    /// or the name of a built-in scene [default: the default scene, or the scene of
+    /// --params].
     scene: Option<String>,
-    /// The image to write: .png (8-bit sRGB) or .exr (linear radiance).
+    /// The image to write: .png (8-bit sRGB) or .exr (linear radiance) [default:
+    /// SCENE.png, or slide-N.png, in the current folder; SCENE-2.png and so on if taken:
+    /// a default never replaces a file].
     #[arg(short, long, value_name = "OUT.png|OUT.exr")]
-    output: PathBuf,
+    output: Option<PathBuf>,
     /// Samples per pixel (same as --set spp=N).
     #[arg(long, value_name = "N")]
     spp: Option<u32>,
@@ -48,15 +50,6 @@ pub struct RenderArgs {
     /// No progress bar and no summary line.
     #[arg(short, long)]
     quiet: bool,
-}
-
-/// Counts finished rows on a progress bar.
-struct Progress(ProgressBar);
-
-impl PassObserver for Progress {
-    fn band_done(&self, rows: u32) {
-        self.0.inc(rows as u64);
-    }
 }
 
 pub fn render_command(args: RenderArgs) -> Result<()> {
@@ -103,8 +96,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     }
     params.set_all(&args.set).context("--set")?;
     let params_b = side_b.map(|b| b(&params));
-    check_output(&args.output, args.caption)?;
-    let json = sidecar_path(&args.output);
+    let output = match (&args.output, args.slide) {
+        (Some(o), _) => o.clone(),
+        (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}"))?,
+        (None, None) => default_output(Path::new(""), &scene.name)?,
+    };
+    check_output(&output, args.caption)?;
+    let json = sidecar_path(&output);
     if params_b.is_none() {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
@@ -114,18 +112,10 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         .build()
         .context("cannot start the worker threads")
         .map_err(runtime)?;
-    let show_progress = !args.quiet && std::io::stderr().is_terminal();
-    let bar = if show_progress {
-        ProgressBar::new(height as u64 * (1 + params_b.is_some() as u64))
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{spinner} rendering [{bar:40}] {percent}% rows, {elapsed} elapsed, ~{eta} left",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
+    let bar = progress_bar(
+        args.quiet,
+        height as u64 * (1 + params_b.is_some() as u64),
+        "rendering",
     );
     let start = Instant::now();
     let (film, stats) = pool
@@ -147,7 +137,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     bar.finish_and_clear();
 
     // Replacing the file named by -o is what was asked; the summary still says so.
-    let replaced = if args.output.exists() {
+    let replaced = if output.exists() {
         " (replacing the file there)"
     } else {
         ""
@@ -157,18 +147,18 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         Some(caption) => {
             let image =
                 raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
-            raylab::render::output::save_image(&image, &args.output, image::ImageFormat::Png)
-                .with_context(|| format!("cannot write {}", args.output.display()))
+            raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
+                .with_context(|| format!("cannot write {}", output.display()))
                 .map_err(runtime)?;
         }
-        None => film.save(&args.output, params.exposure).map_err(runtime)?,
+        None => film.save(&output, params.exposure).map_err(runtime)?,
     }
     if params_b.is_some() {
         if !args.quiet {
             eprintln!(
                 "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
                 args.slide.unwrap_or(0),
-                args.output.display()
+                output.display()
             );
         }
         return Ok(());
@@ -181,10 +171,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         params: params.clone(),
         samples,
         camera: (camera != scene.camera).then(|| camera.clone()),
-        image: args
-            .output
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned()),
+        image: output.file_name().map(|n| n.to_string_lossy().into_owned()),
         seconds: Some(seconds),
         stats: Some(stats),
     }
@@ -214,7 +201,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
             stats.pruned_by_weight,
             stats.pruned_by_budget,
             stats.non_finite,
-            args.output.display(),
+            output.display(),
             json.display()
         );
     }

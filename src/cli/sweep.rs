@@ -1,56 +1,108 @@
-//! `raylab sweep`: one image per value of a parameter, as a labelled contact sheet.
+//! `raylab sweep`: one image per value of a parameter, as a labelled contact sheet or an
+//! animation.
 
+use crate::cli::output::{check_folder, default_output};
+use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result, bail};
+use raylab::render::output::{save_image, write_atomic};
 use raylab::scene::Scene;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct SweepArgs {
-    /// A scene file or built-in name.
+    /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
     scene: String,
     /// The parameter and its values, e.g. spp=1,4,16 or fresnel=schlick,exact.
     #[arg(long, value_name = "NAME=V1,V2,...")]
     param: String,
-    /// The sheet to write (.png).
-    #[arg(short, long, value_name = "SHEET.png")]
-    output: PathBuf,
+    /// The sheet to write: .png for a contact sheet, .gif for an animation with one
+    /// labelled frame per value [default: SCENE-NAME.png in the current folder, numbered
+    /// if taken].
+    #[arg(short, long, value_name = "SHEET.png|ANIMATION.gif")]
+    output: Option<PathBuf>,
     /// Size of each image [default: the scene's, halved].
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     size: Option<(u32, u32)>,
+    /// Samples per pixel of every image (same as --set spp=N), unless the sweep is of spp.
+    #[arg(long, value_name = "N")]
+    spp: Option<u32>,
+    /// Random seed (same as --set seed=S).
+    #[arg(long, value_name = "S")]
+    seed: Option<u64>,
     /// Set other parameters for every image (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
+    /// How long an animation shows each frame, in milliseconds.
+    #[arg(long, value_name = "MS", default_value_t = 1000, value_parser = clap::value_parser!(u32).range(20..=60_000))]
+    frame_ms: u32,
+    /// No progress bar and no summary line.
+    #[arg(short, long)]
+    quiet: bool,
 }
 
 pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     let (name, values) = raylab::render::parse_sweep(&args.param).context("--param")?;
     let scene = Scene::load(&args.scene)?;
     let mut params = scene.params.clone();
+    if let Some(spp) = args.spp {
+        params.set("spp", &spp.to_string()).context("--spp")?;
+    }
+    if let Some(seed) = args.seed {
+        params.seed = seed;
+    }
     params.set_all(&args.set).context("--set")?;
-    let ext = args
-        .output
+    let output = match &args.output {
+        Some(o) => o.clone(),
+        None => default_output(Path::new(""), &format!("{}-{name}", scene.name))?,
+    };
+    let ext = output
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    if ext.as_deref() != Some("png") {
-        bail!("{}: a contact sheet is a .png", args.output.display());
-    }
+    let gif = match ext.as_deref() {
+        Some("png") => false,
+        Some("gif") => true,
+        _ => bail!(
+            "{}: a sweep is a .png contact sheet or a .gif animation",
+            output.display()
+        ),
+    };
+    check_folder(&output)?;
     let (w, h) = args
         .size
         .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));
     let start = Instant::now();
-    let sheet =
-        raylab::render::contact_sheet(&scene, &scene.camera, &params, w, h, &name, &values, &())?;
-    raylab::render::output::save_image(&sheet, &args.output, image::ImageFormat::Png)
-        .with_context(|| format!("{}: cannot write the sheet", args.output.display()))
+    let bar = progress_bar(args.quiet, h as u64 * values.len() as u64, "sweeping");
+    let frames = raylab::render::sweep_frames(
+        &scene,
+        &scene.camera,
+        &params,
+        w,
+        h,
+        &name,
+        &values,
+        &Progress(bar.clone()),
+    )?;
+    bar.finish_and_clear();
+    let written = if gif {
+        raylab::render::animation(&frames, args.frame_ms)
+            .and_then(|bytes| write_atomic(&output, &bytes).map_err(image::ImageError::IoError))
+    } else {
+        let sheet = raylab::render::contact_sheet(&frames);
+        save_image(&sheet, &output, image::ImageFormat::Png)
+    };
+    written
+        .with_context(|| format!("{}: cannot write the sweep", output.display()))
         .map_err(runtime)?;
-    eprintln!(
-        "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
-        scene.name,
-        values.len(),
-        start.elapsed().as_secs_f64(),
-        args.output.display()
-    );
+    if !args.quiet {
+        eprintln!(
+            "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
+            scene.name,
+            values.len(),
+            start.elapsed().as_secs_f64(),
+            output.display()
+        );
+    }
     Ok(())
 }

@@ -170,6 +170,11 @@ impl Mesh {
         &self.positions
     }
 
+    /// Unit vertex normals, if the mesh is smooth shaded.
+    pub fn normals(&self) -> Option<&[Vec3]> {
+        self.normals.as_deref()
+    }
+
     /// Triangles as vertex indices.
     pub fn indices(&self) -> &[[u32; 3]] {
         &self.indices

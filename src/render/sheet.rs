@@ -1,5 +1,6 @@
-//! Contact sheets: one image per value of a parameter, side by side and labelled, like the
-//! lecture's comparison figures.
+//! Sweeps: one image per value of a parameter, labelled, laid out side by side in a contact
+//! sheet like the lecture's comparison figures, or played one after another as an
+//! animation for a slide deck.
 
 use super::text::draw_label;
 use super::{Cancelled, Film, PassObserver, render_pass};
@@ -41,6 +42,8 @@ fn columns(n: usize) -> usize {
 }
 
 const GAP: u32 = 8;
+/// The sheet's background and the label strips'.
+const BACKDROP: Rgb<u8> = Rgb([24, 24, 24]);
 
 /// The height of the label strip under a tile `height` pixels tall: a tenth of it, between
 /// 16 and 40 pixels.
@@ -49,10 +52,10 @@ fn label_height(height: u32) -> u32 {
 }
 
 /// Renders one `width` × `height` image of `scene` through `camera` for each value of
-/// parameter `name` (set as `--set name=value` would, on top of `base`), and lays them out
-/// in rows of up to four, each labelled `name = value`.
+/// parameter `name` (set as `--set name=value` would, on top of `base`), each with a strip
+/// under it labelled `name = value`: the frames of a sweep.
 #[allow(clippy::too_many_arguments)]
-pub fn contact_sheet(
+pub fn sweep_frames(
     scene: &Scene,
     camera: &Camera,
     base: &Params,
@@ -61,7 +64,7 @@ pub fn contact_sheet(
     name: &str,
     values: &[String],
     observer: &dyn PassObserver,
-) -> Result<RgbImage, SheetError> {
+) -> Result<Vec<RgbImage>, SheetError> {
     if values.is_empty() {
         return Err(SheetError::Empty);
     }
@@ -73,29 +76,60 @@ pub fn contact_sheet(
             p.set(name, v).map(|_| p)
         })
         .collect::<Result<_, _>>()?;
-    let cols = columns(values.len()) as u32;
     let label = label_height(height);
-    let rows = values.len().div_ceil(cols as usize) as u32;
-    let mut sheet = RgbImage::from_pixel(
-        cols * width + (cols + 1) * GAP,
-        rows * (height + label) + (rows + 1) * GAP,
-        Rgb([24, 24, 24]),
-    );
-    for (i, (p, value)) in params.iter().zip(values).enumerate() {
+    let mut frames = Vec::with_capacity(values.len());
+    for (p, value) in params.iter().zip(values) {
         let mut film = Film::new(width, height);
         render_pass(scene, camera, p, &mut film, p.spp, observer)?;
-        let tile = film.to_srgb8(p.exposure);
-        let (col, row) = (i as u32 % cols, i as u32 / cols);
-        let x0 = GAP + col * (width + GAP);
-        let y0 = GAP + row * (height + label + GAP);
-        image::imageops::replace(&mut sheet, &tile, x0 as i64, y0 as i64);
+        let mut frame = RgbImage::from_pixel(width, height + label, BACKDROP);
+        image::imageops::replace(&mut frame, &film.to_srgb8(p.exposure), 0, 0);
         draw_label(
-            &mut sheet,
-            (x0, y0 + height, width, label),
+            &mut frame,
+            (0, height, width, label),
             &format!("{name} = {value}"),
         );
+        frames.push(frame);
     }
-    Ok(sheet)
+    Ok(frames)
+}
+
+/// Lays out `frames` (all of one size) in rows of up to four, `GAP` apart: a contact
+/// sheet. Empty for no frames.
+pub fn contact_sheet(frames: &[RgbImage]) -> RgbImage {
+    let Some(first) = frames.first() else {
+        return RgbImage::new(0, 0);
+    };
+    let (w, h) = first.dimensions();
+    let cols = columns(frames.len()) as u32;
+    let rows = frames.len().div_ceil(cols as usize) as u32;
+    let mut sheet = RgbImage::from_pixel(
+        cols * w + (cols + 1) * GAP,
+        rows * h + (rows + 1) * GAP,
+        BACKDROP,
+    );
+    for (i, frame) in frames.iter().enumerate() {
+        let (col, row) = (i as u32 % cols, i as u32 / cols);
+        let (x0, y0) = (GAP + col * (w + GAP), GAP + row * (h + GAP));
+        image::imageops::replace(&mut sheet, frame, x0 as i64, y0 as i64);
+    }
+    sheet
+}
+
+/// `frames` as an animated GIF that loops, each shown for `delay_ms` milliseconds (GIF
+/// keeps 256 colours a frame, chosen per frame).
+pub fn animation(frames: &[RgbImage], delay_ms: u32) -> image::ImageResult<Vec<u8>> {
+    use image::codecs::gif::{GifEncoder, Repeat};
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 10);
+        encoder.set_repeat(Repeat::Infinite)?;
+        let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
+        for frame in frames {
+            let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+            encoder.encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))?;
+        }
+    }
+    Ok(bytes)
 }
 
 #[cfg(test)]
@@ -119,7 +153,7 @@ mod tests {
             ..scene.params.clone()
         };
         let values: Vec<String> = ["1", "2", "3", "4", "5"].map(String::from).to_vec();
-        let sheet = contact_sheet(
+        let frames = sweep_frames(
             &scene,
             &scene.camera,
             &base,
@@ -130,6 +164,7 @@ mod tests {
             &(),
         )
         .unwrap();
+        let sheet = contact_sheet(&frames);
         assert_eq!(sheet.width(), 4 * 40 + 5 * GAP);
         let label = label_height(30);
         assert_eq!(sheet.height(), 2 * (30 + label) + 3 * GAP);
@@ -157,19 +192,26 @@ mod tests {
             }
         }
         // A bad value is an error before any rendering.
-        assert!(
-            contact_sheet(
-                &scene,
-                &scene.camera,
-                &base,
-                8,
-                8,
-                "spp",
-                &["0".into()],
-                &()
-            )
-            .is_err()
-        );
-        assert!(contact_sheet(&scene, &scene.camera, &base, 8, 8, "spp", &[], &()).is_err());
+        let sweep = |values: &[String]| {
+            sweep_frames(&scene, &scene.camera, &base, 8, 8, "spp", values, &())
+        };
+        assert!(sweep(&["0".into()]).is_err());
+        assert!(sweep(&[]).is_err());
+
+        // As an animation: a GIF of the five frames that loops, each as rendered (GIF's
+        // palette of 256 colours per frame keeps a flat label strip exact).
+        let gif = animation(&frames, 800).unwrap();
+        let decoder = image::codecs::gif::GifDecoder::new(std::io::Cursor::new(&gif)).unwrap();
+        use image::AnimationDecoder;
+        let decoded = decoder.into_frames().collect_frames().unwrap();
+        assert_eq!(decoded.len(), 5);
+        for (frame, original) in decoded.iter().zip(&frames) {
+            assert_eq!(frame.buffer().dimensions(), original.dimensions());
+            assert_eq!(frame.delay().numer_denom_ms(), (800, 1));
+            assert_eq!(
+                frame.buffer().get_pixel(1, 30 + label - 1).0,
+                [24, 24, 24, 255]
+            );
+        }
     }
 }

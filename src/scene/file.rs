@@ -3,6 +3,7 @@
 //! Numbers are checked as they are read (finite, in range), so that serde's error carries
 //! the span of the offending value and the message can name its line and column.
 
+use super::gltf::load_gltf;
 use super::materials::{MaterialDef, MaterialTable, default_material, material};
 use super::obj::load_obj;
 use super::values::{Dir, Ior, Length, NonNegative, Pixels, Positive, Rgb, V3};
@@ -17,12 +18,19 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-/// Where a scene's OBJ and MTL files come from.
+/// Where a scene's model files (OBJ and MTL, glTF and its buffers) come from.
 pub(crate) trait Assets {
     /// The bytes of the file at `rel`, relative to the scene.
     fn read(&self, rel: &str) -> Result<Vec<u8>, String>;
     /// How to name `rel` in messages.
     fn label(&self, rel: &str) -> String;
+}
+
+/// The extension of the file `rel` names, in lower case.
+fn model_extension(rel: &str) -> Option<String> {
+    Path::new(rel)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
 }
 
 /// Files beside the scene file.
@@ -31,10 +39,9 @@ pub(crate) struct FsAssets(pub PathBuf);
 impl Assets for FsAssets {
     fn read(&self, rel: &str) -> Result<Vec<u8>, String> {
         let path = self.0.join(rel);
-        let is_obj = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-        let limit = if is_obj {
+        // Models and their binary buffers may be large; text beside them may not.
+        let is_mesh = model_extension(rel).is_some_and(|e| super::is_model(&e) || e == "bin");
+        let limit = if is_mesh {
             crate::scene::input::MAX_MESH_BYTES
         } else {
             crate::scene::input::MAX_TEXT_BYTES
@@ -342,16 +349,34 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     }
     for (n, m) in f.mesh.into_iter().enumerate() {
         let rel = m.file.get_ref().as_str();
+        let gltf = match model_extension(rel).as_deref() {
+            Some("gltf" | "glb") => true,
+            // A file without an extension is read as OBJ, as it always was.
+            None | Some("obj") => false,
+            Some(other) => {
+                return Err(SceneError::new(
+                    at(m.file.span()),
+                    format!(
+                        "unsupported model format `.{other}`: a mesh is an OBJ (.obj) or glTF 2.0 (.gltf, .glb) file"
+                    ),
+                ));
+            }
+        };
+        let kind = if gltf { "glTF" } else { "OBJ" };
         let bytes = assets.read(rel).map_err(|e| {
             SceneError::new(
                 at(m.file.span()),
-                format!("cannot read OBJ file `{}`: {e}", assets.label(rel)),
+                format!("cannot read {kind} file `{}`: {e}", assets.label(rel)),
             )
         })?;
-        let obj_label = assets.label(rel);
-        let obj_dir = Path::new(rel).parent().unwrap_or(Path::new(""));
-        let read_mtl = |name: &str| assets.read(&obj_dir.join(name).to_string_lossy()).ok();
-        let parts = load_obj(&bytes, &obj_label, &read_mtl)?;
+        let label = assets.label(rel);
+        let dir = Path::new(rel).parent().unwrap_or(Path::new(""));
+        let beside = |name: &str| assets.read(&dir.join(name).to_string_lossy());
+        let parts = if gltf {
+            load_gltf(&bytes, &label, &beside)?
+        } else {
+            load_obj(&bytes, &label, &|name| beside(name).ok())?
+        };
         let transform = glam::Affine3A::from_scale_rotation_translation(
             glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
             rotation(m.rotate),

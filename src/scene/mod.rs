@@ -3,6 +3,7 @@
 mod builtin;
 mod error;
 mod file;
+mod gltf;
 pub mod input;
 mod materials;
 mod obj;
@@ -12,6 +13,7 @@ pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
 pub(crate) use error::one_line;
 pub use error::{Location, SceneError, line_col};
 pub use file::describe;
+pub use gltf::load_gltf;
 pub use obj::{ObjPart, load_obj};
 pub use values::{MAX_IMAGE_SIDE, MAX_PIXELS, check_size};
 
@@ -237,22 +239,29 @@ impl Scene {
         }
     }
 
-    /// Loads a scene file, or shows an OBJ file (a path ending in `.obj`) on a floor
-    /// under a light, framed by the camera.
+    /// Loads a scene file (`.toml`, or a name without an extension), or shows a model
+    /// (`.obj`, `.gltf`, `.glb`) on a floor under a light, framed by the camera. Any other
+    /// extension is refused as a format raylab does not read, before the file is opened.
     pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
-        if path
+        let ext = path
             .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("obj"))
-        {
-            return Scene::for_obj(path);
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match ext.as_deref() {
+            Some(m) if is_model(m) => Scene::for_model(path),
+            None | Some("toml") => file::load_file(path),
+            Some(other) => Err(SceneError::new(
+                Location::file(path.display().to_string()),
+                format!(
+                    "unsupported format `.{other}`: raylab reads scene files (.toml), OBJ models (.obj) and glTF 2.0 models (.gltf, .glb)"
+                ),
+            )),
         }
-        file::load_file(path)
     }
 
-    /// A scene showing the mesh of an OBJ file (its .mtl materials, or grey): the camera
+    /// A scene showing the meshes of a model file, OBJ or glTF (its materials, or grey): the camera
     /// looks at it from the front and a little above, it stands on a checkered floor, and
     /// one light shines from the upper left.
-    pub fn for_obj(path: &Path) -> Result<Scene, SceneError> {
+    pub fn for_model(path: &Path) -> Result<Scene, SceneError> {
         let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         let label = path.display().to_string();
         // The mesh goes through the scene format, so that its errors and .mtl materials are
@@ -273,7 +282,7 @@ impl Scene {
             .fold(None, |b: Option<(Vec3, Vec3)>, &p| {
                 Some(b.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))))
             })
-            .ok_or_else(|| SceneError::new(Location::file(&label), "the OBJ file has no faces"))?;
+            .ok_or_else(|| SceneError::new(Location::file(&label), "the model has no faces"))?;
         let c = 0.5 * (lo + hi);
         let r = (0.5 * (hi - lo).length()).max(1e-6);
         desc.name = path
@@ -365,4 +374,18 @@ fn unknown_scene(name: &str) -> SceneError {
             names.join(", ")
         ),
     )
+}
+
+/// Whether a file extension (lower case, without the dot) is a model format raylab
+/// reads: OBJ or glTF.
+pub(crate) fn is_model(ext: &str) -> bool {
+    matches!(ext, "obj" | "gltf" | "glb")
+}
+
+/// Whether raylab opens the file at `path`, by its extension: a scene (.toml) or a model
+/// (.obj, .gltf, .glb).
+pub fn opens(path: &Path) -> bool {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .is_some_and(|e| e == "toml" || is_model(&e))
 }

@@ -9,14 +9,16 @@ use std::cell::RefCell;
 use std::io::{BufRead, Read};
 use std::path::Path;
 
-/// One object of an OBJ file: its triangles and, if the .mtl gave one, its material.
+/// One object of a model file (an OBJ object, a glTF primitive): its triangles and, if
+/// the file gave one, its material.
 #[derive(Clone, Debug)]
 pub struct ObjPart {
     /// The object's name in the file.
     pub name: String,
     /// Its triangles.
     pub mesh: Mesh,
-    /// Its material from the .mtl file, mapped to a raylab material, and the .mtl name.
+    /// Its material from the file (the .mtl, the glTF material), mapped to a raylab
+    /// material, and its name there.
     pub material: Option<(String, Material)>,
 }
 
@@ -202,7 +204,7 @@ fn map_material(m: &tobj::Material) -> Material {
 
 /// The measured metal whose full name a material's name contains, ignoring case
 /// ("aluminum" too); chemical symbols are not matched ("Cu" is in "Cube").
-fn metal_named_in(name: &str) -> Option<&'static crate::material::Metal> {
+pub(super) fn metal_named_in(name: &str) -> Option<&'static crate::material::Metal> {
     let name = name.to_ascii_lowercase().replace("aluminum", "aluminium");
     crate::material::METALS
         .iter()
