@@ -31,6 +31,7 @@ macro_rules! say_raw {
 mod cli;
 
 use cli::bench::{BenchArgs, bench_command};
+use cli::inspect::{InspectArgs, inspect_command};
 use cli::render::{RenderArgs, render_command};
 use cli::sweep::{SweepArgs, sweep_command};
 
@@ -89,7 +90,8 @@ enum Command {
     /// F_p, R) and Schlick's approximations. theta_t is empty under total internal
     /// reflection.
     Fresnel(FresnelArgs),
-    /// Render a contact sheet: one labelled image per value of a parameter, side by side.
+    /// Render one labelled image per value of a parameter: a contact sheet side by side
+    /// (.png), or an animation for a slide deck (.gif).
     Sweep(SweepArgs),
     /// Measure the progressive engine: latency from a parameter change to the first frame
     /// of the new generation, the time of a full-resolution 1-spp pass, and rays per second.
@@ -97,6 +99,10 @@ enum Command {
     /// List the lecture's slides: number, title, scene, and the two sides of those that
     /// compare (render one with `raylab render --slide N`).
     Lecture,
+    /// Print the ray tree of one sample of one pixel, as the window's inspector shows it:
+    /// every reflected, refracted and shadow ray with the lecture's quantities where it
+    /// meets a surface.
+    Inspect(InspectArgs),
 }
 
 #[derive(clap::Args)]
@@ -225,6 +231,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Fresnel(args)) => fresnel_command(&args),
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
+        Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Lecture) => {
             for (i, (title, scene, sides)) in raylab::app::lecture_slides().enumerate() {
                 match sides {

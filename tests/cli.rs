@@ -627,3 +627,116 @@ fn a_model_format_raylab_does_not_read_is_named_as_such() {
     }
     assert!(!d.join("x.png").exists());
 }
+
+#[test]
+fn inspect_prints_the_tree_of_the_sample_render_traces() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let args = ["inspect", "glass", "--pixel", "40,22", "--size", "80x45"];
+    let o = raylab(&args, d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let mut lines = text.lines();
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("glass 80x45, pixel (40, 22), sample 0")
+    );
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("Camera ray, level 0: glass sphere (glass)"),
+        "{text}"
+    );
+    assert!(text.contains("R exact, Schlick"), "{text}");
+    assert!(text.contains("  Refract ray, level 1"), "{text}");
+
+    // As JSON: the radiance is the pixel's value in a 1-sample render, bit for bit.
+    let o = raylab(&[&args[..], &["--json", "--set", "spp=1"]].concat(), d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rays = json["rays"].as_array().unwrap();
+    assert!(rays.len() > 3);
+    assert_eq!(rays[0]["kind"], "Camera");
+    assert!(rays[1..].iter().all(|r| r["parent"].is_u64()));
+    let o = raylab(
+        &[
+            "render", "glass", "--size", "80x45", "--spp", "1", "-q", "-o", "g.exr",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let image = image::open(d.join("g.exr")).unwrap().into_rgb32f();
+    let pixel = image.get_pixel(40, 22).0;
+    for (c, value) in pixel.iter().enumerate() {
+        assert_eq!(
+            json["radiance"][c].as_f64().unwrap() as f32,
+            *value,
+            "channel {c}"
+        );
+    }
+    fails(
+        &["inspect", "glass", "--pixel", "80,0", "--size", "80x45"],
+        d,
+        "outside the 80x45 image",
+    );
+    fails(&["inspect", "glass", "--pixel", "3"], d, "X,Y");
+}
+
+/// The long options a `--help` text lists (`--spp <N>` gives `--spp`), but `--help`.
+fn long_options(help: &str) -> Vec<String> {
+    help.lines()
+        .map(str::trim_start)
+        .filter(|l| l.starts_with('-'))
+        .filter_map(|l| l.split([' ', ',']).find(|w| w.starts_with("--")))
+        .map(|w| w.split('=').next().unwrap_or(w).to_string())
+        .filter(|w| w != "--help" && w != "--version")
+        .collect()
+}
+
+/// Whether `text` has `option` as a whole word (`--spp`, not `--spp-max`).
+fn mentions(text: &str, option: &str) -> bool {
+    text.match_indices(option).any(|(i, _)| {
+        !text[i + option.len()..]
+            .chars()
+            .next()
+            .is_some_and(|c| c.is_alphanumeric() || c == '-' || c == '_')
+    })
+}
+
+#[test]
+fn readme_documents_every_subcommand_and_option_the_help_lists() {
+    let dir = tempfile::tempdir().unwrap();
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let top = String::from_utf8_lossy(&raylab(&["--help"], dir.path()).stdout).into_owned();
+    let commands: Vec<String> = top
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next().map(str::to_string))
+        .filter(|c| c != "help")
+        .collect();
+    assert!(commands.len() >= 8, "{commands:?}");
+    let mut missing = Vec::new();
+    for c in &commands {
+        if !readme.contains(&format!("-- {c}")) && !readme.contains(&format!("raylab {c}")) {
+            missing.push(format!("the subcommand `{c}`"));
+        }
+        let help = raylab(&[c.as_str(), "--help"], dir.path());
+        for option in long_options(&String::from_utf8_lossy(&help.stdout)) {
+            if !mentions(&readme, &option) {
+                missing.push(format!("`{c} {option}`"));
+            }
+        }
+    }
+    for option in long_options(&top) {
+        if !mentions(&readme, &option) {
+            missing.push(format!("`raylab {option}`"));
+        }
+    }
+    assert!(missing.is_empty(), "README does not mention: {missing:?}");
+}

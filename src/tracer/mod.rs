@@ -17,7 +17,7 @@ mod stats;
 
 use media::Arrival;
 pub use media::{MAX_NESTING, Media};
-pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, TreeNode};
+pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_ROW, TreeNode};
 pub use stats::Stats;
 
 use crate::camera::{Camera, CameraFrame};

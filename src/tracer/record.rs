@@ -48,6 +48,26 @@ pub enum End {
     Occluded,
 }
 
+impl End {
+    /// Why the branch ended, in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            End::Miss => "left the scene (background)",
+            End::LightHit => "reached a light",
+            End::Absorbed => "diffuse surface: shaded by shadow rays, absorbed",
+            End::Split => "split into child rays",
+            End::Continued => "the path goes on: one direction, chosen at random",
+            End::Roulette => "ended by Russian roulette",
+            End::DepthLimit => "pruned: depth limit",
+            End::WeightLimit => "pruned: weight below the minimum",
+            End::BudgetLimit => "pruned: the sample's ray budget is spent",
+            End::TotalInternalReflection => "no refracted ray: total internal reflection",
+            End::Lit => "reached its light",
+            End::Occluded => "blocked: in shadow",
+        }
+    }
+}
+
 /// What a recorded ray met, with the lecture's quantities at a dielectric.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct NodeHit {
@@ -103,6 +123,75 @@ pub struct TreeNode {
     pub wavelength: Option<f32>,
 }
 
+impl TreeNode {
+    /// One line naming the ray: its kind (and wavelength), level, what it met (by the
+    /// scene's `object_names` and `material_names`) and why it ended.
+    pub fn title(&self, object_names: &[String], material_names: &[String]) -> String {
+        let target = self.hit.map_or("nothing".to_string(), |h| {
+            let name = |names: &[String], i: u32| {
+                names.get(i as usize).map_or("?".to_string(), String::clone)
+            };
+            format!(
+                "{} ({})",
+                name(object_names, h.object),
+                name(material_names, h.material)
+            )
+        });
+        let colour = self
+            .wavelength
+            .map_or(String::new(), |l| format!(" at {l:.0} nm"));
+        format!(
+            "{:?} ray{colour}, level {}: {target} — {}",
+            self.kind,
+            self.depth,
+            self.end.describe()
+        )
+    }
+
+    /// The lecture's quantities of the ray, as (label, value) rows: at a hit the angles,
+    /// indices, Fresnel amplitudes and reflectances; with a polariser its Stokes weights;
+    /// always its weights and radiance.
+    pub fn rows(&self) -> Vec<(&'static str, String)> {
+        let mut rows = Vec::new();
+        if let Some(h) = self.hit {
+            rows.push(("θi", format!("{:.2}°", h.theta_i)));
+            if let Some((n1, n2)) = h.n1_n2 {
+                rows.push(("n1 -> n2", format!("{n1:.3} -> {n2:.3}")));
+                rows.push((
+                    "θt",
+                    h.theta_t
+                        .map_or("none (total internal reflection)".into(), |t| {
+                            format!("{t:.2}°")
+                        }),
+                ));
+            }
+            if let Some((f_s, f_p)) = h.f_s_f_p {
+                rows.push(("Fs, Fp", format!("{f_s:.4}, {f_p:.4}")));
+            }
+            if let Some((exact, schlick)) = h.r_exact_schlick {
+                rows.push(("R exact, Schlick", format!("{exact:.4}, {schlick:.4}")));
+            }
+            if let Some(r) = h.r {
+                rows.push(("R used", format!("{r:.4}")));
+            }
+        }
+        if let Some([w0, w1, w2, w3]) = self.stokes_weights {
+            rows.push((
+                STOKES_ROW,
+                format!("I {w0:.3}, Q {w1:+.3}, U {w2:+.3}, V {w3:+.3}"),
+            ));
+        }
+        rows.push(("branch weight", format!("{:.4}", self.branch_weight)));
+        rows.push(("path weight", format!("{:.4}", self.path_weight)));
+        let c = self.radiance;
+        rows.push(("radiance", format!("({:.3}, {:.3}, {:.3})", c.x, c.y, c.z)));
+        rows
+    }
+}
+
+/// The label of the row of a ray's Stokes weights (the window explains it on hover).
+pub const STOKES_ROW: &str = "through the polariser";
+
 /// Watches the ray tree being traced. The renderer uses [`NoRecorder`], for which all of
 /// this compiles away; the inspector uses [`RayTree`].
 pub trait Recorder {
@@ -141,7 +230,14 @@ impl RayTree {
 
 impl Recorder for RayTree {
     fn ray(&mut self, node: impl FnOnce() -> TreeNode) -> usize {
-        self.nodes.push(node());
+        let mut node = node();
+        // A shadow ray leaves its parent's hit: one level below it.
+        if node.kind == RayKind::Shadow
+            && let Some(parent) = node.parent.and_then(|p| self.nodes.get(p))
+        {
+            node.depth = parent.depth + 1;
+        }
+        self.nodes.push(node);
         self.nodes.len() - 1
     }
     fn finish(&mut self, id: usize, f: &dyn Fn(&mut TreeNode)) {
@@ -204,6 +300,7 @@ pub(super) fn shadow_node(
         parent: Some(parent),
         kind: RayKind::Shadow,
         ray: *shadow,
+        // Set from the parent's when recorded.
         depth: 0,
         branch_weight: 1.0,
         path_weight: 0.0,

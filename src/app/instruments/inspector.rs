@@ -27,24 +27,6 @@ fn kind_color(kind: crate::tracer::RayKind) -> egui::Color32 {
     }
 }
 
-fn end_text(end: crate::tracer::End) -> &'static str {
-    use crate::tracer::End::*;
-    match end {
-        Miss => "left the scene (background)",
-        LightHit => "reached a light",
-        Absorbed => "diffuse surface: shaded by shadow rays, absorbed",
-        Split => "split into child rays",
-        Continued => "the path goes on: one direction, chosen at random",
-        Roulette => "ended by Russian roulette",
-        DepthLimit => "pruned: depth limit",
-        WeightLimit => "pruned: weight below the minimum",
-        BudgetLimit => "pruned: the sample's ray budget is spent",
-        TotalInternalReflection => "no refracted ray: total internal reflection",
-        Lit => "reached its light",
-        Occluded => "blocked: in shadow",
-    }
-}
-
 /// Draws the recorded rays over the image: each segment projected through the camera.
 pub(crate) fn draw_tree_overlay(
     painter: &egui::Painter,
@@ -122,25 +104,7 @@ fn node_ui(
 ) {
     let tree = &inspection.tree;
     let Some(n) = tree.nodes.get(id) else { return };
-    let target = n.hit.map_or("nothing".to_string(), |h| {
-        format!(
-            "{} ({})",
-            names.get(h.object as usize).map_or("?", |s| s.as_str()),
-            materials
-                .get(h.material as usize)
-                .map_or("?", |s| s.as_str())
-        )
-    });
-    let colour = n
-        .wavelength
-        .map_or(String::new(), |l| format!(" at {l:.0} nm"));
-    let title = format!(
-        "{:?} ray{colour}, level {}: {} — {}",
-        n.kind,
-        n.depth,
-        target,
-        end_text(n.end)
-    );
+    let title = n.title(names, materials);
     egui::CollapsingHeader::new(egui::RichText::new(title).color(kind_color(n.kind)))
         .id_salt(("ray-node", id))
         .default_open(n.depth < 3)
@@ -148,50 +112,14 @@ fn node_ui(
             egui::Grid::new(("ray-grid", id))
                 .num_columns(2)
                 .show(ui, |ui| {
-                    let mut row = |k: &str, v: String| {
-                        let label = ui.label(k);
-                        ui.label(v);
+                    for (label, value) in n.rows() {
+                        let response = ui.label(label);
+                        ui.label(value);
                         ui.end_row();
-                        label
-                    };
-                    if let Some(h) = n.hit {
-                        row("θi", format!("{:.2}°", h.theta_i));
-                        if let Some((n1, n2)) = h.n1_n2 {
-                            row("n1 -> n2", format!("{n1:.3} -> {n2:.3}"));
-                            row(
-                                "θt",
-                                h.theta_t
-                                    .map_or("none (total internal reflection)".into(), |t| {
-                                        format!("{t:.2}°")
-                                    }),
-                            );
-                        }
-                        if let Some((f_s, f_p)) = h.f_s_f_p {
-                            row("Fs, Fp", format!("{f_s:.4}, {f_p:.4}"));
-                        }
-                        if let Some((exact, schlick)) = h.r_exact_schlick {
-                            row("R exact, Schlick", format!("{exact:.4}, {schlick:.4}"));
-                        }
-                        if let Some(r) = h.r {
-                            row("R used", format!("{r:.4}"));
+                        if label == crate::tracer::STOKES_ROW {
+                            response.on_hover_text("How this ray's light counts through the polariser and the interfaces above (green), per Stokes component in its s/p frame: unpolarised light counts I, light polarised along s I + Q, along p I − Q.");
                         }
                     }
-                    if let Some([w0, w1, w2, w3]) = n.stokes_weights {
-                        row(
-                            "through the polariser",
-                            format!("I {w0:.3}, Q {w1:+.3}, U {w2:+.3}, V {w3:+.3}"),
-                        )
-                        .on_hover_text("How this ray's light counts through the polariser and the interfaces above (green), per Stokes component in its s/p frame: unpolarised light counts I, light polarised along s I + Q, along p I − Q.");
-                    }
-                    row("branch weight", format!("{:.4}", n.branch_weight));
-                    row("path weight", format!("{:.4}", n.path_weight));
-                    row(
-                        "radiance",
-                        format!(
-                            "({:.3}, {:.3}, {:.3})",
-                            n.radiance.x, n.radiance.y, n.radiance.z
-                        ),
-                    );
                 });
             for (child, _) in tree.children(id) {
                 node_ui(ui, inspection, child, names, materials);
