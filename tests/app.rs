@@ -158,6 +158,39 @@ fn a_failed_save_says_so_and_keeps_the_image() {
 }
 
 #[test]
+fn save_as_asks_before_replacing_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let mine = dir.path().join("mine.png");
+    std::fs::write(&mine, b"the user's own").unwrap();
+    let mut h = app("default", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    h.get_by_label("Save as…").click();
+    h.run_steps(3);
+    // The places to go: the home folder at least, and the root or the drives.
+    h.get_by_label("Home");
+    // Picking the existing file and saving asks first; keeping it leaves it alone.
+    h.get_by_label("mine.png").click();
+    h.run_steps(2);
+    h.get_by_label("Save").click();
+    h.run_steps(3);
+    let question = "mine.png exists. Replace it (and its sidecar)?";
+    h.get_by_label(question);
+    h.get_by_label("Keep it").click();
+    h.run_steps(3);
+    assert!(h.query_by_label(question).is_none());
+    assert_eq!(std::fs::read(&mine).unwrap(), b"the user's own");
+    // Asked again, replacing writes the image and its sidecar.
+    h.get_by_label("Save").click();
+    h.run_steps(3);
+    h.get_by_label("Replace").click();
+    h.run_steps(3);
+    assert!(image::open(&mine).is_ok(), "a PNG now");
+    assert!(dir.path().join("mine.png.json").is_file());
+}
+
+#[test]
 fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("bad.toml");

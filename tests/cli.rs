@@ -668,6 +668,16 @@ fn inspect_prints_the_tree_of_the_sample_render_traces() {
         d,
     );
     assert!(o.status.success(), "{}", stderr(&o));
+    // The EXR's header carries the parameters it was rendered with.
+    let meta = exr::meta::MetaData::read_from_file(d.join("g.exr"), false).unwrap();
+    let spp = meta.headers[0]
+        .own_attributes
+        .other
+        .get(&exr::meta::attribute::Text::from("raylab:spp"));
+    assert!(
+        matches!(spp, Some(exr::meta::attribute::AttributeValue::Text(t)) if t == "1"),
+        "{spp:?}"
+    );
     let image = image::open(d.join("g.exr")).unwrap().into_rgb32f();
     let pixel = image.get_pixel(40, 22).0;
     for (c, value) in pixel.iter().enumerate() {

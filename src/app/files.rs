@@ -1,8 +1,9 @@
 //! A file browser drawn with egui (Open…, Save as…), and snapshot file names.
 //!
 //! Written here rather than taken from a crate: the desktop-portal dialogs need a session
-//! service that minimal desktops and Xvfb lack, and the egui file-dialog crates lag egui's
-//! version.
+//! service that minimal desktops and Xvfb lack, and egui_file 0.29 (the one for egui 0.37)
+//! has neither shortcuts to the home folder nor a question before replacing a file, the
+//! two things this one adds.
 
 use egui::{Key, RichText};
 use std::path::{Path, PathBuf};
@@ -37,6 +38,8 @@ pub(crate) struct FileDialog {
     pub name: String,
     entries: Vec<(String, bool)>,
     error: Option<String>,
+    /// A file chosen for saving that exists: replaced only once the user says so.
+    confirm: Option<PathBuf>,
 }
 
 impl FileDialog {
@@ -48,6 +51,7 @@ impl FileDialog {
             name,
             entries: Vec::new(),
             error: None,
+            confirm: None,
         };
         d.list();
         d
@@ -108,6 +112,14 @@ impl FileDialog {
                     self.enter(parent.to_path_buf());
                 }
                 ui.label(RichText::new(self.dir.display().to_string()).monospace());
+            });
+            ui.horizontal_wrapped(|ui| {
+                for (label, place) in places() {
+                    let tip = place.display().to_string();
+                    if ui.small_button(label).on_hover_text(tip).clicked() {
+                        self.enter(place);
+                    }
+                }
             });
             if let Some(e) = &self.error {
                 ui.colored_label(ui.visuals().error_fg_color, e);
@@ -170,6 +182,24 @@ impl FileDialog {
                     }
                 });
             }
+            if let Some(path) = self.confirm.clone() {
+                let name = path
+                    .file_name()
+                    .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+                ui.colored_label(
+                    ui.visuals().warn_fg_color,
+                    format!("{name} exists. Replace it (and its sidecar)?"),
+                );
+                ui.horizontal(|ui| {
+                    if ui.button("Replace").clicked() {
+                        choice = Choice::File(path);
+                    }
+                    if ui.button("Keep it").clicked() {
+                        self.confirm = None;
+                    }
+                });
+                return;
+            }
             ui.horizontal(|ui| {
                 let verb = if self.purpose == Purpose::Open {
                     "Open"
@@ -199,8 +229,48 @@ impl FileDialog {
             self.enter(dir);
             return Choice::Pending;
         }
+        // Saving over a file asks first (the answer comes back as the chosen path).
+        if let Choice::File(path) = &choice
+            && self.purpose == Purpose::SaveAs
+            && self.confirm.as_ref() != Some(path)
+            && path.symlink_metadata().is_ok()
+        {
+            self.confirm = Some(path.clone());
+            return Choice::Pending;
+        }
         choice
     }
+}
+
+/// Shortcuts to where files usually are: the home folder and its Desktop and Documents,
+/// the drives on Windows, the volumes on macOS, the root elsewhere; only those that exist.
+fn places() -> Vec<(String, PathBuf)> {
+    let mut places = Vec::new();
+    let home = std::env::var_os("HOME")
+        .or_else(|| std::env::var_os("USERPROFILE"))
+        .map(PathBuf::from)
+        .filter(|h| h.is_dir());
+    if let Some(home) = home {
+        for sub in ["Desktop", "Documents", "Pictures"] {
+            if home.join(sub).is_dir() {
+                places.push((sub.to_string(), home.join(sub)));
+            }
+        }
+        places.insert(0, ("Home".to_string(), home));
+    }
+    if cfg!(windows) {
+        for letter in 'A'..='Z' {
+            let drive = PathBuf::from(format!("{letter}:\\"));
+            if drive.is_dir() {
+                places.push((format!("{letter}:"), drive));
+            }
+        }
+    } else if cfg!(target_os = "macos") {
+        places.push(("Volumes".to_string(), PathBuf::from("/Volumes")));
+    } else {
+        places.push(("/".to_string(), PathBuf::from("/")));
+    }
+    places
 }
 
 /// `YYYYMMDD-HHMMSS` in UTC for a time since the epoch.

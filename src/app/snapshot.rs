@@ -22,8 +22,6 @@ impl RaylabApp {
         // The frame's own parameters: those the engine rendered it with.
         let params = self.main.engine().params().clone();
         let exposure = self.settings.params.exposure;
-        write_image(path, frame.width, frame.height, &frame.pixels, exposure)
-            .map_err(|e| e.to_string())?;
         let spp = frame.progress.spp;
         let camera = self.main.camera();
         let sidecar = Sidecar {
@@ -41,6 +39,15 @@ impl RaylabApp {
             seconds: Some(frame.progress.elapsed.as_secs_f64()),
             stats: Some(frame.progress.stats),
         };
+        write_image(
+            path,
+            frame.width,
+            frame.height,
+            &frame.pixels,
+            exposure,
+            Some(&sidecar),
+        )
+        .map_err(|e| e.to_string())?;
         sidecar.write(&json).map_err(|e| e.to_string())?;
         Ok(path.to_path_buf())
     }

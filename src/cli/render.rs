@@ -142,28 +142,8 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     } else {
         ""
     };
-    match caption.filter(|_| args.caption) {
-        // The caption as it reads for the parameters rendered (after any --set).
-        Some(caption) => {
-            let image =
-                raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
-            raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
-                .with_context(|| format!("cannot write {}", output.display()))
-                .map_err(runtime)?;
-        }
-        None => film.save(&output, params.exposure).map_err(runtime)?,
-    }
-    if params_b.is_some() {
-        if !args.quiet {
-            eprintln!(
-                "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
-                args.slide.unwrap_or(0),
-                output.display()
-            );
-        }
-        return Ok(());
-    }
-    Sidecar {
+    // No one set of parameters makes an A/B split: it gets no sidecar.
+    let sidecar = params_b.is_none().then(|| Sidecar {
         raylab_version: raylab::VERSION.to_string(),
         scene: Sidecar::scene_reference(&scene.source, &json),
         width,
@@ -174,9 +154,31 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         image: output.file_name().map(|n| n.to_string_lossy().into_owned()),
         seconds: Some(seconds),
         stats: Some(stats),
+    });
+    match caption.filter(|_| args.caption) {
+        // The caption as it reads for the parameters rendered (after any --set).
+        Some(caption) => {
+            let image =
+                raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
+            raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
+                .with_context(|| format!("cannot write {}", output.display()))
+                .map_err(runtime)?;
+        }
+        None => film
+            .save(&output, params.exposure, sidecar.as_ref())
+            .map_err(runtime)?,
     }
-    .write(&json)
-    .map_err(runtime)?;
+    let Some(sidecar) = sidecar else {
+        if !args.quiet {
+            eprintln!(
+                "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
+                args.slide.unwrap_or(0),
+                output.display()
+            );
+        }
+        return Ok(());
+    };
+    sidecar.write(&json).map_err(runtime)?;
 
     if !args.quiet {
         let pixels = (width as u64 * height as u64) as f64;

@@ -1,7 +1,7 @@
 //! The film: per-pixel sums of radiance samples, resolved to PNG (8-bit sRGB) or EXR (linear).
 
 use crate::math::Color;
-use crate::render::output::save_image;
+use crate::render::output::{save_image, write_atomic};
 use std::path::Path;
 
 /// What a pixel has accumulated: the sum and count of its samples, and the same for its
@@ -163,30 +163,34 @@ pub fn to_srgba8(pixels: &[Color], exposure: f32) -> Vec<u8> {
 }
 
 /// Writes linear radiance `pixels` (`width` × `height`, row-major): `.png` as 8-bit sRGB
-/// after scaling by 2^exposure, `.exr` as linear radiance.
+/// after scaling by 2^exposure, `.exr` as linear radiance with `sidecar`'s parameters in
+/// its header.
 pub fn write_image(
     path: &Path,
     width: u32,
     height: u32,
     pixels: &[Color],
     exposure: f32,
+    sidecar: Option<&super::Sidecar>,
 ) -> Result<(), FilmError> {
     let name = path.display().to_string();
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if pixels.len() != width as usize * height as usize {
+        return Err(FilmError::UnsupportedFormat(format!(
+            "{name} (size mismatch)"
+        )));
+    }
     let written = match ext.as_deref() {
         Some("png") => {
             let img = srgb_image(width, height, pixels, exposure)
                 .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
             save_image(&img, path, image::ImageFormat::Png)
         }
-        Some("exr") => {
-            let floats = pixels.iter().flat_map(|c| c.to_array()).collect();
-            let img = image::Rgb32FImage::from_vec(width, height, floats)
-                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
-            save_image(&img, path, image::ImageFormat::OpenExr)
-        }
+        Some("exr") => super::exr_file::exr_bytes(width, height, pixels, sidecar)
+            .map_err(|e| image::ImageError::IoError(std::io::Error::other(e.to_string())))
+            .and_then(|bytes| write_atomic(path, &bytes).map_err(image::ImageError::IoError)),
         _ => return Err(FilmError::UnsupportedFormat(name)),
     };
     written.map_err(|error| FilmError::Write { path: name, error })
@@ -320,10 +324,16 @@ impl Film {
         image.unwrap_or_else(|| image::RgbImage::new(self.width, self.height))
     }
 
-    /// Writes the film: `.png` as 8-bit sRGB with `exposure`, `.exr` as linear radiance.
-    pub fn save(&self, path: &Path, exposure: f32) -> Result<(), FilmError> {
+    /// Writes the film: `.png` as 8-bit sRGB with `exposure`, `.exr` as linear radiance
+    /// with `sidecar`'s parameters in its header.
+    pub fn save(
+        &self,
+        path: &Path,
+        exposure: f32,
+        sidecar: Option<&super::Sidecar>,
+    ) -> Result<(), FilmError> {
         let pixels: Vec<Color> = self.pixels().collect();
-        write_image(path, self.width, self.height, &pixels, exposure)
+        write_image(path, self.width, self.height, &pixels, exposure, sidecar)
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod drag;
 mod engine;
+mod exr_file;
 mod film;
 mod frame;
 mod kernel;
