@@ -296,3 +296,37 @@ fn rays_do_not_leak_through_thin_or_touching_geometry() {
         assert_eq!(hit.object, 1);
     }
 }
+
+/// The obvhs 0.4 bug that `geometry::accel` works around, reproduced with obvhs alone (the
+/// report to file upstream is in the comment on `positive_zeros` there). When this fails,
+/// obvhs has fixed it and the workaround can go.
+#[test]
+fn obvhs_0_4_misses_rays_with_negative_zero_components() {
+    use obvhs::aabb::Aabb;
+    use obvhs::ray::{Ray as ObvRay, RayHit};
+    use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh};
+    // Two boxes, so that the root is an inner node whose children are ordered by octant.
+    let boxes = [
+        Aabb::new(glam::vec3a(-1.0, -1.0, -3.0), glam::vec3a(1.0, 1.0, -2.0)),
+        Aabb::new(glam::vec3a(4.0, 4.0, -3.0), glam::vec3a(5.0, 5.0, -2.0)),
+    ];
+    let bvh = build_cwbvh(
+        &boxes,
+        BvhBuildParams::medium_build(),
+        &mut std::time::Duration::default(),
+    );
+    let hits = |dir: glam::Vec3A| {
+        let mut hit = RayHit::none();
+        bvh.ray_traverse(ObvRay::new_inf(glam::Vec3A::ZERO, dir), &mut hit, |r, i| {
+            boxes[bvh.primitive_indices[i] as usize].intersect_ray(r)
+        })
+    };
+    assert!(
+        hits(glam::vec3a(0.0, 0.0, -1.0)),
+        "+0.0 components hit the box"
+    );
+    assert!(
+        !hits(-glam::Vec3A::Z),
+        "(-0.0, -0.0, -1.0) hits the box: obvhs is fixed, drop positive_zeros"
+    );
+}

@@ -13,9 +13,20 @@ use std::time::Duration;
 
 /// The direction with every −0.0 turned into +0.0 (x + 0.0 does that in IEEE arithmetic).
 ///
-/// obvhs 0.4 picks a node's traversal octant from `dir < 0` but inverts the direction with
-/// `signum`, which disagree on −0.0: a ray along −z built as `-Vec3::Z` then misses
-/// everything.
+/// Works around a bug in obvhs 0.4.0, written up here to be filed upstream
+/// (tests/intersection.rs `obvhs_0_4_misses_rays_with_negative_zero_components` runs it):
+///
+/// > **A ray direction with a −0.0 component misses everything in `CwBvh::ray_traverse`.**
+/// > Build a `CwBvh` over two boxes, [−1, 1]² × [−3, −2] and [4, 5]² × [−3, −2], with
+/// > `build_cwbvh(&boxes, BvhBuildParams::medium_build(), ..)`. A ray from the origin along
+/// > `vec3a(0.0, 0.0, -1.0)` hits the first box; along `-Vec3A::Z`, which is
+/// > (−0.0, −0.0, −1.0), it hits nothing. Cause: `ray_get_octant_inv4` (cwbvh/mod.rs)
+/// > classifies a component as negative by `dir.x < 0.0`, false for −0.0, while
+/// > `Ray::new`'s `safe_inverse` turns ±0.0 into `x.signum() / f32::EPSILON`, and
+/// > `(-0.0f32).signum()` is −1.0: the node test takes the near and far planes of one
+/// > octant with the inverse direction of another. Fix: `dir.x.is_sign_negative()` (for
+/// > each axis) in `ray_get_octant_inv4`, or `if x < 0.0 { -1.0 } else { 1.0 }` in
+/// > `safe_inverse`, so that both agree.
 #[inline]
 fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
     dir + crate::math::Vec3::ZERO
