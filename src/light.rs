@@ -184,6 +184,22 @@ pub struct PreparedLight {
 }
 
 impl PreparedLight {
+    /// The uniform pair a sample of this light takes from the sample's stream: a light with
+    /// no extent (a point, or any shape scaled to nothing) uses none, and its dimension is
+    /// skipped rather than computed (the image is the same: the pair would go unused).
+    pub fn draw(&self, u: &mut impl crate::math::Uniform) -> Vec2 {
+        let extent = match &self.light.shape {
+            LightShape::Sphere { radius, .. } => radius * self.light.scale > 0.0,
+            _ => self.light.scale > 0.0,
+        };
+        if extent {
+            u.next_2d()
+        } else {
+            u.skip(1);
+            Vec2::ZERO
+        }
+    }
+
     /// A direction towards the light from `p`, from the uniform pair `u`: a uniform point
     /// on a rectangle or disk (density 1/A per area, so d²/(A cos θ_l) per solid angle), a
     /// uniform direction in the cone a sphere subtends, or the point itself. `None` when

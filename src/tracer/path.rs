@@ -436,7 +436,7 @@ impl Tracer<'_> {
         };
         let mut sum = Color::ZERO;
         for light in &self.lights {
-            let u = w.rng.next_2d();
+            let u = light.draw(w.rng);
             let Some(ls) = light.sample(p, u) else {
                 continue;
             };

@@ -38,7 +38,7 @@ impl Tracer<'_> {
         let view = -ray.dir;
         let mut sum = self.scene.ambient * direct.brdf.albedo;
         for light in &self.lights {
-            let u = w.rng.next_2d();
+            let u = light.draw(w.rng);
             let Some(ls) = light.sample(p, u) else {
                 continue;
             };
