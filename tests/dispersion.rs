@@ -385,6 +385,14 @@ fn the_inspector_shows_the_three_wavelengths_the_tree_splits_into() {
         .collect();
     channels.sort();
     assert_eq!(channels, [0, 1, 2]);
+    // The camera ray's interface is shown for the first wavelength, the one its first
+    // children carry.
+    let first = tree.children(0).next().unwrap().1.wavelength.unwrap();
+    let (_, n2) = tree.nodes[0].hit.unwrap().n1_n2.unwrap();
+    assert!(
+        (n2 - ior_at(setup.ior, setup.abbe, first)).abs() < 1e-6,
+        "{n2} at {first} nm"
+    );
     for (id, n) in &refracted {
         for (_, child) in tree.children(*id) {
             if child.kind != raylab::tracer::RayKind::Shadow {

@@ -257,7 +257,9 @@ pub(super) fn record_interface<R: Recorder>(rec: &mut R, id: usize, i: Interface
     let theta_t = crate::optics::cos_transmitted(cos_i, n1, n2).map(|c| c.acos().to_degrees());
     let r_schlick = crate::optics::schlick(cos_i, n1, n2);
     rec.finish(id, &|n| {
-        if let Some(h) = &mut n.hit {
+        // The first wavelength's, where the tree splits into three at a dispersive surface
+        // (the one its first children carry).
+        if let Some(h) = n.hit.as_mut().filter(|h| h.n1_n2.is_none()) {
             h.theta_t = theta_t;
             h.n1_n2 = Some((n1, n2));
             h.f_s_f_p = Some((f_s, f_p));
@@ -283,7 +285,9 @@ pub(super) fn record_hit<R: Recorder>(rec: &mut R, id: usize, hit: &Hit, at: &In
             r_exact_schlick: None,
             r: None,
         };
-        rec.finish(id, &|n| n.hit = Some(node_hit));
+        rec.finish(id, &|n| {
+            n.hit.get_or_insert(node_hit);
+        });
     }
 }
 
