@@ -13,6 +13,7 @@ mod photons;
 mod polarized;
 mod record;
 mod shadow;
+mod spectral;
 mod stats;
 
 use media::Arrival;
@@ -24,7 +25,6 @@ use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
 use crate::material::{Interaction, Lobe, Material, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
-use crate::optics::dispersion;
 use crate::optics::polarization::Analyzer;
 use crate::params::{Params, Transport, TreeMode};
 use crate::scene::{Hit, Scene};
@@ -384,42 +384,6 @@ impl<'a> Tracer<'a> {
             });
         }
         radiance
-    }
-
-    /// [`Self::shade`] at the first dispersive surface on a branch, where the branch takes
-    /// the wavelength it carries from there on (see optics::dispersion). The ray tree
-    /// splits into three, one wavelength in each channel's box from one u (stratified):
-    /// every sample brings back all three colours, each from one wavelength of its box
-    /// (weight 1). In stochastic mode, one path per sample, it takes
-    /// one wavelength uniform over 400–700 nm and brings back its box's channel times 3.
-    /// Either way each channel's mean is its box's mean: the same image.
-    fn shade_spectral<R: Recorder>(
-        &self,
-        b: Branch,
-        w: &mut Walk<R>,
-        shade: impl Fn(Branch, &mut Walk<R>) -> (Color, End),
-    ) -> (Color, End) {
-        let u = w.rng.next_1d();
-        let shade_at = |lambda: f32, w: &mut Walk<R>| {
-            let b = Branch {
-                wavelength: Some(lambda),
-                ..b
-            };
-            shade(b, w)
-        };
-        if self.params.tree == TreeMode::Stochastic {
-            let lambda = dispersion::wavelength(u);
-            let (l, end) = shade_at(lambda, w);
-            return (dispersion::channel_weight(lambda) * l, end);
-        }
-        let mut sum = Color::ZERO;
-        let mut end = End::Split;
-        for c in 0..3 {
-            let (l, e) = shade_at(dispersion::wavelength_in(c, u), w);
-            sum[c] = l[c];
-            end = e;
-        }
-        (sum, end)
     }
 
     /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
