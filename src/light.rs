@@ -187,7 +187,7 @@ impl PreparedLight {
     /// The uniform pair a sample of this light takes from the sample's stream: a light with
     /// no extent (a point, or any shape scaled to nothing) uses none, and its dimension is
     /// skipped rather than computed (the image is the same: the pair would go unused).
-    pub fn draw(&self, u: &mut impl crate::math::Uniform) -> Vec2 {
+    pub(crate) fn draw(&self, u: &mut impl crate::math::Uniform) -> Vec2 {
         let extent = match &self.light.shape {
             LightShape::Sphere { radius, .. } => radius * self.light.scale > 0.0,
             _ => self.light.scale > 0.0,
