@@ -269,6 +269,23 @@ fn a_buffer_beside_the_file_is_read_and_bad_files_are_named() {
         d,
         "fewer than the 36",
     );
+    // A triangle naming a vertex past the last: the mesh is named.
+    let mut bytes = triangle_bytes();
+    for i in [0u32, 1, 7] {
+        bytes.extend_from_slice(&i.to_le_bytes());
+    }
+    let past = format!(
+        r#"{{"asset": {{"version": "2.0"}},
+  "meshes": [{{"name": "torn", "primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
+  "buffers": [{{"byteLength": 48, "uri": "{}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": 36}}, {{"buffer": 0, "byteOffset": 36, "byteLength": 12}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                {{"bufferView": 1, "componentType": 5125, "count": 3, "type": "SCALAR"}}]}}"#,
+        data_uri(&bytes)
+    );
+    std::fs::write(d.join("past.gltf"), past).unwrap();
+    let err = fails(&["render", "past.gltf", "-o", "x.png"], d, "mesh `torn`");
+    assert!(err.contains("past.gltf"), "{err}");
     // Not glTF at all.
     std::fs::write(d.join("junk.glb"), b"glTF\x02\0\0\0\xff\xff").unwrap();
     fails(&["render", "junk.glb", "-o", "x.png"], d, "junk.glb");

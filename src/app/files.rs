@@ -5,6 +5,7 @@
 //! has neither shortcuts to the home folder nor a question before replacing a file, the
 //! two things this one adds.
 
+use crate::render::output::{safe_file_stem, unused_png};
 use egui::{Key, RichText};
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -40,6 +41,8 @@ pub(crate) struct FileDialog {
     error: Option<String>,
     /// A file chosen for saving that exists: replaced only once the user says so.
     confirm: Option<PathBuf>,
+    /// The shortcuts to other folders, looked up once when the dialog opens.
+    places: Vec<(String, PathBuf)>,
 }
 
 impl FileDialog {
@@ -52,6 +55,7 @@ impl FileDialog {
             entries: Vec::new(),
             error: None,
             confirm: None,
+            places: places(),
         };
         d.list();
         d
@@ -114,11 +118,15 @@ impl FileDialog {
                 ui.label(RichText::new(self.dir.display().to_string()).monospace());
             });
             ui.horizontal_wrapped(|ui| {
-                for (label, place) in places() {
+                let mut go = None;
+                for (label, place) in &self.places {
                     let tip = place.display().to_string();
                     if ui.small_button(label).on_hover_text(tip).clicked() {
-                        self.enter(place);
+                        go = Some(place.clone());
                     }
+                }
+                if let Some(place) = go {
+                    self.enter(place);
                 }
             });
             if let Some(e) = &self.error {
@@ -297,24 +305,8 @@ pub(crate) fn timestamp(t: SystemTime) -> String {
 
 /// `dir/<scene>-<timestamp>.png`, with `-2`, `-3`, ... if that file exists already.
 pub(crate) fn snapshot_path(dir: &Path, scene: &str, t: SystemTime) -> PathBuf {
-    let safe: String = scene
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    let base = format!("{safe}-{}", timestamp(t));
-    let mut path = dir.join(format!("{base}.png"));
-    let mut n = 2;
-    while path.exists() || crate::render::sidecar_path(&path).exists() {
-        path = dir.join(format!("{base}-{n}.png"));
-        n += 1;
-    }
-    path
+    let stem = format!("{}-{}", safe_file_stem(scene), timestamp(t));
+    unused_png(dir, &stem)
 }
 
 #[cfg(test)]

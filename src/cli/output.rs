@@ -2,59 +2,25 @@
 //! any time is spent rendering.
 
 use anyhow::{Result, bail};
-use raylab::render::sidecar_path;
+use raylab::render::output::{safe_file_stem, unused_png};
 use std::path::{Path, PathBuf};
 
 /// Where an image goes when `-o` is not given: `<stem>.png` in `dir` (the current folder
-/// for the commands), or
-/// `<stem>-2.png`, `<stem>-3.png`, ... when that name or its sidecar is taken, so that a
-/// default never replaces a file. Characters a file name cannot hold become `-`.
-pub fn default_output(dir: &Path, stem: &str) -> Result<PathBuf> {
-    let safe: String = stem
-        .chars()
-        .map(|c| {
-            if c.is_alphanumeric() || matches!(c, '-' | '_') {
-                c
-            } else {
-                '-'
-            }
-        })
-        .collect();
-    let safe = if safe.trim_matches('-').is_empty() {
-        "render".to_string()
-    } else {
-        safe
-    };
-    // symlink_metadata: a dangling link is taken too.
-    let taken =
-        |p: &Path| p.symlink_metadata().is_ok() || sidecar_path(p).symlink_metadata().is_ok();
-    for n in 1..=9999 {
-        let path = dir.join(if n == 1 {
-            format!("{safe}.png")
-        } else {
-            format!("{safe}-{n}.png")
-        });
-        if !taken(&path) {
-            return Ok(path);
-        }
-    }
-    bail!("{safe}.png to {safe}-9999.png are all taken here: name the output with -o")
+/// for the commands), or `<stem>-2.png`, `<stem>-3.png`, ... when that name or its sidecar
+/// is taken, so that a default never replaces a file.
+pub fn default_output(dir: &Path, stem: &str) -> PathBuf {
+    unused_png(dir, &safe_file_stem(stem))
 }
 
 /// Refuses an output the film cannot write before spending time on the render (and a
 /// caption where the file cannot carry one).
 pub fn check_output(path: &Path, caption: bool) -> Result<()> {
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let ext = raylab::scene::input::extension(path);
     if !matches!(ext.as_deref(), Some("png") | Some("exr")) {
         bail!("{}: the output must end in .png or .exr", path.display());
     }
     check_folder(path)?;
-    let png = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    if caption && !png {
+    if caption && ext.as_deref() != Some("png") {
         bail!(
             "{}: --caption draws text into the picture, so it needs a .png output",
             path.display()
@@ -87,20 +53,14 @@ mod tests {
     fn a_default_name_never_replaces_a_file() {
         let dir = tempfile::tempdir().unwrap();
         let d = dir.path();
-        assert_eq!(default_output(d, "glass").unwrap(), d.join("glass.png"));
+        assert_eq!(default_output(d, "glass"), d.join("glass.png"));
         std::fs::write(d.join("glass.png"), b"mine").unwrap();
-        assert_eq!(default_output(d, "glass").unwrap(), d.join("glass-2.png"));
+        assert_eq!(default_output(d, "glass"), d.join("glass-2.png"));
         // A sidecar alone takes the name too (its image may have been moved).
         std::fs::write(d.join("glass-2.png.json"), b"{}").unwrap();
-        assert_eq!(default_output(d, "glass").unwrap(), d.join("glass-3.png"));
-        assert_eq!(
-            default_output(d, "my scene/v2").unwrap(),
-            d.join("my-scene-v2.png")
-        );
-        assert_eq!(default_output(d, "..").unwrap(), d.join("render.png"));
-        assert_eq!(
-            default_output(Path::new(""), "x").unwrap(),
-            Path::new("x.png")
-        );
+        assert_eq!(default_output(d, "glass"), d.join("glass-3.png"));
+        assert_eq!(default_output(d, "my scene/v2"), d.join("my_scene_v2.png"));
+        assert_eq!(default_output(d, ".."), d.join("image.png"));
+        assert_eq!(default_output(Path::new(""), "x"), Path::new("x.png"));
     }
 }

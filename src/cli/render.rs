@@ -98,8 +98,8 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     let params_b = side_b.map(|b| b(&params));
     let output = match (&args.output, args.slide) {
         (Some(o), _) => o.clone(),
-        (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}"))?,
-        (None, None) => default_output(Path::new(""), &scene.name)?,
+        (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}")),
+        (None, None) => default_output(Path::new(""), &scene.name),
     };
     check_output(&output, args.caption)?;
     let json = sidecar_path(&output);

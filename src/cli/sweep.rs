@@ -55,12 +55,9 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     params.set_all(&args.set).context("--set")?;
     let output = match &args.output {
         Some(o) => o.clone(),
-        None => default_output(Path::new(""), &format!("{}-{name}", scene.name))?,
+        None => default_output(Path::new(""), &format!("{}-{name}", scene.name)),
     };
-    let ext = output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let gif = match ext.as_deref() {
+    let gif = match raylab::scene::input::extension(&output).as_deref() {
         Some("png") => false,
         Some("gif") => true,
         _ => bail!(

@@ -174,9 +174,7 @@ pub fn write_image(
     sidecar: Option<&super::Sidecar>,
 ) -> Result<(), FilmError> {
     let name = path.display().to_string();
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let ext = crate::scene::input::extension(path);
     if pixels.len() != width as usize * height as usize {
         return Err(FilmError::UnsupportedFormat(format!(
             "{name} (size mismatch)"

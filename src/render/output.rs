@@ -47,6 +47,42 @@ where
     write_atomic(path, bytes.get_ref()).map_err(image::ImageError::IoError)
 }
 
+/// `name` as a file name's stem: every character but letters, digits, `-` and `_` becomes
+/// `_` (`ray tree` gives `ray_tree`); `image` if nothing but `_` is left.
+pub fn safe_file_stem(name: &str) -> String {
+    let safe: String = name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || matches!(c, '-' | '_') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if safe.trim_matches('_').is_empty() {
+        "image".to_string()
+    } else {
+        safe
+    }
+}
+
+/// The first of `dir/<stem>.png`, `dir/<stem>-2.png`, `dir/<stem>-3.png`, ... of which
+/// neither the image nor its sidecar exists (a dangling link counts as existing): a name
+/// under which writing replaces nothing.
+pub fn unused_png(dir: &Path, stem: &str) -> PathBuf {
+    let taken = |p: &Path| {
+        p.symlink_metadata().is_ok() || super::sidecar_path(p).symlink_metadata().is_ok()
+    };
+    let mut path = dir.join(format!("{stem}.png"));
+    let mut n = 2u64;
+    while taken(&path) {
+        path = dir.join(format!("{stem}-{n}.png"));
+        n += 1;
+    }
+    path
+}
+
 /// `target` written relative to the folder `base` (`../scenes/glass.toml`), when both are
 /// absolute paths on the same root; `None` otherwise (then the absolute path is kept).
 pub(crate) fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {

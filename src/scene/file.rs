@@ -26,13 +26,6 @@ pub(crate) trait Assets {
     fn label(&self, rel: &str) -> String;
 }
 
-/// The extension of the file `rel` names, in lower case.
-fn model_extension(rel: &str) -> Option<String> {
-    Path::new(rel)
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-}
-
 /// Files beside the scene file.
 pub(crate) struct FsAssets(pub PathBuf);
 
@@ -40,7 +33,8 @@ impl Assets for FsAssets {
     fn read(&self, rel: &str) -> Result<Vec<u8>, String> {
         let path = self.0.join(rel);
         // Models and their binary buffers may be large; text beside them may not.
-        let is_mesh = model_extension(rel).is_some_and(|e| super::is_model(&e) || e == "bin");
+        let is_mesh =
+            super::input::extension(&path).is_some_and(|e| super::is_model(&e) || e == "bin");
         let limit = if is_mesh {
             crate::scene::input::MAX_MESH_BYTES
         } else {
@@ -349,7 +343,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
     }
     for (n, m) in f.mesh.into_iter().enumerate() {
         let rel = m.file.get_ref().as_str();
-        let gltf = match model_extension(rel).as_deref() {
+        let gltf = match super::input::extension(Path::new(rel)).as_deref() {
             Some("gltf" | "glb") => true,
             // A file without an extension is read as OBJ, as it always was.
             None | Some("obj") => false,

@@ -11,6 +11,7 @@ use crate::material::{
 use crate::math::{Color, Vec3};
 use base64::Engine as _;
 use glam::{Mat4, Vec2};
+use std::borrow::Cow;
 
 /// Parses a glTF file: `data` is the `.gltf` JSON or the `.glb` container; `read_buffer`
 /// fetches a buffer the file names by a relative URI; `file` names it in messages.
@@ -21,19 +22,20 @@ pub fn load_gltf(
 ) -> Result<Vec<ObjPart>, SceneError> {
     let error = |message: String| SceneError::new(Location::file(file), message);
     let gltf = gltf::Gltf::from_slice(data).map_err(|e| gltf_error(file, e))?;
-    let mut buffers = Vec::new();
+    // The .glb's own chunk is borrowed, not copied: it may be most of a large file.
+    let mut buffers: Vec<Cow<[u8]>> = Vec::new();
     for buffer in gltf.buffers() {
         let bytes = match buffer.source() {
-            gltf::buffer::Source::Bin => gltf.blob.clone().ok_or_else(|| {
+            gltf::buffer::Source::Bin => Cow::Borrowed(gltf.blob.as_deref().ok_or_else(|| {
                 error("a buffer refers to the .glb's binary chunk, which is missing".into())
-            })?,
-            gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
+            })?),
+            gltf::buffer::Source::Uri(uri) => Cow::Owned(match uri.strip_prefix("data:") {
                 Some(data_uri) => decode_data_uri(data_uri).ok_or_else(|| {
                     error(format!("buffer {}: not a base64 data URI", buffer.index()))
                 })?,
                 None => read_buffer(uri)
                     .map_err(|e| error(format!("cannot read buffer `{uri}`: {e}")))?,
-            },
+            }),
         };
         if bytes.len() < buffer.length() {
             return Err(error(format!(
@@ -94,7 +96,7 @@ fn decode_data_uri(uri: &str) -> Option<Vec<u8>> {
 /// scenes, every mesh where it stands), transformed to world space.
 fn collect_parts(
     gltf: &gltf::Gltf,
-    buffers: &[Vec<u8>],
+    buffers: &[Cow<[u8]>],
     file: &str,
 ) -> Result<Vec<ObjPart>, SceneError> {
     let mut parts = Vec::new();
@@ -128,7 +130,7 @@ fn add_mesh(
     parts: &mut Vec<ObjPart>,
     mesh: &gltf::Mesh,
     world: &Mat4,
-    buffers: &[Vec<u8>],
+    buffers: &[Cow<[u8]>],
     file: &str,
 ) -> Result<(), SceneError> {
     let name = mesh
@@ -142,7 +144,7 @@ fn add_mesh(
         if primitive.mode() != gltf::mesh::Mode::Triangles {
             continue; // points, lines and strips are not surfaces raylab renders
         }
-        let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+        let reader = primitive.reader(|b| buffers.get(b.index()).map(|bytes| &bytes[..]));
         let Some(positions) = reader.read_positions() else {
             continue;
         };
@@ -158,9 +160,7 @@ fn add_mesh(
             Some(indices) => indices.into_u32().collect(),
             None => (0..positions.len() as u32).collect(),
         };
-        if flat.iter().any(|&i| i as usize >= positions.len()) {
-            return Err(error("a triangle's index is past the last vertex".into()));
-        }
+        // Mesh::new refuses an index past the last vertex.
         let indices: Vec<[u32; 3]> = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         if indices.is_empty() {
             continue;
@@ -177,10 +177,6 @@ fn add_mesh(
         let triangles =
             Mesh::new(positions, indices, normals, uvs).map_err(|e| error(e.to_string()))?;
         let material = primitive.material();
-        let material_name = material.name().map_or_else(
-            || format!("material{}", material.index().unwrap_or(0)),
-            str::to_string,
-        );
         parts.push(ObjPart {
             name: if mesh.primitives().len() > 1 {
                 format!("{name}.{}", primitive.index())
@@ -189,11 +185,12 @@ fn add_mesh(
             },
             mesh: triangles,
             // The glTF default material (no `material`) is left to the scene.
-            material: material.index().map(|_| {
-                (
-                    material_name.clone(),
-                    map_material(&material, &material_name),
-                )
+            material: material.index().map(|index| {
+                let name = material
+                    .name()
+                    .map_or_else(|| format!("material{index}"), str::to_string);
+                let mapped = map_material(&material, &name);
+                (name, mapped)
             }),
         });
     }

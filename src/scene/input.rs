@@ -11,6 +11,13 @@ pub const MAX_TEXT_BYTES: u64 = 16 << 20;
 /// The largest mesh (OBJ) file read: a few million triangles.
 pub const MAX_MESH_BYTES: u64 = 1 << 30;
 
+/// The extension of `path` in lower case (`Bunny.GLB` gives `glb`), if it has one: what
+/// raylab decides a file's format by.
+pub fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+}
+
 /// The bytes of the regular file at `path`, if it holds at most `limit` of them.
 pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     let meta = std::fs::metadata(path)?;

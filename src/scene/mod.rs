@@ -243,10 +243,7 @@ impl Scene {
     /// (`.obj`, `.gltf`, `.glb`) on a floor under a light, framed by the camera. Any other
     /// extension is refused as a format raylab does not read, before the file is opened.
     pub fn load_file(path: &Path) -> Result<Scene, SceneError> {
-        let ext = path
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase());
-        match ext.as_deref() {
+        match input::extension(path).as_deref() {
             Some(m) if is_model(m) => Scene::for_model(path),
             None | Some("toml") => file::load_file(path),
             Some(other) => Err(SceneError::new(
@@ -385,7 +382,5 @@ pub(crate) fn is_model(ext: &str) -> bool {
 /// Whether raylab opens the file at `path`, by its extension: a scene (.toml) or a model
 /// (.obj, .gltf, .glb).
 pub fn opens(path: &Path) -> bool {
-    path.extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .is_some_and(|e| e == "toml" || is_model(&e))
+    input::extension(path).is_some_and(|e| e == "toml" || is_model(&e))
 }
