@@ -133,21 +133,31 @@ impl Direct {
     /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
     #[inline(always)]
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        let mut best: Option<(u32, f32)> = None;
-        let limit = |best: Option<(u32, f32)>| best.map_or(t_max, |(_, t)| t);
+        // The nearest so far as a plain distance and object number, not an Option: the
+        // loops run for every ray.
+        let (mut t_best, mut best) = (t_max, u32::MAX);
         for (o, p) in &self.planes {
-            best = p.intersect_t(ray, limit(best)).map(|t| (*o, t)).or(best);
+            if let Some(t) = p.intersect_t(ray, t_best) {
+                (t_best, best) = (t, *o);
+            }
         }
         for (o, s) in &self.spheres {
-            best = s.intersect_t(ray, limit(best)).map(|t| (*o, t)).or(best);
+            if let Some(t) = s.intersect_t(ray, t_best) {
+                (t_best, best) = (t, *o);
+            }
         }
         for (o, q) in &self.quads {
-            best = q
-                .intersect_t(ray, limit(best))
-                .map(|(t, _)| (*o, t))
-                .or(best);
+            if let Some((t, _)) = q.intersect_t(ray, t_best) {
+                (t_best, best) = (t, *o);
+            }
         }
-        best.map(|(object, t)| (PrimRef { object, index: 0 }, t))
+        (best != u32::MAX).then_some((
+            PrimRef {
+                object: best,
+                index: 0,
+            },
+            t_best,
+        ))
     }
 
     /// Whether any of them blocks `ray` in (0, t_max).

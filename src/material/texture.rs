@@ -27,11 +27,20 @@ impl Texture {
         match self {
             Texture::Solid(c) => *c,
             Texture::Checker { even, odd, scale } => {
-                let k = (uv.x * scale).floor() as i64 + (uv.y * scale).floor() as i64;
+                let k = floor_i64(uv.x * scale) + floor_i64(uv.y * scale);
                 if k.rem_euclid(2) == 0 { *even } else { *odd }
             }
         }
     }
+}
+
+/// `x.floor() as i64`, without the library call `floor` is on processors without a
+/// rounding instruction (x86-64 before SSE4.1), for every f32 including infinities and
+/// NaN: truncation, one less for a negative non-integer.
+#[inline]
+fn floor_i64(x: f32) -> i64 {
+    let i = x as i64;
+    i.saturating_sub(((i as f32) > x) as i64)
 }
 
 #[cfg(test)]
@@ -50,5 +59,33 @@ mod tests {
         assert_eq!(t.eval(Vec2::new(0.6, 0.6)), Color::ONE);
         // Across zero the pattern continues instead of mirroring.
         assert_eq!(t.eval(Vec2::new(-0.1, 0.1)), Color::ZERO);
+    }
+
+    #[test]
+    fn floor_i64_is_floor_for_every_kind_of_value() {
+        let special = [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            -1.0,
+            1.0 - f32::EPSILON,
+            -8388607.5,
+            16777217.0,
+            -3.0e9,
+            9.3e18,
+            -9.3e18,
+            1e30,
+            -1e30,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+        ];
+        let spread = (0..200_000u32).map(|k| f32::from_bits(k.wrapping_mul(0x9e37_79b9)));
+        for x in special.into_iter().chain(spread) {
+            assert_eq!(floor_i64(x), x.floor() as i64, "{x:e}");
+        }
     }
 }
