@@ -2,12 +2,13 @@
 # Screenshots of the previewer window: runs it under Xvfb (a virtual display), drives it
 # with xdotool as a person would, and saves what the screen shows into screenshots/.
 # Needs: apt-get install xvfb xdotool imagemagick
-# The coordinates are those of the window's layout at 1280x800.
+# The coordinates are those of the window's layout at its first size, 1280x720 (a fresh
+# XDG_DATA_HOME: no remembered size), with no window manager placing it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 export DISPLAY=":${RAYLAB_DISPLAY:-97}"
-Xvfb "$DISPLAY" -screen 0 1280x800x24 >/dev/null 2>&1 &
+Xvfb "$DISPLAY" -screen 0 1280x720x24 >/dev/null 2>&1 &
 xvfb=$!
 # Start from each scene's defaults, not from what an earlier run remembered.
 XDG_DATA_HOME=$(mktemp -d)
@@ -60,55 +61,58 @@ sleep 7
 shot window-tir-water
 quit
 
-# Depth of field: click to focus on the far sphere.
+# Depth of field: "Click to focus", then the far red sphere.
 launch depth-of-field
 sleep 2
-click 72 556
-click 1010 345
+click 72 620
+click 905 330
 sleep 6
 shot window-focus
 quit
 
-# The instruments. Menu entries, 23 pixels apart below "Instruments" at (824, 12):
-# Fresnel plot, Ray-tree inspector, Cost heat map, A/B compare, Contact sheet, Sample patterns.
-menu() { click 824 12; click "$1" "$2"; }
+# The instruments. Menu entries, 23 pixels apart below "Instruments" at (934, 12):
+# Fresnel plot, Ray-tree inspector, Cost heat map, the heat map's range, A/B compare (its
+# presets open to the left), Contact sheet, Sample patterns.
+menu() { click 934 12; click "$1" "$2"; }
 launch glass
 sleep 3
-menu 840 39
-menu 880 62
-click 740 300
+menu 960 39
+menu 960 62
+# Inspect a pixel of the glass sphere (the image sits left of the two docks now).
+click 500 310
 sleep 2
 shot window-fresnel-inspector
 quit
 
+# A/B compare, third preset: constant | Fresnel reflectance.
 launch glazed
 sleep 1
-click 824 12
-click 828 108
-click 1052 154
+click 934 12
+click 940 131
+click 760 177
 sleep 7
 shot window-ab-compare
 quit
 
 launch ray-tree
 sleep 4
-menu 848 85
+menu 960 85
 sleep 1
 shot window-cost-heat-map
 quit
 
 launch soft-shadows
 sleep 1
-menu 854 154
+menu 960 177
 sleep 1
 shot window-sample-patterns
 quit
 
-# A lecture slide: the Lecture menu at (904, 12), third entry.
+# A lecture slide: the Lecture menu at (1014, 12), fourth entry (total internal reflection).
 launch default
 sleep 1
-click 904 12
-click 960 85
+click 1014 12
+click 850 108
 sleep 6
 shot window-lecture-tir
 quit
