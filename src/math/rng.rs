@@ -171,6 +171,12 @@ pub struct SampleStream {
 
 const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
+/// The key every pixel's numbers under `seed` derive from.
+#[inline]
+pub fn seed_key(seed: u64) -> u64 {
+    mix64(seed.wrapping_add(GOLDEN))
+}
+
 impl SampleStream {
     /// The stream of sample `sample` of pixel `pixel` (row-major index) under `seed`,
     /// with independent uniform random numbers.
@@ -181,8 +187,20 @@ impl SampleStream {
     /// The stream of sample `sample` of `spp` samples of pixel `pixel` under `seed`, laid
     /// out by `pattern`.
     pub fn with_pattern(pattern: Pattern, spp: u32, seed: u64, pixel: u32, sample: u32) -> Self {
-        let pixel_key =
-            mix64(mix64(seed.wrapping_add(GOLDEN)) ^ (pixel as u64).wrapping_mul(GOLDEN));
+        Self::with_seed_key(pattern, spp, seed_key(seed), pixel, sample)
+    }
+
+    /// [`SampleStream::with_pattern`] with the seed's key, [`seed_key`], computed once by
+    /// the caller rather than once per sample.
+    #[inline]
+    pub fn with_seed_key(
+        pattern: Pattern,
+        spp: u32,
+        seed_key: u64,
+        pixel: u32,
+        sample: u32,
+    ) -> Self {
+        let pixel_key = mix64(seed_key ^ (pixel as u64).wrapping_mul(GOLDEN));
         SampleStream {
             pattern,
             count: spp.max(1),

@@ -104,25 +104,28 @@ fn pass(
         .map(|(band, pixels)| {
             let mut stats = Stats::default();
             let y0 = band as u32 * BAND_ROWS;
-            for (i, pixel) in pixels.iter_mut().enumerate() {
-                if !observer.keep_going() {
-                    return None;
-                }
-                let (x, y) = (i as u32 % width, y0 + i as u32 / width);
-                if first == 0 {
-                    // An empty film keeps its old sums until each pixel starts afresh here.
-                    *pixel = Accum::default();
-                }
-                for s in first..first + samples {
-                    let before = stats.total_rays();
-                    let c = tracer.sample(x, y, s, &mut stats);
-                    pixel.rays = pixel
-                        .rays
-                        .saturating_add((stats.total_rays() - before) as u32);
-                    if c.is_finite() {
-                        pixel.add(s, c);
-                    } else {
-                        stats.non_finite += 1;
+            // Row by row: the pixel's coordinates without a division per pixel.
+            for (row, pixels) in pixels.chunks_mut(width as usize).enumerate() {
+                let y = y0 + row as u32;
+                for (x, pixel) in (0..width).zip(pixels) {
+                    if !observer.keep_going() {
+                        return None;
+                    }
+                    if first == 0 {
+                        // An empty film keeps its old sums until each pixel starts afresh here.
+                        *pixel = Accum::default();
+                    }
+                    for s in first..first + samples {
+                        let before = stats.total_rays();
+                        let c = tracer.sample(x, y, s, &mut stats);
+                        pixel.rays = pixel
+                            .rays
+                            .saturating_add((stats.total_rays() - before) as u32);
+                        if c.is_finite() {
+                            pixel.add(s, c);
+                        } else {
+                            stats.non_finite += 1;
+                        }
                     }
                 }
             }

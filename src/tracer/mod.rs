@@ -139,6 +139,8 @@ pub struct Tracer<'a> {
     // The photons' target cones and the targets' mean radius, found at the first pass.
     photon_targets: Option<(Vec<photons::Target>, f32)>,
     frame: CameraFrame,
+    // The parameters' seed as the sample streams use it, mixed once.
+    seed_key: u64,
     width: u32,
     height: u32,
 }
@@ -180,6 +182,7 @@ impl<'a> Tracer<'a> {
                 .map(|l| l.scaled(params.light_size).prepare())
                 .collect(),
             frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
+            seed_key: crate::math::rng::seed_key(params.seed),
             width,
             height,
         }
@@ -208,8 +211,13 @@ impl<'a> Tracer<'a> {
         rec: &mut R,
     ) -> Color {
         let p = self.params;
-        let mut rng =
-            SampleStream::with_pattern(p.pattern, p.spp, p.seed, y * self.width + x, sample);
+        let mut rng = SampleStream::with_seed_key(
+            p.pattern,
+            p.spp,
+            self.seed_key,
+            y * self.width + x,
+            sample,
+        );
         // The camera's dimensions first, then the tree's own.
         let cs = self.frame.draw_sample(&mut rng);
         let film = Vec2::new(
