@@ -173,7 +173,7 @@ const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The key every pixel's numbers under `seed` derive from.
 #[inline]
-pub fn seed_key(seed: u64) -> u64 {
+pub(crate) fn seed_key(seed: u64) -> u64 {
     mix64(seed.wrapping_add(GOLDEN))
 }
 
@@ -193,7 +193,7 @@ impl SampleStream {
     /// [`SampleStream::with_pattern`] with the seed's key, [`seed_key`], computed once by
     /// the caller rather than once per sample.
     #[inline]
-    pub fn with_seed_key(
+    pub(crate) fn with_seed_key(
         pattern: Pattern,
         spp: u32,
         seed_key: u64,
