@@ -87,7 +87,7 @@ fn jittered(hit: &Interaction, exponent: f32, u: &mut impl Uniform) -> Vec3 {
     }
 }
 
-/// The density per unit solid angle of [`jittered`]'s direction `dir` (above the
+/// The density per unit solid angle of `jittered`'s direction `dir` (above the
 /// surface): the Phong lobe's own density there plus that of its mirror image below the
 /// surface, which folding sends to `dir`. A glossy lobe of weight W then has
 /// f cos θ = W · pdf, which is how path tracing evaluates it towards a light.

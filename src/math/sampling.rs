@@ -11,7 +11,7 @@ use std::f32::consts::{FRAC_PI_4, PI};
 ///
 /// In the wedge where |x| > |y| the point is r (cos φ, sin φ) with r = x, φ = π/4 · y/x;
 /// in the other, r (sin φ, cos φ) with r = y, φ = π/4 · x/y (the angle π/2 − φ). Either
-/// way |φ| ≤ π/4, where [`sin_cos_quarter`] needs no range reduction.
+/// way |φ| ≤ π/4, where `sin_cos_quarter` needs no range reduction.
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
     if o.x == 0.0 && o.y == 0.0 {

@@ -1,6 +1,6 @@
 //! The one parameter model: every knob of the renderer, under the names the CLI's
 //! `--set name=value`, scene files' `[params]` and snapshot sidecars all use. Each
-//! parameter's range, unit and documentation are in [`table`].
+//! parameter's range, unit and documentation are in `table`.
 
 mod table;
 
