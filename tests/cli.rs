@@ -461,7 +461,10 @@ fn bench_reports_latency_pass_time_and_rays_per_second() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("change -> first frame: median"), "{out}");
     assert!(
-        out.contains("p95") && out.contains("1-spp pass") && out.contains("M rays/s"),
+        out.contains("p95")
+            && out.contains("1-spp pass")
+            && out.contains("M samples/s")
+            && out.contains("M rays/s"),
         "{out}"
     );
 }

@@ -120,8 +120,9 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
     times.sort_by(f64::total_cmp);
     let pass = times[times.len() / 2];
     say!(
-        "1-spp pass: {:.1} ms (median of 5), {:.2} M rays, {:.2} M rays/s",
+        "1-spp pass: {:.1} ms (median of 5), {:.2} M samples/s, {:.2} M rays, {:.2} M rays/s",
         pass * 1e3,
+        f64::from(width) * f64::from(height) / pass / 1e6,
         rays as f64 / 1e6,
         rays as f64 / pass / 1e6
     );
