@@ -130,6 +130,8 @@ pub struct Tracer<'a> {
     materials: Vec<Material>,
     // Whether any of them disperses: without, no hit needs to ask.
     dispersive: bool,
+    // Whether any of them absorbs: without, no ray needs Beer–Lambert.
+    absorbs: bool,
     // The scene's lights at the parameters' light size, prepared once.
     lights: Vec<PreparedLight>,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
@@ -172,6 +174,9 @@ impl<'a> Tracer<'a> {
             scene,
             params,
             dispersive: materials.iter().any(Material::disperses),
+            absorbs: materials
+                .iter()
+                .any(|m| m.dielectric().is_some_and(|d| d.absorption != Color::ZERO)),
             materials,
             emitters,
             photons: None,
@@ -343,7 +348,10 @@ impl<'a> Tracer<'a> {
         pol: &P,
     ) -> Color {
         let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
-        let sigma = self.absorption_in(media);
+        // Beer–Lambert along the segment, where some material absorbs: elsewhere every
+        // transmittance is exactly 1, and multiplying by it changes no bit.
+        let sigma = self.absorbs.then(|| self.absorption_in(media));
+        let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
         let hit = self.scene.intersect(ray, f32::INFINITY);
         // Area lights are seen where nothing is in front of them.
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
@@ -355,14 +363,15 @@ impl<'a> Tracer<'a> {
             }
         }
         let (radiance, end) = if let Some(radiance) = emitted {
-            let l = transmittance(sigma, nearest) * radiance;
-            (pol.seen(l), End::LightHit)
+            (pol.seen(along(nearest, radiance)), End::LightHit)
         } else if let Some(hit) = &hit {
-            // Beer–Lambert along the segment just travelled.
-            let tr = transmittance(sigma, hit.surface.t);
-            let b = Branch {
-                weight: b.weight * tr.max_element(),
-                ..b
+            let tr = sigma.map(|s| transmittance(s, hit.surface.t));
+            let b = match tr {
+                Some(tr) => Branch {
+                    weight: b.weight * tr.max_element(),
+                    ..b
+                },
+                None => b,
             };
             let (l, end) = if self.dispersive
                 && b.wavelength.is_none()
@@ -372,9 +381,9 @@ impl<'a> Tracer<'a> {
             } else {
                 self.shade(ray, hit, b, id, media, w, pol)
             };
-            (tr * l, end)
+            (tr.map_or(l, |tr| tr * l), end)
         } else {
-            let l = transmittance(sigma, f32::INFINITY) * self.scene.background.radiance(ray.dir);
+            let l = along(f32::INFINITY, self.scene.background.radiance(ray.dir));
             (pol.seen(l), End::Miss)
         };
         if w.rec.on() {
