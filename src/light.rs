@@ -304,10 +304,15 @@ impl PreparedLight {
         }
     }
 
+    /// Whether a ray can hit the light: it has an area (a point has none).
+    pub(crate) fn can_be_seen(&self) -> bool {
+        self.area > 0.0
+    }
+
     /// Where `ray` meets the light's emitting surface before `t_max`, and the radiance it
     /// sees there (black from behind a rectangle or disk). Points are never hit.
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<(f32, Color)> {
-        if self.area <= 0.0 {
+        if !self.can_be_seen() {
             return None;
         }
         let s = self.light.scale;

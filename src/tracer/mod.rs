@@ -134,6 +134,8 @@ pub struct Tracer<'a> {
     absorbs: bool,
     // The scene's lights at the parameters' light size, prepared once.
     lights: Vec<PreparedLight>,
+    // Whether any of them has an area a ray can hit (points cannot be seen).
+    lights_seen: bool,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
     emitters: Emitters,
     // The pass's photons, with transport = "photons" (see `prepare_photons`).
@@ -170,6 +172,11 @@ impl<'a> Tracer<'a> {
             Transport::Path | Transport::Photons => Emitters::new(scene, &materials),
             Transport::Whitted | Transport::TransmissiveShadows => Emitters::default(),
         };
+        let lights: Vec<PreparedLight> = scene
+            .lights
+            .iter()
+            .map(|l| l.scaled(params.light_size).prepare())
+            .collect();
         Tracer {
             scene,
             params,
@@ -181,11 +188,8 @@ impl<'a> Tracer<'a> {
             emitters,
             photons: None,
             photon_targets: None,
-            lights: scene
-                .lights
-                .iter()
-                .map(|l| l.scaled(params.light_size).prepare())
-                .collect(),
+            lights_seen: lights.iter().any(PreparedLight::can_be_seen),
+            lights,
             frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
             seed_key: crate::math::rng::seed_key(params.seed),
             width,
@@ -356,10 +360,12 @@ impl<'a> Tracer<'a> {
         // Area lights are seen where nothing is in front of them.
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
         let mut emitted = None;
-        for light in &self.lights {
-            if let Some((t, radiance)) = light.hit(ray, nearest) {
-                nearest = t;
-                emitted = Some(radiance);
+        if self.lights_seen {
+            for light in &self.lights {
+                if let Some((t, radiance)) = light.hit(ray, nearest) {
+                    nearest = t;
+                    emitted = Some(radiance);
+                }
             }
         }
         let (radiance, end) = if let Some(radiance) = emitted {
