@@ -56,7 +56,11 @@ impl Media {
     /// After leaving `object` (the innermost one, unless geometry overlaps).
     pub(super) fn left(mut self, object: u32) -> Media {
         if let Some(i) = self.active().iter().rposition(|&(o, _)| o == object) {
-            self.items.copy_within(i + 1..self.len as usize, i);
+            // Leaving the innermost medium, as rays do unless geometry overlaps, moves
+            // nothing (and calls no memmove for nothing).
+            if i + 1 < self.len as usize {
+                self.items.copy_within(i + 1..self.len as usize, i);
+            }
             self.len -= 1;
         }
         self
