@@ -133,31 +133,25 @@ impl Direct {
     /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
     #[inline(always)]
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        // The nearest so far as a plain distance and object number, not an Option: the
-        // loops run for every ray.
-        let (mut t_best, mut best) = (t_max, u32::MAX);
+        // The nearest distance so far as a plain number, the limit of every next test,
+        // rather than unwrapped from an Option at each: the loops run for every ray.
+        let (mut t_best, mut best) = (t_max, None);
         for (o, p) in &self.planes {
             if let Some(t) = p.intersect_t(ray, t_best) {
-                (t_best, best) = (t, *o);
+                (t_best, best) = (t, Some(*o));
             }
         }
         for (o, s) in &self.spheres {
             if let Some(t) = s.intersect_t(ray, t_best) {
-                (t_best, best) = (t, *o);
+                (t_best, best) = (t, Some(*o));
             }
         }
         for (o, q) in &self.quads {
             if let Some((t, _)) = q.intersect_t(ray, t_best) {
-                (t_best, best) = (t, *o);
+                (t_best, best) = (t, Some(*o));
             }
         }
-        (best != u32::MAX).then_some((
-            PrimRef {
-                object: best,
-                index: 0,
-            },
-            t_best,
-        ))
+        best.map(|object| (PrimRef { object, index: 0 }, t_best))
     }
 
     /// Whether any of them blocks `ray` in (0, t_max).

@@ -276,8 +276,11 @@ impl<'a> Tracer<'a> {
     }
 
     /// The absorption coefficient σ of the innermost of `media` (0 in the surrounding
-    /// medium).
+    /// medium, and everywhere in a scene where nothing absorbs, without a lookup).
     fn absorption_in(&self, media: &Media) -> Color {
+        if !self.absorbs {
+            return Color::ZERO;
+        }
         self.dielectric_of(media.innermost())
             .map_or(Color::ZERO, |d| d.absorption)
     }
