@@ -51,10 +51,29 @@ impl Ray {
 /// floating-point error of `p` wherever the scene sits ("A Fast and Robust Method for
 /// Avoiding Self-Intersection", Wächter and Binder, Ray Tracing Gems ch. 6). Near the
 /// origin, where ulps are tiny, a small absolute offset takes over.
+#[inline]
 pub fn offset_ray_origin(p: Vec3, n: Vec3) -> Vec3 {
-    const ORIGIN: f32 = 1.0 / 32.0;
-    const FLOAT_SCALE: f32 = 1.0 / 65536.0;
-    const INT_SCALE: f32 = 256.0;
+    // x86-64: the three coordinates at once in SSE2 (every x86-64 has it), the same bits
+    // as the scalar form: it runs for every child and shadow ray, and the scalar form's
+    // branches and saturating casts were 4 % of a render's instructions (callgrind).
+    #[cfg(target_arch = "x86_64")]
+    #[allow(unsafe_code)]
+    // SAFETY: the one requirement of `offset_sse2` is SSE2, which every x86-64 processor
+    // has (it is the target's baseline).
+    return unsafe { offset_sse2(p, n) };
+    #[cfg(not(target_arch = "x86_64"))]
+    return offset_scalar(p, n);
+}
+
+/// Below |p| = ORIGIN the offset is FLOAT_SCALE·n; above, INT_SCALE·n units in the last
+/// place of p.
+const ORIGIN: f32 = 1.0 / 32.0;
+const FLOAT_SCALE: f32 = 1.0 / 65536.0;
+const INT_SCALE: f32 = 256.0;
+
+/// [`offset_ray_origin`] one coordinate at a time: the definition.
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+fn offset_scalar(p: Vec3, n: Vec3) -> Vec3 {
     let nudge = |p: f32, n: f32| -> f32 {
         if p.abs() < ORIGIN {
             p + FLOAT_SCALE * n
@@ -66,6 +85,38 @@ pub fn offset_ray_origin(p: Vec3, n: Vec3) -> Vec3 {
         }
     };
     Vec3::new(nudge(p.x, n.x), nudge(p.y, n.y), nudge(p.z, n.z))
+}
+
+/// [`offset_scalar`] in the four lanes of an SSE2 register, without branches: both
+/// offsets computed, the one that applies selected per lane. Equal bit for bit for any
+/// `p` and any `n` with |INT_SCALE·n| < 2³¹ (a unit normal): the scalar cast saturates
+/// beyond that, the SSE2 one does not. A NaN in n gives no integer offset in either.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "sse2")]
+#[inline]
+fn offset_sse2(p: Vec3, n: Vec3) -> Vec3 {
+    use std::arch::x86_64::*;
+    let (p, n) = (__m128::from(p), __m128::from(n));
+    let zero = _mm_setzero_ps();
+    // p + FLOAT_SCALE·n, near the origin.
+    let near = _mm_add_ps(p, _mm_mul_ps(_mm_set1_ps(FLOAT_SCALE), n));
+    // INT_SCALE·n as integers, 0 where n is NaN (as Rust's cast gives).
+    let ordered = _mm_castps_si128(_mm_cmpord_ps(n, n));
+    let of_i = _mm_and_si128(
+        _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(INT_SCALE), n)),
+        ordered,
+    );
+    // Negated where p < 0: (x ^ m) - m with m all ones is -x, with m zero is x.
+    let negative = _mm_castps_si128(_mm_cmplt_ps(p, zero));
+    let of_i = _mm_sub_epi32(_mm_xor_si128(of_i, negative), negative);
+    let far = _mm_castsi128_ps(_mm_add_epi32(_mm_castps_si128(p), of_i));
+    // |p| < ORIGIN picks `near` (false for NaN, as in the scalar form).
+    let abs = _mm_andnot_ps(_mm_set1_ps(-0.0), p);
+    let small = _mm_cmplt_ps(abs, _mm_set1_ps(ORIGIN));
+    Vec3::from(_mm_or_ps(
+        _mm_and_ps(small, near),
+        _mm_andnot_ps(small, far),
+    ))
 }
 
 /// An orthonormal basis `(t, b)` completing the unit vector `n` (Duff et al. 2017, branchless).
@@ -100,6 +151,61 @@ mod tests {
             assert!(
                 (q - p).length() < 1e-3 * scale.max(1.0),
                 "offset too large at {scale}"
+            );
+        }
+    }
+
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn offset_in_sse2_is_the_scalar_offset_bit_for_bit() {
+        // Unit normals and points spread over every exponent and sign, with the special
+        // values: zeros of both signs, the ORIGIN threshold, subnormals, infinities, NaN.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state = crate::math::rng::mix64(state);
+            state
+        };
+        let specials = [
+            0.0,
+            -0.0,
+            ORIGIN,
+            -ORIGIN,
+            ORIGIN * (1.0 - f32::EPSILON),
+            1e-40,
+            -1e-40,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        let same =
+            |a: Vec3, b: Vec3| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits);
+        for i in 0..200_000u32 {
+            let bits = next();
+            let coordinate = |k: u32| {
+                let b = (bits >> (k * 21)) as u32;
+                if b.is_multiple_of(16) {
+                    specials[(b >> 4) as usize % specials.len()]
+                } else {
+                    f32::from_bits(b.rotate_left(k * 7) ^ (i << 9))
+                }
+            };
+            let p = Vec3::new(coordinate(0), coordinate(1), coordinate(2));
+            let m = next();
+            let n = Vec3::new(
+                (m as u16) as f32 - 32768.0,
+                ((m >> 16) as u16) as f32 - 32768.0,
+                ((m >> 32) as u16) as f32 - 32768.0,
+            )
+            .normalize_or(Vec3::Y);
+            let n = if i.is_multiple_of(1000) { Vec3::NAN } else { n };
+            // SAFETY: x86-64 has SSE2 (see offset_ray_origin).
+            #[allow(unsafe_code)]
+            let simd = unsafe { offset_sse2(p, n) };
+            let scalar = offset_scalar(p, n);
+            assert!(
+                same(simd, scalar),
+                "p = {p:?}, n = {n:?}: {simd:?} vs {scalar:?}"
             );
         }
     }
