@@ -24,11 +24,11 @@ pub use stats::Stats;
 
 use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
-use crate::material::Material;
+use crate::material::{Interaction, Material};
 use crate::math::{Color, Ray, SampleStream, Vec3};
 use crate::optics::polarization::Analyzer;
 use crate::params::{Params, Transport};
-use crate::scene::Scene;
+use crate::scene::{Hit, Scene};
 use emitters::Emitters;
 use glam::Vec2;
 use media::transmittance;
@@ -276,13 +276,39 @@ impl<'a> Tracer<'a> {
     }
 
     /// The absorption coefficient σ of the innermost of `media` (0 in the surrounding
-    /// medium, and everywhere in a scene where nothing absorbs, without a lookup).
+    /// medium); `None`, without a lookup, in a scene where no material absorbs.
+    fn absorption(&self, media: &Media) -> Option<Color> {
+        self.absorbs.then(|| {
+            self.dielectric_of(media.innermost())
+                .map_or(Color::ZERO, |d| d.absorption)
+        })
+    }
+
+    /// [`Tracer::absorption`], 0 where nothing absorbs.
     fn absorption_in(&self, media: &Media) -> Color {
-        if !self.absorbs {
-            return Color::ZERO;
+        self.absorption(media).unwrap_or(Color::ZERO)
+    }
+
+    /// The hit as its material sees it: `ray` arriving at `hit` through `media`, carrying
+    /// `wavelength`.
+    #[inline(always)]
+    fn interaction(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        media: &Media,
+        wavelength: Option<f32>,
+    ) -> Interaction {
+        let arrival = Arrival::at(ray.dir, hit, media);
+        Interaction {
+            dir: ray.dir,
+            uv: hit.surface.uv,
+            n_geom: arrival.n_geom,
+            n_shade: arrival.n_shade,
+            entering: arrival.entering,
+            outside_ior: self.ior_of(arrival.outside, wavelength),
+            wavelength,
         }
-        self.dielectric_of(media.innermost())
-            .map_or(Color::ZERO, |d| d.absorption)
     }
 
     fn dielectric_of(&self, material: Option<u32>) -> Option<&crate::material::Dielectric> {
@@ -357,7 +383,7 @@ impl<'a> Tracer<'a> {
         let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
         // Beer–Lambert along the segment, where some material absorbs: elsewhere every
         // transmittance is exactly 1, and multiplying by it changes no bit.
-        let sigma = self.absorbs.then(|| self.absorption_in(media));
+        let sigma = self.absorption(media);
         let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
         let hit = self.scene.intersect(ray, f32::INFINITY);
         // Area lights are seen where nothing is in front of them.

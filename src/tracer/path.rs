@@ -22,7 +22,7 @@
 use super::media::transmittance;
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
-use super::{Arrival, End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::{End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
 use crate::material::{Brdf, Interaction, Lobe, Material, Scatter, Side, glossy_pdf};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
@@ -399,16 +399,7 @@ impl Tracer<'_> {
             *wavelength = Some(lambda);
             *weight *= dispersion::channel_weight(lambda);
         }
-        let arrival = Arrival::at(ray.dir, hit, media);
-        Interaction {
-            dir: ray.dir,
-            uv: hit.surface.uv,
-            n_geom: arrival.n_geom,
-            n_shade: arrival.n_shade,
-            entering: arrival.entering,
-            outside_ior: self.ior_of(arrival.outside, *wavelength),
-            wavelength: *wavelength,
-        }
+        self.interaction(ray, hit, media, *wavelength)
     }
 
     /// Light arriving at `p` through `part`: one sample of each light and one of the

@@ -4,10 +4,8 @@
 
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface};
-use super::{
-    Arrival, Branch, End, MAX_TREE_RAYS, Media, RayKind, Recorder, Tracer, TreeNode, Walk,
-};
-use crate::material::{Interaction, Lobe, Scatter, Side};
+use super::{Branch, End, MAX_TREE_RAYS, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use crate::material::{Lobe, Scatter, Side};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
@@ -28,21 +26,8 @@ impl Tracer<'_> {
         pol: &P,
     ) -> (Color, End) {
         let s = &hit.surface;
-        let Arrival {
-            entering,
-            n_geom,
-            n_shade,
-            outside,
-        } = Arrival::at(ray.dir, hit, media);
-        let at = Interaction {
-            dir: ray.dir,
-            uv: s.uv,
-            n_geom,
-            n_shade,
-            entering,
-            outside_ior: self.ior_of(outside, b.wavelength),
-            wavelength: b.wavelength,
-        };
+        let at = self.interaction(ray, hit, media, b.wavelength);
+        let (entering, n_geom) = (at.entering, at.n_geom);
         record_hit(w.rec, id, hit, &at);
         let material = &self.materials[hit.material as usize];
         let scatter = material.scatter(&at, w.rng);

@@ -22,7 +22,8 @@ pub struct Stats {
     pub pruned_by_depth: u64,
     /// Branches not traced because their path weight fell below `min_weight`.
     pub pruned_by_weight: u64,
-    /// Branches not traced because their sample had traced [`MAX_TREE_RAYS`](crate::tracer::MAX_TREE_RAYS) child rays.
+    /// Branches not traced because their sample had traced
+    /// [`MAX_TREE_RAYS`](crate::tracer::MAX_TREE_RAYS) child rays.
     pub pruned_by_budget: u64,
     /// Samples dropped because they were NaN or infinite.
     pub non_finite: u64,
