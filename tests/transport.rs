@@ -22,7 +22,14 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
     // straight: the floor's radiance is (a/π) I cos θ / r² · (1 − R)² e^{−σ d / cos θ},
     // R the exact Fresnel reflectance at θ from the air on both faces (a real ray bends
     // and meets the same R going in and out; the straight one takes it so). The
-    // lecture's tracer leaves it black.
+    // lecture's tracer leaves it black. A dispersive slab gives the same: a ray from the
+    // camera straight to the floor carries no wavelength, so its shadow ray sees n_d.
+    for abbe in [0.0, 30.0] {
+        slab_shadow_matches_the_closed_form(abbe);
+    }
+}
+
+fn slab_shadow_matches_the_closed_form(abbe: f32) {
     let (albedo, intensity, h) = (0.7f32, 9.0f32, 3.0f32);
     let (n, d, sigma) = (1.5f32, 0.4f32, Color::new(0.1, 0.6, 1.5));
     let camera = Camera::looking_at(Vec3::new(0.0, 0.6, 2.5), Vec3::ZERO, Vec3::Y, 40.0);
@@ -38,6 +45,7 @@ fn transmissive_shadows_under_a_slab_match_the_closed_form() {
         Shape::Mesh(slab),
         Material::Dielectric(Dielectric {
             absorption: sigma,
+            abbe,
             ..Dielectric::clear(n)
         }),
     );

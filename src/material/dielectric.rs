@@ -128,6 +128,16 @@ impl Dielectric {
         self.mueller(hit, n1, n2, side)
     }
 
+    /// What a shadow ray keeps crossing this interface straight, unbent (transmissive
+    /// shadows): 1 − R at the ray's wavelength. The ray does not bend, so its angle inside
+    /// would be the outside angle, and leaving it would meet total internal reflection
+    /// where the bent ray meets none: R is taken as seen from the outside, going in and out
+    /// alike (as it is for a real ray, whose R is the same both ways across a slab).
+    pub(super) fn shadow_transmittance(&self, hit: &Interaction) -> f32 {
+        let n = self.ior_at(hit.wavelength);
+        1.0 - self.reflectance(hit.cos_i(), hit.outside_ior, n)
+    }
+
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
         let (n1, n2) = self.sides(hit);
         let cos_i = hit.cos_i();
@@ -141,16 +151,12 @@ impl Dielectric {
         };
         Scatter {
             lobes: [
-                Some(Lobe {
-                    side: Side::Reflect,
-                    dir: hit.mirror_dir(),
-                    weight: Color::splat(r),
-                }),
-                refracted.map(|dir| Lobe {
-                    side: Side::Transmit,
-                    dir,
-                    weight: Color::splat(1.0 - r),
-                }),
+                Some(Lobe::delta(
+                    Side::Reflect,
+                    hit.mirror_dir(),
+                    Color::splat(r),
+                )),
+                refracted.map(|dir| Lobe::delta(Side::Transmit, dir, Color::splat(1.0 - r))),
             ],
             interface: Some(Interface { cos_i, n1, n2, r }),
             total_internal_reflection: refracted.is_none(),
@@ -181,11 +187,11 @@ impl Glazed {
                 scale: 1.0 - r,
             }),
             lobes: [
-                Some(Lobe {
-                    side: Side::Reflect,
-                    dir: hit.mirror_dir(),
-                    weight: Color::splat(r),
-                }),
+                Some(Lobe::delta(
+                    Side::Reflect,
+                    hit.mirror_dir(),
+                    Color::splat(r),
+                )),
                 None,
             ],
             interface: Some(Interface { cos_i, n1, n2, r }),
@@ -197,6 +203,7 @@ impl Glazed {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::Material;
     use crate::material::test_util::hit_at;
     use crate::math::Vec3;
 
@@ -241,6 +248,44 @@ mod tests {
         assert_eq!(lobes.len(), 1);
         assert_eq!(lobes[0].weight, Color::ONE);
         assert_eq!(s.interface.unwrap().n1, 1.5);
+    }
+
+    #[test]
+    fn a_shadow_ray_keeps_one_minus_r_at_its_own_wavelength() {
+        let flint = Dielectric {
+            abbe: 30.0,
+            ..Dielectric::clear(1.6)
+        };
+        // Head-on, R = ((n − 1)/(n + 1))² with n = n(λ), entering or leaving alike.
+        let r0 = |n: f32| ((n - 1.0) / (n + 1.0)).powi(2);
+        let mut seen = Vec::new();
+        for wavelength in [None, Some(450.0), Some(650.0)] {
+            let n = flint.ior_at(wavelength);
+            for entering in [true, false] {
+                let hit = Interaction {
+                    entering,
+                    wavelength,
+                    ..hit_at(0.0)
+                };
+                let t = Material::Dielectric(flint.clone())
+                    .shadow_transmittance(&hit)
+                    .unwrap();
+                assert!((t.x - (1.0 - r0(n))).abs() < 1e-6, "{wavelength:?}");
+                assert_eq!((t.x, t.y), (t.z, t.x), "the same in every channel");
+                seen.push(t.x);
+            }
+        }
+        assert_eq!(seen[0], 1.0 - r0(1.6), "without a wavelength: n_d");
+        assert!(
+            seen[2] < seen[4],
+            "blue (higher n) reflects more, keeps less"
+        );
+        // A glaze's base is opaque: it blocks.
+        let glaze = Material::Glazed(Glazed {
+            coat: flint,
+            base: Texture::Solid(Color::ONE),
+        });
+        assert_eq!(glaze.shadow_transmittance(&hit_at(0.0)), None);
     }
 
     #[test]

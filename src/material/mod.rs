@@ -1,21 +1,29 @@
-//! Materials: each kind's data and how it scatters light, in the spirit of pbrt's BxDFs.
+//! Materials: each kind's data and every answer about it, in the spirit of pbrt's BxDFs.
 //!
-//! At a hit the tracer asks the material one question, [`Material::scatter`], and gets a
-//! [`Scatter`]: what the surface emits, which BRDF the lights are seen through (shadow
-//! rays), and which child rays it spawns with which weights (reflected, refracted, a
-//! jittered lobe). The tracer walks the tree, prunes, counts and records; it knows no
-//! material kinds. A new kind is its data and its `scatter` in a file of its own, a variant
-//! here, and its scene key: nothing in the tracer.
+//! At a hit the tracer asks the material [`Material::scatter`] and gets a [`Scatter`]: what
+//! the surface emits, which BRDF the lights are seen through (shadow rays), and which child
+//! rays it spawns with which weights, each [`Lobe`] saying how its direction was drawn
+//! ([`LobeKind`]) and with what density; [`Scatter::parts`] is the same split as path
+//! tracing chooses between. The other questions are the material's too: what it emits at a
+//! point ([`Material::emission`], for light samples of emitting surfaces), whether photons
+//! pass it in one direction ([`Material::mirror_like`]), what a transmissive shadow ray
+//! keeps crossing it ([`Material::shadow_transmittance`]), its Mueller matrices (the
+//! polariser), and whether it disperses or absorbs. The tracer walks the tree, prunes,
+//! counts and records; it knows no material kinds. A new kind is its data and its answers
+//! in a file of its own, a variant here, and its scene key: every `match` here is
+//! exhaustive, so the compiler lists each question the new kind must answer.
 
 mod dielectric;
 mod diffuse;
 mod metals;
+mod scatter;
 mod specular;
 mod texture;
 
 pub use dielectric::{Dielectric, Glazed};
 pub use diffuse::{Brdf, Diffuse};
 pub use metals::{METALS, Metal, find_metal, metal, metal_names};
+pub use scatter::{Direct, Interface, Lobe, LobeKind, Part, Scatter, Side};
 pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
 pub use texture::Texture;
 
@@ -101,73 +109,6 @@ impl Interaction {
     }
 }
 
-/// Which side of the surface a child ray leaves on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
-    /// Back into the medium the ray came from: a reflected ray.
-    Reflect,
-    /// Through the surface into the medium beyond: a refracted ray.
-    Transmit,
-}
-
-/// One child ray of a hit.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lobe {
-    /// Reflected or refracted.
-    pub side: Side,
-    /// Its unit direction.
-    pub dir: Vec3,
-    /// What its radiance is multiplied by (R, 1 − R, a reflectance). The largest channel
-    /// is its branch weight in the tree, and, in stochastic mode, the probability of
-    /// following it: the lobes of one hit partition the light, their branch weights
-    /// summing to at most 1.
-    pub weight: Color,
-}
-
-/// The quantities of the lecture at a dielectric interface, for the inspector.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Interface {
-    /// cos θi.
-    pub cos_i: f32,
-    /// Index of refraction on the side the ray comes from.
-    pub n1: f32,
-    /// Index of refraction on the other side.
-    pub n2: f32,
-    /// The reflectance the material used.
-    pub r: f32,
-}
-
-/// Lights seen through a BRDF, the sum scaled by `scale` (1 − R under a glaze).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Direct {
-    /// The BRDF at the hit.
-    pub brdf: Brdf,
-    /// The factor on the sum of ambient and lights.
-    pub scale: f32,
-}
-
-/// What a material does with a ray that hits it.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Scatter {
-    /// Radiance emitted towards the ray; `Some` ends the ray at a light.
-    pub emitted: Option<Color>,
-    /// Shading by the lights (one shadow ray each) and the ambient term.
-    pub direct: Option<Direct>,
-    /// Child rays, at most two.
-    pub lobes: [Option<Lobe>; 2],
-    /// The interface's quantities, where the surface is a dielectric interface.
-    pub interface: Option<Interface>,
-    /// The refracted ray does not exist: total internal reflection.
-    pub total_internal_reflection: bool,
-}
-
-impl Scatter {
-    /// The child rays.
-    pub fn lobes(&self) -> impl Iterator<Item = &Lobe> {
-        self.lobes.iter().flatten()
-    }
-}
-
 impl Material {
     /// A short name of the material's kind, for listings and the inspector.
     pub fn kind(&self) -> &'static str {
@@ -201,6 +142,55 @@ impl Material {
         }
     }
 
+    /// The radiance it emits at surface coordinates `uv`, if it is a light.
+    #[inline]
+    pub fn emission(&self, uv: Vec2) -> Option<Color> {
+        match self {
+            Material::Emissive(e) => Some(e.radiance.eval(uv)),
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Dielectric(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
+    /// Whether it emits light: path tracing then samples points on it as it samples the
+    /// lights.
+    pub fn emits(&self) -> bool {
+        self.emission(Vec2::ZERO).is_some()
+    }
+
+    /// Whether light can leave it in one direction only, as from a mirror, glass, a
+    /// polished metal or a glaze's coat: photons from point lights are aimed at such
+    /// objects and followed through them (a glossy or diffuse surface ends them).
+    pub fn mirror_like(&self) -> bool {
+        match self {
+            Material::Mirror(_) | Material::Dielectric(_) | Material::Glazed(_) => true,
+            Material::Conductor(c) => c.exponent.is_none(),
+            Material::Diffuse(_) | Material::Glossy(_) | Material::Emissive(_) => false,
+        }
+    }
+
+    /// What a shadow ray keeps crossing this surface straight, unbent, at `hit` (the
+    /// transmissive shadows' approximation), or `None` where the surface blocks it: a
+    /// clear or coloured dielectric passes 1 − R at the ray's wavelength; every other
+    /// surface, a glaze's opaque base included, blocks. Absorption inside is the tracer's
+    /// (it knows how far the ray travels).
+    #[inline]
+    pub fn shadow_transmittance(&self, hit: &Interaction) -> Option<Color> {
+        match self {
+            Material::Dielectric(d) => Some(Color::splat(d.shadow_transmittance(hit))),
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
     /// The Mueller matrix (in the s/p frame of `hit`) of the child ray on `side`, or for a
     /// glaze's `Transmit` the way its base's light comes out through the coat. Mirrors and
     /// glossy metals reflect without polarising; materials without that lobe, `None`.
@@ -212,7 +202,11 @@ impl Material {
             (Material::Mirror(_) | Material::Glossy(_), Side::Reflect) => {
                 lobe.map(|l| Mueller::neutral_reflection(l.weight))
             }
-            _ => None,
+            (
+                Material::Conductor(_) | Material::Mirror(_) | Material::Glossy(_),
+                Side::Transmit,
+            )
+            | (Material::Diffuse(_) | Material::Emissive(_), _) => None,
         }
     }
 
@@ -234,7 +228,8 @@ impl Material {
                 exponent: c.exponent.map(|n| params.phong_exponent.unwrap_or(n)),
                 ..c.clone()
             }),
-            other => other.clone(),
+            // No parameter reaches these (a diffuse highlight's exponent is its own).
+            Material::Diffuse(_) | Material::Mirror(_) | Material::Emissive(_) => self.clone(),
         }
     }
 
@@ -243,14 +238,41 @@ impl Material {
     pub fn dielectric(&self) -> Option<&Dielectric> {
         match self {
             Material::Dielectric(d) | Material::Glazed(Glazed { coat: d, .. }) => Some(d),
-            _ => None,
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_) => None,
         }
     }
 
     /// Whether its index of refraction depends on the wavelength: a sample that meets it
-    /// must carry one.
+    /// must carry one. (A glaze's coat ignores its Abbe number.)
     pub fn disperses(&self) -> bool {
-        matches!(self, Material::Dielectric(d) if d.disperses())
+        match self {
+            Material::Dielectric(d) => d.disperses(),
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Glazed(_) => false,
+        }
+    }
+
+    /// Whether light travelling inside it is absorbed (Beer–Lambert): without such a
+    /// material in a scene, no ray needs the exponential.
+    pub fn absorbs(&self) -> bool {
+        match self {
+            Material::Dielectric(d) => d.absorption != Color::ZERO,
+            // A glaze's coat is a surface: nothing enters it.
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Glazed(_) => false,
+        }
     }
 
     /// Whether its scattering reads surface coordinates (a checker texture).
@@ -268,13 +290,17 @@ impl Material {
     }
 
     /// The Phong exponent the `phong_exponent` parameter replaces, if this is glossy: then
-    /// its reflected ray is one sample of the Phong lobe about the mirror direction (whose
-    /// density is [`glossy_pdf`]), not the one direction of a mirror.
+    /// its reflected ray is one sample of the Phong lobe about the mirror direction (a
+    /// [`LobeKind::Glossy`] lobe), not the one direction of a mirror.
     pub fn phong_exponent(&self) -> Option<f32> {
         match self {
             Material::Glossy(g) => Some(g.exponent),
             Material::Conductor(c) => c.exponent,
-            _ => None,
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Emissive(_)
+            | Material::Dielectric(_)
+            | Material::Glazed(_) => None,
         }
     }
 }

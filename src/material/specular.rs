@@ -2,7 +2,7 @@
 //! the mirror ray over a Phong lobe; and the physical metal, a conductor whose reflectance
 //! follows the Fresnel equations for its complex index of refraction.
 
-use super::{Interaction, Lobe, Scatter, Side};
+use super::{Interaction, Lobe, LobeKind, Scatter, Side};
 use crate::math::sampling::{phong_lobe, phong_lobe_pdf, to_world};
 use crate::math::{Color, Uniform, Vec3};
 use crate::optics::fresnel_conductor;
@@ -45,14 +45,15 @@ impl Conductor {
     pub(super) fn scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {
         let cos_i = hit.cos_i();
         let r = |c: usize| fresnel_conductor(cos_i, hit.outside_ior, self.eta[c], self.k[c]).2;
-        let dir = match self.exponent {
-            Some(n) => jittered(hit, n, u),
-            None => hit.mirror_dir(),
+        let (kind, dir) = match self.exponent {
+            Some(exponent) => (LobeKind::Glossy { exponent }, jittered(hit, exponent, u)),
+            None => (LobeKind::Delta, hit.mirror_dir()),
         };
         Scatter {
             lobes: [
                 Some(Lobe {
                     side: Side::Reflect,
+                    kind,
                     dir,
                     weight: Color::new(r(0), r(1), r(2)),
                 }),
@@ -105,11 +106,11 @@ impl Mirror {
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
         Scatter {
             lobes: [
-                Some(Lobe {
-                    side: Side::Reflect,
-                    dir: hit.mirror_dir(),
-                    weight: self.reflectance,
-                }),
+                Some(Lobe::delta(
+                    Side::Reflect,
+                    hit.mirror_dir(),
+                    self.reflectance,
+                )),
                 None,
             ],
             ..Scatter::default()
@@ -125,6 +126,9 @@ impl Glossy {
             lobes: [
                 Some(Lobe {
                     side: Side::Reflect,
+                    kind: LobeKind::Glossy {
+                        exponent: self.exponent,
+                    },
                     dir,
                     weight: self.reflectance,
                 }),

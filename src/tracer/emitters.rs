@@ -33,7 +33,7 @@ impl Emitters {
         let mut total = 0.0;
         for (object, shape) in scene.shapes.iter().enumerate() {
             let material = &materials[scene.object_materials[object] as usize];
-            if !matches!(material, Material::Emissive(_)) {
+            if !material.emits() {
                 continue;
             }
             for index in 0..shape.primitive_count() as u32 {

@@ -122,6 +122,16 @@ impl Branch {
     }
 }
 
+/// Where a branch of the tree meets a surface: the ray, what it hit, the media it
+/// travelled through, and its node in the record.
+#[derive(Clone, Copy)]
+struct Meet<'m> {
+    ray: &'m Ray,
+    hit: &'m Hit,
+    media: &'m Media,
+    id: usize,
+}
+
 /// Traces the samples of one image of one scene under one set of parameters.
 pub struct Tracer<'a> {
     scene: &'a Scene,
@@ -180,10 +190,8 @@ impl<'a> Tracer<'a> {
         Tracer {
             scene,
             params,
-            dispersive: materials.iter().any(Material::disperses),
-            absorbs: materials
-                .iter()
-                .any(|m| m.dielectric().is_some_and(|d| d.absorption != Color::ZERO)),
+            dispersive: materials.iter().any(|m| m.disperses()),
+            absorbs: materials.iter().any(|m| m.absorbs()),
             materials,
             emitters,
             photons: None,
@@ -408,13 +416,19 @@ impl<'a> Tracer<'a> {
                 },
                 None => b,
             };
+            let m = Meet {
+                ray,
+                hit,
+                media,
+                id,
+            };
             let (l, end) = if self.dispersive
                 && b.wavelength.is_none()
                 && self.materials[hit.material as usize].disperses()
             {
-                self.shade_spectral(b, w, |b, w| self.shade(ray, hit, b, id, media, w, pol))
+                self.shade_spectral(b, w, |b, w| self.shade(m, b, w, pol))
             } else {
-                self.shade(ray, hit, b, id, media, w, pol)
+                self.shade(m, b, w, pol)
             };
             (tr.map_or(l, |tr| tr * l), end)
         } else {

@@ -23,7 +23,7 @@ use super::media::transmittance;
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
 use super::{End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
-use crate::material::{Brdf, Interaction, Lobe, Material, Scatter, Side, glossy_pdf};
+use crate::material::{Interaction, Part, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
 use crate::scene::Hit;
@@ -53,65 +53,6 @@ fn light_weight(alone: bool, light_pdf: f32, bsdf_pdf: f32) -> f32 {
     }
 }
 
-/// The part of a material a path goes on through.
-pub(super) enum Part<'s> {
-    /// The smooth BRDF, times the scale a glaze's coat leaves it.
-    Smooth(Brdf, f32),
-    /// A glossy lobe of this Phong exponent (its direction already drawn).
-    Glossy(&'s Lobe, f32),
-    /// A mirror-like lobe: one direction.
-    Delta(&'s Lobe),
-}
-
-impl Part<'_> {
-    /// Its weight: the largest channel of the light it passes on (at most 1 in all).
-    pub(super) fn weight(&self) -> f32 {
-        match self {
-            Part::Smooth(brdf, scale) => scale * (brdf.albedo + brdf.specular).max_element(),
-            Part::Glossy(lobe, _) | Part::Delta(lobe) => lobe.weight.max_element(),
-        }
-    }
-
-    /// f cos θ towards `dir`, and the density with which this part would draw `dir`.
-    fn eval(&self, at: &Interaction, dir: Vec3) -> (Color, f32) {
-        match self {
-            Part::Smooth(brdf, scale) => {
-                let cos = at.n_shade.dot(dir);
-                if cos <= 0.0 || at.n_geom.dot(dir) <= 0.0 {
-                    return (Color::ZERO, 0.0);
-                }
-                let view = -at.dir;
-                (
-                    *scale * cos * brdf.eval(at.n_shade, dir, view),
-                    brdf.pdf(at.n_shade, dir, view),
-                )
-            }
-            Part::Glossy(lobe, exponent) => {
-                let pdf = glossy_pdf(at, *exponent, dir);
-                (lobe.weight * pdf, pdf)
-            }
-            Part::Delta(_) => (Color::ZERO, 0.0),
-        }
-    }
-}
-
-/// The parts of `scatter` (of `material`) with their weights: the smooth BRDF, then the
-/// lobes, the first glossy where the material is.
-pub(super) fn parts<'s>(material: &Material, scatter: &'s Scatter) -> [Option<Part<'s>>; 3] {
-    let glossy = material.phong_exponent();
-    let lobe = |i: usize| {
-        scatter.lobes[i].as_ref().map(|l| match glossy {
-            Some(n) if i == 0 => Part::Glossy(l, n),
-            _ => Part::Delta(l),
-        })
-    };
-    [
-        scatter.direct.map(|d| Part::Smooth(d.brdf, d.scale)),
-        lobe(0),
-        lobe(1),
-    ]
-}
-
 /// A path (or photon) leaving a surface on `side`: the media it is in from there, and the
 /// normal its next ray sets out along.
 pub(super) fn cross(media: &mut Media, at: &Interaction, hit: &Hit, side: Side) -> Vec3 {
@@ -136,6 +77,66 @@ struct Segment {
     added: Color,
 }
 
+/// A path under way: what it carries from one vertex to the next.
+struct PathState<P> {
+    ray: Ray,
+    media: Media,
+    throughput: Color,
+    wavelength: Option<f32>,
+    // The density with which the last vertex drew this ray's direction (None: a
+    // mirror-like lobe or the camera, which no light sample competes with).
+    came: Option<f32>,
+    kind: RayKind,
+    parent: Option<usize>,
+    // The camera polariser's analyzer, until the path meets a diffuse surface.
+    pol: Option<P>,
+}
+
+impl<P: Polarization> PathState<P> {
+    /// The record of the ray about to be traced, at level `depth`.
+    fn node(&self, depth: u32) -> TreeNode {
+        TreeNode {
+            parent: self.parent,
+            kind: self.kind,
+            ray: self.ray,
+            depth,
+            branch_weight: 1.0,
+            path_weight: self.throughput.max_element(),
+            hit: None,
+            end_point: self.ray.at(100.0),
+            end: End::Miss,
+            radiance: Color::ZERO,
+            stokes_weights: self.pol.as_ref().and_then(P::weights),
+            wavelength: self.wavelength,
+        }
+    }
+
+    /// Unpolarised radiance `c` arriving along the path, as the camera sees it.
+    fn seen(&self, c: Color) -> Color {
+        self.pol.as_ref().map_or(c, |p| p.seen(c))
+    }
+}
+
+/// A path's vertex as its light samples see it: the ray that arrived, the point and the
+/// hit as its material sees it, the part the path goes on through, the absorption of the
+/// medium the point lies in, whether the path ends here (`alone`: the light samples then
+/// stand alone, not weighed against the path's own next direction), and the vertex's node.
+struct Vertex<'v> {
+    ray: &'v Ray,
+    p: Vec3,
+    at: &'v Interaction,
+    part: &'v Part<'v>,
+    sigma: Color,
+    alone: bool,
+    id: usize,
+}
+
+/// What a vertex leaves the path: going on along the new ray, or ended, and why.
+enum Next {
+    On,
+    End(End),
+}
+
 impl Tracer<'_> {
     /// The radiance one path from the camera ray `ray` brings back. `pol`: the camera
     /// polariser's analyzer, until the path meets a diffuse or glossy surface (which
@@ -144,227 +145,42 @@ impl Tracer<'_> {
         &self,
         ray: &Ray,
         w: &mut Walk<R>,
-        mut pol: Option<P>,
+        pol: Option<P>,
     ) -> Color {
-        let mut ray = *ray;
-        let mut media = Media::default();
-        let mut throughput = Color::ONE;
+        let mut st = PathState {
+            ray: *ray,
+            media: Media::default(),
+            throughput: Color::ONE,
+            wavelength: None,
+            came: None,
+            kind: RayKind::Camera,
+            parent: None,
+            pol,
+        };
         let mut total = Color::ZERO;
-        let mut wavelength = None;
-        // The density with which the last vertex drew this ray's direction (None: a
-        // mirror-like lobe or the camera, which no light sample competes with).
-        let mut came: Option<f32> = None;
-        let mut kind = RayKind::Camera;
-        let mut parent = None;
         // Kept for the inspector only: no allocation per path when nothing records.
-        let recording = w.rec.on();
         let mut segments = Vec::new();
-        let seen = |pol: &Option<P>, c: Color| pol.as_ref().map_or(c, |p| p.seen(c));
         for depth in 0.. {
-            let id = w.rec.ray(|| TreeNode {
-                parent,
-                kind,
-                ray,
-                depth,
-                branch_weight: 1.0,
-                path_weight: throughput.max_element(),
-                hit: None,
-                end_point: ray.at(100.0),
-                end: End::Miss,
-                radiance: Color::ZERO,
-                stokes_weights: pol.as_ref().and_then(P::weights),
-                wavelength,
-            });
+            let id = w.rec.ray(|| st.node(depth));
             let mut segment = Segment {
                 id,
-                throughput,
+                throughput: st.throughput,
                 added: Color::ZERO,
             };
-            let sigma = self.absorption_in(&media);
-            let hit = self.scene.intersect(&ray, f32::INFINITY);
-            let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
-            let mut light_hit = None;
-            for light in &self.lights {
-                if let Some((t, radiance)) = light.hit(&ray, nearest) {
-                    nearest = t;
-                    light_hit = Some((light, radiance));
-                }
-            }
-            let end_point = if nearest.is_finite() {
-                ray.at(nearest)
-            } else {
-                ray.at(100.0)
-            };
-            // Where the path ends, what it adds there.
-            let end = |rec: &mut R, total: &mut Color, segment: &mut Segment, c: Color, e: End| {
-                let c = seen(&pol, c);
-                *total += c;
-                segment.added = c;
-                rec.finish(id, &|n| {
-                    n.end = e;
-                    n.end_point = end_point;
-                });
-            };
-            if let Some((light, radiance)) = light_hit {
-                let mis = came.map_or(1.0, |pdf| power_heuristic(pdf, light.pdf(&ray, nearest)));
-                let l = throughput * transmittance(sigma, nearest) * radiance * mis;
-                end(w.rec, &mut total, &mut segment, l, End::LightHit);
-                if recording {
-                    segments.push(segment);
-                }
-                break;
-            }
-            let Some(hit) = hit else {
-                let l = self.scene.background.radiance(ray.dir);
-                let l = throughput * transmittance(sigma, f32::INFINITY) * l;
-                end(w.rec, &mut total, &mut segment, l, End::Miss);
-                if recording {
-                    segments.push(segment);
-                }
-                break;
-            };
-            w.rec.finish(id, &|n| n.end_point = end_point);
-            throughput *= transmittance(sigma, hit.surface.t);
-            let material = &self.materials[hit.material as usize];
-            let at = self.meet(&ray, &hit, &media, &mut wavelength, &mut throughput, w.rng);
-            record_hit(w.rec, id, &hit, &at);
-            let scatter = material.scatter(&at, w.rng);
-            if let Some(radiance) = scatter.emitted {
-                let cos_e = (-ray.dir).dot(at.n_geom);
-                let mis = came.map_or(1.0, |pdf| {
-                    power_heuristic(pdf, self.emitters.pdf(hit.object, hit.surface.t, cos_e))
-                });
-                end(
-                    w.rec,
-                    &mut total,
-                    &mut segment,
-                    throughput * radiance * mis,
-                    End::LightHit,
-                );
-                if recording {
-                    segments.push(segment);
-                }
-                break;
-            }
-            if let Some(i) = scatter.interface {
-                record_interface(w.rec, id, i);
-            }
-            if scatter.total_internal_reflection {
-                w.stats.tir_events += 1;
-            }
-            // One part, in proportion to its weight.
-            let parts = parts(material, &scatter);
-            let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
-            if sum <= 0.0 {
-                w.rec.finish(id, &|n| n.end = End::Absorbed);
-                if recording {
-                    segments.push(segment);
-                }
-                break;
-            }
-            let u = w.rng.next_1d() * sum;
-            let mut cumulative = 0.0;
-            let mut chosen = None;
-            for part in parts.iter().flatten() {
-                cumulative += part.weight();
-                chosen = Some(part);
-                if u < cumulative {
-                    break;
-                }
-            }
-            let Some(part) = chosen else { break };
-            let p_choice = part.weight() / sum;
-            let s_frame = pol.as_ref().map(|p| p.at_interface(ray.dir, at.n_shade));
-            let p = hit.surface.p;
-            // At `max_depth` the path gathers light here and goes no further, so light
-            // samples stand alone; before it, they are weighed against the BRDF's own
-            // choice of their direction.
-            let last = depth >= self.params.max_depth;
-            if !matches!(part, Part::Delta(_)) {
-                let mut lit = self.light_samples(&ray, p, &at, part, sigma, last, id, w);
-                // The point lights' caustics, from this pass's photons.
-                if let (Some(map), Part::Smooth(brdf, scale)) = (&self.photons, part) {
-                    lit += map.gather(p, &at, brdf, *scale);
-                }
-                let lit = match &s_frame {
-                    Some(s) => s.direct(material, &at, lit),
-                    None => lit,
-                };
-                let c = throughput / p_choice * lit;
-                total += c;
-                segment.added += c;
-            }
-            if last {
-                w.stats.pruned_by_depth += 1;
-                w.rec.finish(id, &|n| n.end = End::DepthLimit);
-                if recording {
-                    segments.push(segment);
-                }
-                break;
-            }
-            // The next direction and what the path carries along it.
-            let (dir, side, weight, next_pol) = match part {
-                Part::Smooth(brdf, _) => {
-                    let pick = w.rng.next_1d();
-                    let dir = brdf.sample(at.n_shade, -ray.dir, pick, w.rng.next_2d());
-                    let (f_cos, pdf) = part.eval(&at, dir);
-                    if pdf <= 0.0 || f_cos == Color::ZERO {
-                        w.rec.finish(id, &|n| n.end = End::Absorbed);
-                        if recording {
-                            segments.push(segment);
-                        }
-                        break;
-                    }
-                    came = Some(pdf);
-                    // A diffuse surface sends on unpolarised light: the analyzer ends
-                    // here, as what it makes of the light from now on.
-                    if let Some(s) = &s_frame {
-                        throughput *= s.direct(material, &at, Color::ONE);
-                    }
-                    (dir, Side::Reflect, f_cos / pdf, None)
-                }
-                Part::Glossy(lobe, exponent) => {
-                    came = Some(glossy_pdf(&at, *exponent, lobe.dir));
-                    let next = s_frame.as_ref().map(|s| s.child(material, &at, lobe));
-                    (lobe.dir, lobe.side, lobe.weight, next)
-                }
-                Part::Delta(lobe) => {
-                    came = None;
-                    let next = s_frame.as_ref().map(|s| s.child(material, &at, lobe));
-                    (lobe.dir, lobe.side, lobe.weight, next)
-                }
-            };
-            pol = next_pol;
-            throughput *= weight / p_choice;
-            if recording {
+            // A vertex adds light once at most, so this sum is the same as adding as it goes.
+            let next = self.vertex(&mut st, depth, id, &mut segment.added, w);
+            total += segment.added;
+            if w.rec.on() {
                 segments.push(segment);
             }
-            if depth >= ROULETTE_AFTER {
-                let q = throughput.max_element().min(1.0);
-                if q <= 0.0 || w.rng.next_1d() >= q {
-                    w.rec.finish(id, &|n| n.end = End::Roulette);
-                    break;
-                }
-                throughput /= q;
+            let end = match next {
+                Next::On => End::Continued,
+                Next::End(end) => end,
+            };
+            w.rec.finish(id, &|n| n.end = end);
+            if end != End::Continued {
+                break;
             }
-            w.rec.finish(id, &|n| n.end = End::Continued);
-            let n_side = cross(&mut media, &at, &hit, side);
-            kind = match side {
-                Side::Reflect => {
-                    w.stats.reflection_rays += 1;
-                    RayKind::Reflect
-                }
-                Side::Transmit => {
-                    w.stats.refraction_rays += 1;
-                    RayKind::Refract
-                }
-            };
-            parent = Some(id);
-            ray = Ray {
-                origin: offset_ray_origin(p, n_side),
-                dir,
-                time: ray.time,
-            };
         }
         if w.rec.on() {
             // The radiance arriving along each segment: what the path gathered from there
@@ -377,6 +193,164 @@ impl Tracer<'_> {
             }
         }
         total
+    }
+
+    /// Traces the path's ray `st.ray` (node `id`, level `depth`) to what it meets, adds the
+    /// light found there to `added`, and sets the path on its next ray, or ends it.
+    fn vertex<R: Recorder, P: Polarization>(
+        &self,
+        st: &mut PathState<P>,
+        depth: u32,
+        id: usize,
+        added: &mut Color,
+        w: &mut Walk<R>,
+    ) -> Next {
+        let ray = st.ray;
+        let sigma = self.absorption_in(&st.media);
+        let hit = self.scene.intersect(&ray, f32::INFINITY);
+        let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
+        let mut light_hit = None;
+        for light in &self.lights {
+            if let Some((t, radiance)) = light.hit(&ray, nearest) {
+                nearest = t;
+                light_hit = Some((light, radiance));
+            }
+        }
+        let end_point = if nearest.is_finite() {
+            ray.at(nearest)
+        } else {
+            ray.at(100.0)
+        };
+        w.rec.finish(id, &|n| n.end_point = end_point);
+        if let Some((light, radiance)) = light_hit {
+            let mis = st
+                .came
+                .map_or(1.0, |pdf| power_heuristic(pdf, light.pdf(&ray, nearest)));
+            *added = st.seen(st.throughput * transmittance(sigma, nearest) * radiance * mis);
+            return Next::End(End::LightHit);
+        }
+        let Some(hit) = hit else {
+            let l = self.scene.background.radiance(ray.dir);
+            *added = st.seen(st.throughput * transmittance(sigma, f32::INFINITY) * l);
+            return Next::End(End::Miss);
+        };
+        st.throughput *= transmittance(sigma, hit.surface.t);
+        let material = &self.materials[hit.material as usize];
+        let at = self.meet(
+            &ray,
+            &hit,
+            &st.media,
+            &mut st.wavelength,
+            &mut st.throughput,
+            w.rng,
+        );
+        record_hit(w.rec, id, &hit, &at);
+        let scatter = material.scatter(&at, w.rng);
+        if let Some(radiance) = scatter.emitted {
+            let cos_e = (-ray.dir).dot(at.n_geom);
+            let mis = st.came.map_or(1.0, |pdf| {
+                power_heuristic(pdf, self.emitters.pdf(hit.object, hit.surface.t, cos_e))
+            });
+            *added = st.seen(st.throughput * radiance * mis);
+            return Next::End(End::LightHit);
+        }
+        if let Some(i) = scatter.interface {
+            record_interface(w.rec, id, i);
+        }
+        if scatter.total_internal_reflection {
+            w.stats.tir_events += 1;
+        }
+        // One part, in proportion to its weight.
+        let parts = scatter.parts();
+        let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
+        if sum <= 0.0 {
+            return Next::End(End::Absorbed);
+        }
+        let Some(part) = pick_part(&parts, w.rng.next_1d() * sum) else {
+            return Next::End(End::Absorbed);
+        };
+        let p_choice = part.weight() / sum;
+        let s_frame = st.pol.as_ref().map(|p| p.at_interface(ray.dir, at.n_shade));
+        let p = hit.surface.p;
+        // At `max_depth` the path gathers light here and goes no further, so light
+        // samples stand alone; before it, they are weighed against the BRDF's own
+        // choice of their direction.
+        let last = depth >= self.params.max_depth;
+        if !part.is_delta() {
+            let v = Vertex {
+                ray: &ray,
+                p,
+                at: &at,
+                part,
+                sigma,
+                alone: last,
+                id,
+            };
+            let mut lit = self.light_samples(&v, w);
+            // The point lights' caustics, from this pass's photons.
+            if let (Some(map), Part::Smooth(d)) = (&self.photons, part) {
+                lit += map.gather(p, &at, &d.brdf, d.scale);
+            }
+            let lit = match &s_frame {
+                Some(s) => s.direct(material, &at, lit),
+                None => lit,
+            };
+            *added += st.throughput / p_choice * lit;
+        }
+        if last {
+            w.stats.pruned_by_depth += 1;
+            return Next::End(End::DepthLimit);
+        }
+        // The next direction and what the path carries along it.
+        let (dir, side, weight) = match part {
+            Part::Smooth(d) => {
+                let pick = w.rng.next_1d();
+                let dir = d.brdf.sample(at.n_shade, -ray.dir, pick, w.rng.next_2d());
+                let (f_cos, pdf) = part.eval(&at, dir);
+                if pdf <= 0.0 || f_cos == Color::ZERO {
+                    return Next::End(End::Absorbed);
+                }
+                st.came = Some(pdf);
+                // A diffuse surface sends on unpolarised light: the analyzer ends
+                // here, as what it makes of the light from now on.
+                if let Some(s) = &s_frame {
+                    st.throughput *= s.direct(material, &at, Color::ONE);
+                }
+                st.pol = None;
+                (dir, Side::Reflect, f_cos / pdf)
+            }
+            Part::Lobe(lobe) => {
+                st.came = lobe.pdf(&at, lobe.dir);
+                st.pol = s_frame.as_ref().map(|s| s.child(material, &at, lobe));
+                (lobe.dir, lobe.side, lobe.weight)
+            }
+        };
+        st.throughput *= weight / p_choice;
+        if depth >= ROULETTE_AFTER {
+            let q = st.throughput.max_element().min(1.0);
+            if q <= 0.0 || w.rng.next_1d() >= q {
+                return Next::End(End::Roulette);
+            }
+            st.throughput /= q;
+        }
+        let n_side = cross(&mut st.media, &at, &hit, side);
+        st.kind = match side {
+            Side::Reflect => {
+                w.stats.reflection_rays += 1;
+                RayKind::Reflect
+            }
+            Side::Transmit => {
+                w.stats.refraction_rays += 1;
+                RayKind::Refract
+            }
+        };
+        st.parent = Some(id);
+        st.ray = Ray {
+            origin: offset_ray_origin(p, n_side),
+            dir,
+            time: ray.time,
+        };
+        Next::On
     }
 
     /// The hit as its material sees it, for a path (or photon) through `media` carrying
@@ -402,84 +376,65 @@ impl Tracer<'_> {
         self.interaction(ray, hit, media, *wavelength)
     }
 
-    /// Light arriving at `p` through `part`: one sample of each light and one of the
-    /// emitting surfaces, each weighed against `part` drawing its direction (unless
-    /// `alone`, where the path goes no further). `sigma`: the absorption of the medium `p`
-    /// lies in.
-    #[allow(clippy::too_many_arguments)]
-    fn light_samples<R: Recorder>(
-        &self,
-        ray: &Ray,
-        p: Vec3,
-        at: &Interaction,
-        part: &Part,
-        sigma: Color,
-        alone: bool,
-        id: usize,
-        w: &mut Walk<R>,
-    ) -> Color {
-        let mis = |light_pdf, bsdf_pdf| light_weight(alone, light_pdf, bsdf_pdf);
-        let origin = offset_ray_origin(p, at.n_geom);
-        let shadow = |dir| Ray {
-            origin,
-            dir,
-            time: ray.time,
-        };
+    /// Light arriving at the vertex `v` through its part: one sample of each light and one
+    /// of the emitting surfaces, each weighed against the part drawing its direction
+    /// (unless the vertex stands alone).
+    fn light_samples<R: Recorder>(&self, v: &Vertex, w: &mut Walk<R>) -> Color {
+        let origin = offset_ray_origin(v.p, v.at.n_geom);
         let mut sum = Color::ZERO;
         for light in &self.lights {
             let u = light.draw(w.rng);
-            let Some(ls) = light.sample(p, u) else {
+            let Some(ls) = light.sample(v.p, u) else {
                 continue;
             };
-            let (f_cos, pdf) = part.eval(at, ls.dir);
+            let (f_cos, pdf) = v.part.eval(v.at, ls.dir);
             if f_cos == Color::ZERO {
                 continue;
             }
             w.stats.shadow_rays += 1;
-            let s = shadow(ls.dir);
+            let s = Ray {
+                origin,
+                dir: ls.dir,
+                time: v.ray.time,
+            };
             let blocked = self.scene.occluded(&s, ls.dist * (1.0 - 1e-4));
             let c = if blocked {
                 Color::ZERO
             } else {
-                f_cos * ls.value * transmittance(sigma, ls.dist) * mis(ls.pdf, pdf)
+                f_cos
+                    * ls.value
+                    * transmittance(v.sigma, ls.dist)
+                    * light_weight(v.alone, ls.pdf, pdf)
             };
             sum += c;
-            w.rec.ray(|| shadow_node(id, &s, ls.dist, blocked, c));
+            w.rec.ray(|| shadow_node(v.id, &s, ls.dist, blocked, c));
         }
         if !self.emitters.is_empty() {
             let (pick, u) = (w.rng.next_1d(), w.rng.next_2d());
-            if let Some((object, q)) = self.emitters.sample(self.scene, pick, u, ray.time) {
-                sum +=
-                    self.emitter_sample(ray, origin, p, q, object, at, part, sigma, alone, id, w);
+            if let Some((object, q)) = self.emitters.sample(self.scene, pick, u, v.ray.time) {
+                sum += self.emitter_sample(v, origin, q, object, w);
             }
         }
         sum
     }
 
-    /// The light from point `q` of emitting `object`, seen from `p` through `part`, weighed
-    /// as [`light_weight`] says.
-    #[allow(clippy::too_many_arguments)]
+    /// The light from point `q` of emitting `object`, seen from the vertex `v` (its shadow
+    /// ray leaving from `origin`), weighed as [`light_weight`] says.
     fn emitter_sample<R: Recorder>(
         &self,
-        ray: &Ray,
+        v: &Vertex,
         origin: Vec3,
-        p: Vec3,
         q: Vec3,
         object: u32,
-        at: &Interaction,
-        part: &Part,
-        sigma: Color,
-        alone: bool,
-        id: usize,
         w: &mut Walk<R>,
     ) -> Color {
-        let to = q - p;
+        let to = q - v.p;
         let dist = to.length();
         if dist <= 0.0 {
             return Color::ZERO;
         }
         let dir = to / dist;
-        let (f_cos, pdf) = part.eval(at, dir);
+        let (f_cos, pdf) = v.part.eval(v.at, dir);
         if f_cos == Color::ZERO {
             return Color::ZERO;
         }
@@ -487,7 +442,7 @@ impl Tracer<'_> {
         let s = Ray {
             origin,
             dir,
-            time: ray.time,
+            time: v.ray.time,
         };
         // Visible when the first surface on the way is the sampled point's.
         let seen = self
@@ -498,19 +453,32 @@ impl Tracer<'_> {
             Some(h) => {
                 let cos_e = dir.dot(h.surface.n_geom).abs();
                 let light_pdf = self.emitters.pdf(object, dist, cos_e);
-                match &self.materials[h.material as usize] {
-                    Material::Emissive(e) if light_pdf > 0.0 => {
-                        let l = e.radiance.eval(h.surface.uv);
+                match self.materials[h.material as usize].emission(h.surface.uv) {
+                    Some(l) if light_pdf > 0.0 => {
                         f_cos * l / light_pdf
-                            * transmittance(sigma, dist)
-                            * light_weight(alone, light_pdf, pdf)
+                            * transmittance(v.sigma, dist)
+                            * light_weight(v.alone, light_pdf, pdf)
                     }
                     _ => Color::ZERO,
                 }
             }
             None => Color::ZERO,
         };
-        w.rec.ray(|| shadow_node(id, &s, dist, seen.is_none(), c));
+        w.rec.ray(|| shadow_node(v.id, &s, dist, seen.is_none(), c));
         c
     }
+}
+
+/// The part that the number `u` (uniform over 0 to the parts' summed weight) falls in.
+pub(super) fn pick_part<'p, 's>(parts: &'p [Option<Part<'s>>; 3], u: f32) -> Option<&'p Part<'s>> {
+    let mut cumulative = 0.0;
+    let mut chosen = None;
+    for part in parts.iter().flatten() {
+        cumulative += part.weight();
+        chosen = Some(part);
+        if u < cumulative {
+            break;
+        }
+    }
+    chosen
 }

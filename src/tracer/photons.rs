@@ -13,10 +13,10 @@
 //! the end.
 
 use super::media::transmittance;
-use super::path::{Part, cross, parts};
+use super::path::cross;
 use super::{Media, Tracer};
 use crate::geometry::{KeyHasher, Shape};
-use crate::material::{Brdf, Interaction, Material};
+use crate::material::{Brdf, Interaction, Part};
 use crate::math::rng::mix64;
 use crate::math::sampling::{to_world, uniform_cone};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
@@ -190,7 +190,7 @@ impl Tracer<'_> {
             .iter()
             .zip(&self.scene.object_materials)
             .filter(|&(shape, &m)| {
-                !matches!(shape, Shape::Plane(_)) && self.mirror_like(&self.materials[m as usize])
+                !matches!(shape, Shape::Plane(_)) && self.materials[m as usize].mirror_like()
             })
             .filter_map(|(shape, _)| {
                 let b = (0..shape.primitive_count() as u32)
@@ -233,16 +233,6 @@ impl Tracer<'_> {
         }
         let mean = spheres.iter().map(|s| s.1).sum::<f32>() / spheres.len().max(1) as f32;
         (targets, mean)
-    }
-
-    /// Whether a photon can bounce off the material in one direction (a mirror, glass, a
-    /// polished metal, a glaze's coat).
-    fn mirror_like(&self, m: &Material) -> bool {
-        match m {
-            Material::Mirror(_) | Material::Dielectric(_) | Material::Glazed(_) => true,
-            Material::Conductor(c) => c.exponent.is_none(),
-            Material::Diffuse(_) | Material::Glossy(_) | Material::Emissive(_) => false,
-        }
     }
 
     /// Photon `k` of sample number `sample`: from a light, along its target's cone, through
@@ -297,13 +287,8 @@ impl Tracer<'_> {
             let material = &self.materials[hit.material as usize];
             let at = self.meet(&ray, &hit, &media, &mut wavelength, &mut power, &mut rng);
             let scatter = material.scatter(&at, &mut rng);
-            let parts = parts(material, &scatter);
-            if bounce > 0
-                && parts
-                    .iter()
-                    .flatten()
-                    .any(|p| matches!(p, Part::Smooth(..)))
-            {
+            let parts = scatter.parts();
+            if bounce > 0 && scatter.direct.is_some() {
                 out.push(Photon {
                     p: hit.surface.p,
                     n: at.n_geom,
@@ -317,12 +302,15 @@ impl Tracer<'_> {
             let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
             let u = rng.next_1d() * sum;
             let mut acc = 0.0;
-            let Some(Part::Delta(lobe)) = parts.iter().flatten().find(|p| {
+            let Some(Part::Lobe(lobe)) = parts.iter().flatten().find(|p| {
                 acc += p.weight();
                 u < acc
             }) else {
                 return None;
             };
+            if !lobe.is_delta() {
+                return None;
+            }
             power *= lobe.weight * (sum / lobe.weight.max_element());
             let side_n = cross(&mut media, &at, &hit, lobe.side);
             ray = Ray {

@@ -4,27 +4,28 @@
 
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface};
-use super::{Branch, End, MAX_TREE_RAYS, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::{Branch, End, MAX_TREE_RAYS, Media, Meet, RayKind, Recorder, Tracer, TreeNode, Walk};
 use crate::material::{Lobe, Scatter, Side};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::TreeMode;
-use crate::scene::Hit;
 
 impl Tracer<'_> {
     /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
     /// by the lights, and its child rays, walked as the tree mode says.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(super) fn shade<R: Recorder, P: Polarization>(
         &self,
-        ray: &Ray,
-        hit: &Hit,
+        m: Meet,
         b: Branch,
-        id: usize,
-        media: &Media,
         w: &mut Walk<R>,
         pol: &P,
     ) -> (Color, End) {
+        let Meet {
+            ray,
+            hit,
+            media,
+            id,
+        } = m;
         let s = &hit.surface;
         let at = self.interaction(ray, hit, media, b.wavelength);
         let (entering, n_geom) = (at.entering, at.n_geom);
@@ -75,7 +76,7 @@ impl Tracer<'_> {
         }
         let mut l = match scatter.direct {
             Some(direct) => {
-                let lit = direct.scale * self.direct(ray, hit, &at, &direct, id, media, w);
+                let lit = direct.scale * self.direct(m, &at, &direct, w);
                 s_frame.direct(material, &at, lit)
             }
             None => Color::ZERO,

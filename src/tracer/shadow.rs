@@ -5,11 +5,10 @@
 
 use super::media::transmittance;
 use super::record::shadow_node;
-use super::{Arrival, Media, Recorder, Tracer, Walk};
-use crate::material::{Direct, Interaction, Material};
+use super::{Media, Meet, Recorder, Tracer, Walk};
+use crate::material::{Direct, Interaction};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::Transport;
-use crate::scene::Hit;
 
 /// The most dielectric surfaces one shadow ray passes through before it counts as blocked:
 /// a scene of many glass objects in a row cannot make one shadow ray run on for ever.
@@ -18,20 +17,22 @@ const MAX_SHADOW_CROSSINGS: u32 = 64;
 impl Tracer<'_> {
     /// Shading by the lights: ambient plus every light, one shadow ray to one sampled point
     /// of each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ · T, T the shadow ray's
-    /// transmittance (0 or 1 in the lecture's tracer). `media` are those the shaded point
-    /// lies in.
-    #[allow(clippy::too_many_arguments)]
+    /// transmittance (0 or 1 in the lecture's tracer), for the surface `m` meets, seen by
+    /// its material as `at`.
     #[inline(always)]
     pub(super) fn direct<R: Recorder>(
         &self,
-        ray: &Ray,
-        hit: &Hit,
+        m: Meet,
         at: &Interaction,
         direct: &Direct,
-        id: usize,
-        media: &Media,
         w: &mut Walk<R>,
     ) -> Color {
+        let Meet {
+            ray,
+            hit,
+            media,
+            id,
+        } = m;
         let p = hit.surface.p;
         let (n_geom, n) = (at.n_geom, at.n_shade);
         let origin = offset_ray_origin(p, n_geom);
@@ -65,7 +66,7 @@ impl Tracer<'_> {
                     (blocked, c)
                 }
                 Transport::TransmissiveShadows => {
-                    let t = self.shadow_transmittance(&shadow, reach, media);
+                    let t = self.shadow_transmittance(&shadow, reach, media, at.wavelength);
                     let c = t * direct.brdf.eval(n, ls.dir, view) * ls.value * cos;
                     (t == Color::ZERO, c)
                 }
@@ -77,12 +78,17 @@ impl Tracer<'_> {
         sum
     }
 
-    /// The transmittance of `shadow` over `dist`, starting in `media`, passing straight
-    /// through clear and coloured dielectrics: at each interface 1 − R (R by that
-    /// material's Fresnel model, at the ray's angle seen from the outside), and exp(−σ d)
-    /// inside. Any other surface blocks it. Straight, so wrong about where light lands:
-    /// real glass bends it into caustics.
-    fn shadow_transmittance(&self, shadow: &Ray, dist: f32, media: &Media) -> Color {
+    /// The transmittance of `shadow` over `dist`, starting in `media` and carrying
+    /// `wavelength`, passing straight through whatever lets it (each material says what it
+    /// keeps: 1 − R for a dielectric) and exp(−σ d) inside; any other surface blocks it.
+    /// Straight, so wrong about where light lands: real glass bends it into caustics.
+    fn shadow_transmittance(
+        &self,
+        shadow: &Ray,
+        dist: f32,
+        media: &Media,
+        wavelength: Option<f32>,
+    ) -> Color {
         let mut media = *media;
         let mut ray = *shadow;
         let mut left = dist;
@@ -92,37 +98,24 @@ impl Tracer<'_> {
             let Some(hit) = self.scene.intersect(&ray, left) else {
                 return t * transmittance(sigma, left);
             };
-            let Material::Dielectric(d) = &self.materials[hit.material as usize] else {
+            let at = self.interaction(&ray, &hit, &media, wavelength);
+            let material = &self.materials[hit.material as usize];
+            let Some(through) = material.shadow_transmittance(&at) else {
                 return Color::ZERO;
             };
             let s = &hit.surface;
-            let Arrival {
-                entering,
-                n_geom,
-                n_shade,
-                outside,
-            } = Arrival::at(ray.dir, &hit, &media);
-            // The ray does not bend, so its angle inside the glass would be the outside
-            // angle, and leaving it would meet total internal reflection where the bent
-            // ray meets none: R is taken as seen from the outside, going in and out alike
-            // (as it is for a real ray, whose R is the same both ways across a slab).
-            let cos_i = (-ray.dir).dot(n_shade).clamp(0.0, 1.0);
-            let n_out = self.ior_of(outside, None);
-            let r = d
-                .fresnel
-                .reflectance(cos_i, n_out, d.ior, d.constant_reflectance);
-            t *= transmittance(sigma, s.t) * (1.0 - r);
+            t *= transmittance(sigma, s.t) * through;
             if t.max_element() <= 0.0 {
                 return Color::ZERO;
             }
-            media = if entering {
+            media = if at.entering {
                 media.entered(hit.object, hit.material)
             } else {
                 media.left(hit.object)
             };
             left -= s.t;
             ray = Ray {
-                origin: offset_ray_origin(s.p, -n_geom),
+                origin: offset_ray_origin(s.p, -at.n_geom),
                 ..ray
             };
         }
