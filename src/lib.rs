@@ -26,6 +26,7 @@ pub mod app;
 pub mod camera;
 pub mod geometry;
 pub mod guard;
+pub mod lecture;
 pub mod light;
 pub mod material;
 pub mod math;

@@ -233,8 +233,9 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Sweep(args)) => sweep_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Lecture) => {
-            for (i, (title, scene, sides)) in raylab::app::lecture_slides().enumerate() {
-                match sides {
+            for (i, s) in raylab::lecture::LECTURE.iter().enumerate() {
+                let (title, scene) = (s.title, s.scene);
+                match s.compare.map(|c| c.labels()) {
                     Some((a, b)) => say!("{:2}. {title} (scene {scene}; {a} | {b})", i + 1),
                     None => say!("{:2}. {title} (scene {scene})", i + 1),
                 }

@@ -5,6 +5,7 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use raylab::app::{AppOptions, RaylabApp};
+use raylab::lecture::LECTURE;
 use raylab::optics::FresnelMode;
 use raylab::render::{Sidecar, sidecar_path};
 use std::path::Path;
@@ -389,8 +390,9 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.step();
     h.get_by_label("Lecture").click();
     h.run_steps(3);
-    let n = raylab::app::lecture_slides()
-        .position(|(title, _, _)| title == "Pruning the ray tree")
+    let n = LECTURE
+        .iter()
+        .position(|s| s.title == "Pruning the ray tree")
         .unwrap();
     h.get_by_label(&format!("{}. Pruning the ray tree", n + 1))
         .click();
@@ -582,7 +584,7 @@ fn choose_from_menu(h: &mut Harness<'static, RaylabApp>, menu: &str, item: &str)
 
 /// Steps until slide `i` is shown: its scene loaded, its caption up.
 fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
-    let (title, scene, _) = raylab::app::lecture_slides().nth(i).unwrap();
+    let (title, scene) = (LECTURE[i].title, LECTURE[i].scene);
     step_until(h, title, |a| {
         // Not loading: a slide on the scene already shown must still arrive.
         !a.is_loading()
@@ -750,7 +752,8 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("default", dir.path());
     h.step();
-    for (i, (title, _, sides)) in raylab::app::lecture_slides().enumerate() {
+    for (i, slide) in LECTURE.iter().enumerate() {
+        let (title, sides) = (slide.title, slide.compare);
         choose_from_menu(&mut h, "Lecture", &format!("{}. {title}", i + 1));
         wait_for_slide(&mut h, i);
         h.run_steps(3);

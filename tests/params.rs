@@ -138,11 +138,12 @@ fn set_accepts_each_range_and_refuses_just_outside_it() {
                 assert!(err.to_string().contains(spec.name), "{err}");
                 assert!(p.set(spec.name, "NaN").is_err(), "{}", spec.name);
             }
-            Kind::Choice(words) => {
-                for w in words {
+            Kind::Choice(choices) => {
+                for c in choices {
+                    let w = c.word;
                     p.set(spec.name, w)
                         .unwrap_or_else(|e| panic!("{}={w}: {e}", spec.name));
-                    assert_eq!(p.value_text(spec.name).as_deref(), Some(*w));
+                    assert_eq!(p.value_text(spec.name).as_deref(), Some(w));
                 }
                 assert!(p.set(spec.name, "nonsense").is_err(), "{}", spec.name);
             }

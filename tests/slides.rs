@@ -19,15 +19,16 @@ const ABOUT_FEW_SAMPLES: &[&str] = &[
 #[test]
 fn every_slide_reaches_noise_under_2_percent_at_its_target() {
     let mut noisy = Vec::new();
-    for number in 1..=raylab::app::lecture_slides().count() {
-        let setup = raylab::app::slide_setup(number).unwrap();
-        if ABOUT_FEW_SAMPLES.contains(&setup.title) {
+    for number in 1..=raylab::lecture::LECTURE.len() {
+        let setup = raylab::lecture::slide_setup(number).unwrap();
+        let title = setup.slide.title;
+        if ABOUT_FEW_SAMPLES.contains(&title) {
             continue;
         }
         let scene = &setup.scene;
         let sides = [
             Some(setup.params.clone()),
-            setup.side_b.map(|b| b(&setup.params)),
+            setup.slide.side_b(&setup.params),
         ];
         // One ray through each pixel's centre has nothing to estimate noise from.
         for params in sides.into_iter().flatten().filter(|p| p.spp > 1) {
@@ -37,7 +38,7 @@ fn every_slide_reaches_noise_under_2_percent_at_its_target() {
             if noise >= 0.02 {
                 noisy.push(format!(
                     "{} at {} spp: {:.2} %",
-                    setup.title,
+                    title,
                     params.spp,
                     noise * 100.0
                 ));

@@ -3,120 +3,44 @@
 
 use super::RaylabApp;
 use super::side::Side;
-use crate::optics::FresnelMode;
-use crate::params::{Params, Pattern, Transport, TreeMode};
+use crate::lecture::Comparison;
+use crate::params::Params;
 use crate::render::EngineConfig;
 use egui::Color32;
 
-/// What the two sides of the A/B view differ in.
+/// What the two sides of the A/B view differ in: one of the lecture's comparisons, or
+/// the parameters frozen at a moment (B) against the controls (A).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum CompareKind {
-    /// Schlick's approximation against the exact Fresnel equations.
-    SchlickExact,
-    /// Random against jittered samples, at the same samples per pixel.
-    RandomJittered,
-    /// Constant reflectance against Fresnel.
-    ConstantFresnel,
-    /// The split ray tree against the stochastic one.
-    SplitStochastic,
-    /// The lecture's black shadows behind glass against transmissive shadows.
-    WhittedTransmissive,
-    /// The lecture's tracer against path tracing, the reference.
-    WhittedPath,
-    /// The lecture's tracer against path tracing with photons (point lights' caustics).
-    WhittedPhotons,
-    /// One sample at each pixel's centre against four jittered samples: supersampling
-    /// (a slide's, not a preset: the sides differ in their sample counts).
-    Supersampling,
-    /// One ray per pixel to a point light against 256 averaged over the pixel and the
-    /// area light: distribution ray tracing's blurs (a slide's, not a preset).
-    Blurring,
+    /// A comparison of the lecture's (a preset or a slide's).
+    Lecture(Comparison),
     /// The parameters as they were when frozen (B) against the controls (A).
     Frozen(Params),
 }
 
 impl CompareKind {
-    /// The presets, for the menu.
-    pub fn presets() -> [(&'static str, CompareKind); 7] {
-        [
-            ("Schlick | exact", CompareKind::SchlickExact),
-            ("random | jittered", CompareKind::RandomJittered),
-            ("constant | Fresnel", CompareKind::ConstantFresnel),
-            ("split | stochastic tree", CompareKind::SplitStochastic),
-            (
-                "whitted | transmissive shadows",
-                CompareKind::WhittedTransmissive,
-            ),
-            ("whitted | path", CompareKind::WhittedPath),
-            ("whitted | path + photons", CompareKind::WhittedPhotons),
-        ]
-    }
-
     /// The labels of side A and side B.
-    pub fn labels(&self) -> (&'static str, &'static str) {
+    fn labels(&self) -> (&'static str, &'static str) {
         match self {
-            CompareKind::SchlickExact => ("A: Schlick", "B: exact Fresnel"),
-            CompareKind::RandomJittered => ("A: random", "B: jittered"),
-            CompareKind::ConstantFresnel => ("A: constant k", "B: exact Fresnel"),
-            CompareKind::SplitStochastic => ("A: split tree", "B: stochastic tree"),
-            CompareKind::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
-            CompareKind::WhittedPath => ("A: Whitted", "B: path tracing"),
-            CompareKind::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
-            CompareKind::Supersampling => ("A: 1 sample, centre", "B: 4 jittered"),
-            CompareKind::Blurring => ("A: 1 ray, point light", "B: 256 rays, area light"),
+            CompareKind::Lecture(c) => c.labels(),
             CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
         }
     }
 
     /// Side A's parameters when the comparison starts.
-    pub fn side_a(&self, p: &Params) -> Params {
-        let mut p = p.clone();
+    fn side_a(&self, p: &Params) -> Params {
         match self {
-            CompareKind::SchlickExact => p.fresnel = Some(FresnelMode::Schlick),
-            CompareKind::RandomJittered => p.pattern = Pattern::Random,
-            CompareKind::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
-            CompareKind::SplitStochastic => p.tree = TreeMode::Split,
-            CompareKind::WhittedTransmissive
-            | CompareKind::WhittedPath
-            | CompareKind::WhittedPhotons => p.transport = Transport::Whitted,
-            // The lecture's basic tracer: one ray through each pixel's centre (and, to show
-            // what blurring adds, a point light).
-            CompareKind::Supersampling | CompareKind::Blurring => {
-                p.spp = 1;
-                p.pattern = Pattern::Regular;
-                if *self == CompareKind::Blurring {
-                    p.light_size = 0.0;
-                }
-            }
-            CompareKind::Frozen(_) => {}
+            CompareKind::Lecture(c) => c.side_a(p),
+            CompareKind::Frozen(_) => p.clone(),
         }
-        p
     }
 
-    /// Side B's parameters, given side A's: A's with the compared setting changed.
-    pub fn side_b(&self, a: &Params) -> Params {
-        let mut p = a.clone();
+    /// Side B's parameters, given side A's.
+    pub(super) fn side_b(&self, a: &Params) -> Params {
         match self {
-            CompareKind::SchlickExact | CompareKind::ConstantFresnel => {
-                p.fresnel = Some(FresnelMode::Exact)
-            }
-            CompareKind::RandomJittered => p.pattern = Pattern::Jittered,
-            CompareKind::SplitStochastic => p.tree = TreeMode::Stochastic,
-            CompareKind::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
-            CompareKind::WhittedPath => p.transport = Transport::Path,
-            CompareKind::WhittedPhotons => p.transport = Transport::Photons,
-            CompareKind::Supersampling => {
-                p.spp = 4;
-                p.pattern = Pattern::Jittered;
-            }
-            CompareKind::Blurring => {
-                p.spp = 256;
-                p.pattern = Pattern::Sobol;
-                p.light_size = 1.0;
-            }
-            CompareKind::Frozen(b) => return b.clone(),
+            CompareKind::Lecture(c) => c.side_b(a),
+            CompareKind::Frozen(b) => b.clone(),
         }
-        p
     }
 }
 
@@ -161,9 +85,9 @@ impl RaylabApp {
 
     /// The A/B compare menu.
     pub(super) fn compare_menu_ui(&mut self, ui: &mut egui::Ui) {
-        for (label, kind) in CompareKind::presets() {
+        for (label, c) in Comparison::PRESETS {
             if ui.button(label).clicked() {
-                self.start_compare(ui.ctx(), kind);
+                self.start_compare(ui.ctx(), CompareKind::Lecture(c));
                 ui.close();
             }
         }
@@ -238,38 +162,5 @@ impl RaylabApp {
             egui::pos2(image.max.x - 12.0, image.min.y + 12.0),
             egui::Align2::RIGHT_TOP,
         );
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_preset_differs_in_one_setting_and_keeps_the_rest() {
-        let p = Params {
-            max_depth: 3,
-            spp: 7,
-            ..Params::default()
-        };
-        for (label, kind) in CompareKind::presets() {
-            let a = kind.side_a(&p);
-            let b = kind.side_b(&a);
-            assert_ne!(a, b, "{label}: the sides differ");
-            assert_eq!((a.max_depth, a.spp), (3, 7), "{label}: A keeps the rest");
-            assert_eq!((b.max_depth, b.spp), (3, 7), "{label}: B keeps the rest");
-        }
-        for (k, b) in [
-            (
-                CompareKind::WhittedTransmissive,
-                Transport::TransmissiveShadows,
-            ),
-            (CompareKind::WhittedPath, Transport::Path),
-            (CompareKind::WhittedPhotons, Transport::Photons),
-        ] {
-            let a = k.side_a(&p);
-            assert_eq!(a.transport, Transport::Whitted);
-            assert_eq!(k.side_b(&a).transport, b);
-        }
     }
 }

@@ -1,69 +1,12 @@
-//! The Lecture menu: one entry per slide, each loading its scene and parameters and showing
-//! a caption that says what to look at.
+//! The Lecture menu: one entry per slide of [`crate::lecture::LECTURE`], each loading its
+//! scene and parameters, opening what the slide opens and showing its caption.
 
 use super::RaylabApp;
-pub(crate) use super::slides::{LECTURE, Slide};
-use crate::params::{ParamError, Params};
-use crate::scene::{Scene, SceneError};
+use super::compare::CompareKind;
+use crate::lecture::{Instrument, LECTURE, Slide};
+use crate::params::Params;
+use crate::scene::Scene;
 use egui::Color32;
-
-/// Side B's parameters from side A's, in a slide that compares two things.
-pub type SideB = Box<dyn Fn(&Params) -> Params>;
-
-/// A slide set up without the window (`raylab render --slide N`).
-pub struct SlideSetup {
-    /// Its title.
-    pub title: &'static str,
-    /// Its scene.
-    pub scene: Scene,
-    /// The scene's parameters with the slide's on top (side A, where it compares).
-    pub params: Params,
-    /// Where the slide compares two things: side B's parameters from side A's.
-    pub side_b: Option<SideB>,
-    /// Its caption as it reads for the parameters given: it follows them, as in the
-    /// window.
-    pub caption: fn(&Params) -> String,
-}
-
-/// A slide that cannot be set up.
-#[derive(Debug, thiserror::Error)]
-pub enum SlideError {
-    /// The number is not a slide's.
-    #[error(
-        "there is no slide {0}: the lecture's slides are 1 to {1} (`raylab lecture` lists them)"
-    )]
-    NoSuchSlide(usize, usize),
-    /// Its scene does not load.
-    #[error(transparent)]
-    Scene(#[from] SceneError),
-    /// Its parameters are refused.
-    #[error(transparent)]
-    Param(#[from] ParamError),
-}
-
-/// Slide `number` (from 1, as the Lecture menu numbers them), set up as the window shows it.
-pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
-    let slide = number
-        .checked_sub(1)
-        .and_then(|i| LECTURE.get(i))
-        .ok_or(SlideError::NoSuchSlide(number, LECTURE.len()))?;
-    let scene = Scene::load(&slide.reference())?;
-    let mut params = slide.apply(&scene.params)?;
-    if let Some(kind) = &slide.compare {
-        params = kind.side_a(&params);
-    }
-    let side_b = slide.compare.clone().map(|kind| {
-        let b: SideB = Box::new(move |a| kind.side_b(a));
-        b
-    });
-    Ok(SlideSetup {
-        title: slide.title,
-        scene,
-        caption: slide.caption,
-        params,
-        side_b,
-    })
-}
 
 /// The slide asked for and the caption shown.
 #[derive(Default)]
@@ -72,7 +15,7 @@ pub(crate) struct Lecture {
     pending: Option<&'static Slide>,
     // The slide shown (whose caption is shown).
     shown: Option<&'static Slide>,
-    // The control sections to open once, for the slide just arrived.
+    // The parameters whose controls to show once, for the slide just arrived.
     open: &'static [&'static str],
     // The slide last asked for (its number in `LECTURE`), for next and previous.
     current: Option<usize>,
@@ -87,7 +30,7 @@ impl Lecture {
             .pending
             .filter(|s| scene.source.reference() == s.reference());
         self.shown = slide;
-        self.open = slide.map_or(&[], |s| s.open);
+        self.open = slide.map_or(&[], |s| s.controls);
         if slide.is_some() {
             self.pending = None;
         } else if self.pending.is_none() {
@@ -104,10 +47,10 @@ impl Lecture {
 
     /// The caption shown, if any, for the parameters `params` as they are now.
     pub(crate) fn caption(&self, params: &Params) -> Option<String> {
-        self.shown.map(|s| (s.caption)(params))
+        self.shown.map(|s| s.caption(params))
     }
 
-    /// The control sections the slide just arrived opens (once).
+    /// The parameters whose controls the slide just arrived asks for (once).
     pub(crate) fn take_open(&mut self) -> &'static [&'static str] {
         std::mem::take(&mut self.open)
     }
@@ -131,6 +74,44 @@ impl RaylabApp {
         self.lecture.current = Some(i);
         self.open_scene(&slide.reference());
     }
+
+    /// `slide`'s scene has arrived with its parameters `base`: the controls take the
+    /// slide's parameters, and the slide's own comparison and instrument replace those
+    /// open (none, if it has none).
+    pub(super) fn arrive_at_slide(&mut self, slide: &Slide, base: &Params) {
+        match slide.params_on(base) {
+            Ok(p) => self.settings.params = p,
+            Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
+        }
+        self.compare = None;
+        let fresnel_metal = match slide.instrument {
+            Some(Instrument::FresnelPlot { metal }) => Some(metal),
+            Some(Instrument::RayTree { .. }) | None => None,
+        };
+        self.instruments.show_fresnel = fresnel_metal.is_some();
+        self.instruments.fresnel_metal = fresnel_metal
+            .flatten()
+            .and_then(|name| crate::material::METALS.iter().position(|m| m.name == name));
+    }
+
+    /// Once `slide`'s scene is shown: its A/B view and the pixel its inspector shows.
+    pub(super) fn show_slide(&mut self, slide: &Slide, ctx: &egui::Context) {
+        if let Some(c) = slide.compare {
+            self.start_compare(ctx, CompareKind::Lecture(c));
+        }
+        // A slide about the ray tree opens the inspector on its pixel; the others leave
+        // clicks on the image to the view.
+        let on = match slide.instrument {
+            Some(Instrument::RayTree { x, y }) => Some((x, y)),
+            Some(Instrument::FresnelPlot { .. }) | None => None,
+        };
+        self.instruments.inspect_mode = on.is_some();
+        if let Some((fx, fy)) = on {
+            let size = super::render_size(&self.scene, self.settings.resolution);
+            let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n - 1);
+            self.inspect((at(fx, size.0), at(fy, size.1)), size);
+        }
+    }
 }
 
 /// The caption, on a dark plate along the bottom of `area`.
@@ -146,50 +127,4 @@ pub(crate) fn caption_ui(ui: &egui::Ui, area: egui::Rect, caption: &str) {
     ui.painter()
         .rect_filled(back, 4.0, Color32::from_black_alpha(180));
     ui.painter().galley(pos, galley, Color32::WHITE);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_slide_loads_its_scene_and_applies_its_parameters() {
-        for slide in LECTURE {
-            let scene = Scene::load(&slide.reference())
-                .unwrap_or_else(|e| panic!("slide `{}`: {e}", slide.title));
-            let p = slide
-                .apply(&scene.params)
-                .unwrap_or_else(|e| panic!("slide `{}`: {e}", slide.title));
-            for (name, value) in slide.params {
-                assert_eq!(p.value_text(name).as_deref(), Some(*value), "{name}");
-            }
-            if let Some(kind) = &slide.compare {
-                let a = kind.side_a(&p);
-                assert_ne!(
-                    a,
-                    kind.side_b(&a),
-                    "slide `{}`: its sides differ",
-                    slide.title
-                );
-            }
-        }
-    }
-
-    #[test]
-    fn a_misspelt_parameter_is_an_error_not_ignored() {
-        let slide = Slide {
-            title: "typo",
-            scene: "default",
-            params: &[("max_dpeth", "2")],
-            caption: |_| String::new(),
-            compare: None,
-            open: &[],
-            plot: None,
-            inspect: None,
-        };
-        assert!(matches!(
-            slide.apply(&Params::default()),
-            Err(ParamError::Unknown { .. })
-        ));
-    }
 }

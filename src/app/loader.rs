@@ -184,16 +184,7 @@ impl RaylabApp {
                     s.camera = scene.camera.clone();
                     slide = self.lecture.arrived(&scene);
                     if let Some(slide) = slide {
-                        match slide.apply(&scene.params) {
-                            Ok(p) => s.params = p,
-                            Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
-                        }
-                        // A slide opens its own comparison and plot, or none.
-                        self.compare = None;
-                        self.instruments.show_fresnel = slide.plot.is_some();
-                        self.instruments.fresnel_metal = slide.plot.flatten().and_then(|name| {
-                            crate::material::METALS.iter().position(|m| m.name == name)
-                        });
+                        self.arrive_at_slide(slide, &scene.params);
                     }
                 }
                 LoadPurpose::Reload => {
@@ -215,18 +206,8 @@ impl RaylabApp {
             self.view.fit();
             self.loader.watch(&scene);
             self.scene = scene;
-            if let Some(kind) = slide.and_then(|s| s.compare.clone()) {
-                self.start_compare(ctx, kind);
-            }
-            // A slide about the ray tree opens the inspector on its pixel; the others
-            // leave clicks on the image to the view.
             if let Some(slide) = slide {
-                self.instruments.inspect_mode = slide.inspect.is_some();
-                if let Some((fx, fy)) = slide.inspect {
-                    let size = super::render_size(&self.scene, self.settings.resolution);
-                    let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n - 1);
-                    self.inspect((at(fx, size.0), at(fy, size.1)), size);
-                }
+                self.show_slide(slide, ctx);
             }
         }
     }

@@ -19,7 +19,6 @@ mod persist;
 mod present;
 mod sheet;
 mod side;
-mod slides;
 mod snapshot;
 mod toasts;
 mod toolbar;
@@ -111,22 +110,6 @@ pub struct RaylabApp {
     ui_scale: f32,
     history: History,
 }
-
-/// The lecture's slides in order: each one's title, built-in scene, and the labels of
-/// its A/B sides where it compares two things.
-pub fn lecture_slides() -> impl Iterator<
-    Item = (
-        &'static str,
-        &'static str,
-        Option<(&'static str, &'static str)>,
-    ),
-> {
-    lecture::LECTURE
-        .iter()
-        .map(|s| (s.title, s.scene, s.compare.as_ref().map(|k| k.labels())))
-}
-
-pub use lecture::{SideB, SlideError, SlideSetup, slide_setup};
 
 /// Opens the previewer window and runs it until it is closed.
 pub fn run(options: AppOptions) -> eframe::Result {

@@ -3,7 +3,7 @@
 //! UI scale with a projector preset, and the help overlay listing every shortcut.
 
 use super::RaylabApp;
-use super::lecture::LECTURE;
+use crate::lecture::LECTURE;
 use egui::{Color32, Key, RichText};
 
 /// Every keyboard shortcut, as the help overlay lists it: the keys, and what they do.

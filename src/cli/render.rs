@@ -54,10 +54,10 @@ pub struct RenderArgs {
 
 pub fn render_command(args: RenderArgs) -> Result<()> {
     let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
-    let (scene, mut params, side_b, caption) = match args.slide.map(raylab::app::slide_setup) {
-        Some(slide) => {
-            let s = slide?;
-            (s.scene, s.params, s.side_b, Some(s.caption))
+    let (scene, mut params, slide) = match args.slide.map(raylab::lecture::slide_setup) {
+        Some(setup) => {
+            let s = setup?;
+            (s.scene, s.params, Some(s.slide))
         }
         None => {
             let scene_ref = match (&args.scene, &sidecar) {
@@ -70,7 +70,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
                 Some(sc) => sc.params.clone(),
                 None => scene.params.clone(),
             };
-            (scene, params, None, None)
+            (scene, params, None)
         }
     };
     let (mut width, mut height) = match &sidecar {
@@ -95,7 +95,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         params.seed = seed;
     }
     params.set_all(&args.set).context("--set")?;
-    let params_b = side_b.map(|b| b(&params));
+    let params_b = slide.and_then(|s| s.side_b(&params));
     let output = match (&args.output, args.slide) {
         (Some(o), _) => o.clone(),
         (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}")),
@@ -155,11 +155,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         seconds: Some(seconds),
         stats: Some(stats),
     });
-    match caption.filter(|_| args.caption) {
+    match slide.filter(|_| args.caption) {
         // The caption as it reads for the parameters rendered (after any --set).
-        Some(caption) => {
-            let image =
-                raylab::render::with_caption(&film.to_srgb8(params.exposure), &caption(&params));
+        Some(slide) => {
+            let image = raylab::render::with_caption(
+                &film.to_srgb8(params.exposure),
+                &slide.caption(&params),
+            );
             raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
                 .with_context(|| format!("cannot write {}", output.display()))
                 .map_err(runtime)?;

@@ -8,8 +8,8 @@ pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
 pub use table::{
-    ABBE_RANGE, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec, TABLE,
-    spec,
+    ABBE_RANGE, Choice, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec,
+    TABLE, spec,
 };
 
 /// How the ray tree branches at a dielectric.
@@ -335,17 +335,48 @@ impl Params {
     }
 }
 
-/// The table as Markdown, as README shows it: name, default, valid values, meaning.
+/// The choices of parameter `name` as values of `T`, its field's type in [`Params`], each
+/// with its entry, in the table's order (none if `name` is no choice of `T`).
+pub fn choices<T: serde::de::DeserializeOwned>(name: &str) -> Vec<(T, &'static Choice)> {
+    let Some(Kind::Choice(all)) = spec(name).map(|s| s.kind) else {
+        return Vec::new();
+    };
+    all.iter()
+        .filter_map(|c| {
+            let value = serde_json::from_value(serde_json::Value::String(c.word.into()));
+            value.ok().map(|v| (v, c))
+        })
+        .collect()
+}
+
+/// The entry of `value`, a value of the choice parameter `name`.
+pub fn choice_of<T: Serialize>(name: &str, value: &T) -> Option<&'static Choice> {
+    let word = serde_json::to_value(value).ok()?;
+    match spec(name)?.kind {
+        Kind::Choice(all) => all.iter().find(|c| word.as_str() == Some(c.word)),
+        _ => None,
+    }
+}
+
+/// The table as Markdown, as the documentation shows it: name, default, valid values,
+/// meaning (with what each choice does).
 pub fn markdown_table() -> String {
     let defaults = Params::default();
     let mut out = String::from("| name | default | values | meaning |\n|---|---|---|---|\n");
     for s in TABLE {
         let default = defaults.value_text(s.name).unwrap_or_default();
+        let mut meaning = s.doc.to_string();
+        if let Kind::Choice(choices) = s.kind {
+            let each: Vec<String> = choices
+                .iter()
+                .map(|c| format!("`{}`: {}", c.word, c.explain))
+                .collect();
+            meaning = format!("{meaning}. {}", each.join(" "));
+        }
         out += &format!(
-            "| `{}` | `{default}` | {} | {} |\n",
+            "| `{}` | `{default}` | {} | {meaning} |\n",
             s.name,
             s.range_text(),
-            s.doc
         );
     }
     out

@@ -21,8 +21,8 @@ pub enum Kind {
         /// The value must exceed `min`.
         open_min: bool,
     },
-    /// One of these words.
-    Choice(&'static [&'static str]),
+    /// One of these choices.
+    Choice(&'static [Choice]),
     /// A word meaning "off", or a real number from `min` to `max`.
     WordOrNumber {
         /// The word.
@@ -32,6 +32,25 @@ pub enum Kind {
         /// Largest value.
         max: f64,
     },
+}
+
+/// One value of a choice parameter: its word, its label in the window and what it does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Choice {
+    /// The word in `--set`, scene files and sidecars.
+    pub word: &'static str,
+    /// Its label in the window's menu.
+    pub label: &'static str,
+    /// What it does, for the menu entry's tooltip and the documentation.
+    pub explain: &'static str,
+}
+
+const fn choice(word: &'static str, label: &'static str, explain: &'static str) -> Choice {
+    Choice {
+        word,
+        label,
+        explain,
+    }
 }
 
 /// The range a slider offers, within the valid range.
@@ -119,10 +138,31 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "pattern",
         label: "Pattern",
-        kind: Kind::Choice(&["regular", "random", "jittered", "sobol"]),
+        kind: Kind::Choice(&[
+            choice(
+                "regular",
+                "regular",
+                "Sample positions on a fixed grid, each cell's centre: the same in every pixel, so regular structures alias.",
+            ),
+            choice(
+                "random",
+                "random",
+                "Independent uniform random positions: no aliasing, but clumps and gaps make noise.",
+            ),
+            choice(
+                "jittered",
+                "jittered",
+                "One random position in each cell of a grid (stratified): random, yet evenly spread.",
+            ),
+            choice(
+                "sobol",
+                "sobol",
+                "Owen-scrambled Sobol points: evenly spread at every power-of-two count, so each progressive pass stays stratified.",
+            ),
+        ]),
         unit: "",
         doc: "how samples spread over the pixel, lens, shutter, lights and lobes",
-        explain: "Regular: a fixed grid (aliases). Random: independent (clumps and gaps). Jittered: one random sample per grid cell. Sobol: evenly spread at every power-of-two count.",
+        explain: "How the samples of each pixel are spread over the pixel, and over every other dimension a sample draws: the lens, the shutter, the lights and glossy lobes.",
         slider: None,
         display_only: false,
     },
@@ -162,10 +202,31 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "fresnel",
         label: "Fresnel",
-        kind: Kind::Choice(&["exact", "schlick", "schlick_naive", "constant"]),
+        kind: Kind::Choice(&[
+            choice(
+                "exact",
+                "exact (Fs, Fp)",
+                "The Fresnel equations: R = (Fs² + Fp²)/2, Fs = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt), Fp = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt).",
+            ),
+            choice(
+                "schlick",
+                "Schlick",
+                "Schlick's approximation R ≈ R0 + (1 − R0)(1 − cos θ)^5, with θ on the less dense side, so it reaches 1 at the critical angle.",
+            ),
+            choice(
+                "schlick_naive",
+                "naive Schlick",
+                "Schlick with the incident angle always, as some textbooks write it: from inside it stays near R0 until it jumps to 1 at the critical angle.",
+            ),
+            choice(
+                "constant",
+                "constant k",
+                "The same reflectance k at every angle: no brighter rim (the lecture's 'constant' black glazed sphere).",
+            ),
+        ]),
         unit: "",
-        doc: "reflectance model of dielectrics and glazes: exact (F_s, F_p), Schlick, naive Schlick or constant k",
-        explain: "How the reflectance R of dielectrics and glazes depends on the angle.",
+        doc: "reflectance model of dielectrics and glazes",
+        explain: "How the reflectance R of dielectrics and glazes depends on the angle. Every model gives R = 1 under total internal reflection.",
         slider: None,
         display_only: false,
     },
@@ -192,20 +253,52 @@ pub const TABLE: &[Spec] = &[
     Spec {
         name: "tree",
         label: "Tree",
-        kind: Kind::Choice(&["split", "stochastic"]),
+        kind: Kind::Choice(&[
+            choice(
+                "split",
+                "Split",
+                "At a dielectric, trace both the reflected ray (weight R) and the refracted ray (weight 1 − R): the whole ray tree.",
+            ),
+            choice(
+                "stochastic",
+                "Stochastic",
+                "Follow one branch, reflected with probability R: one path per sample. Same average, more noise, far fewer rays.",
+            ),
+        ]),
         unit: "",
-        doc: "`split` traces reflected and refracted rays weighted R and 1 − R (the ray tree); `stochastic` follows one, chosen with probability R",
-        explain: "Split: trace both children of a dielectric hit, weighted R and 1 − R. Stochastic: follow one, reflected with probability R: same average, more noise, far fewer rays.",
+        doc: "how the ray tree branches at a dielectric",
+        explain: "How the ray tree branches at a dielectric (path tracing follows one path always).",
         slider: None,
         display_only: false,
     },
     Spec {
         name: "transport",
         label: "Light transport",
-        kind: Kind::Choice(&["whitted", "transmissive_shadows", "path", "photons"]),
+        kind: Kind::Choice(&[
+            choice(
+                "whitted",
+                "Whitted (the lecture)",
+                "The lecture's tracer: a shadow ray stops at the first surface, glass and water included, so they cast black shadows.",
+            ),
+            choice(
+                "transmissive_shadows",
+                "transmissive shadows",
+                "Shadow rays pass straight through glass and water, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics.",
+            ),
+            choice(
+                "path",
+                "path tracing (reference)",
+                "Path tracing with light sampling and multiple importance sampling: each sample follows one path, gathering light at every diffuse or glossy surface and finding lights through glass. Colour bleeding, sky light in the shadows, caustics from area lights and emitters; not from point lights, which a path can never hit. `max_depth` bounds the path; `min_weight` and `tree` do not apply.",
+            ),
+            choice(
+                "photons",
+                "path tracing + photons",
+                "Path tracing, plus photons shot from the point lights through glass and mirrors and gathered where they land (progressive photon mapping): the caustics a path cannot find, blurred at first, sharper with every pass.",
+            ),
+        ]),
         unit: "",
-        doc: "how light reaches a surface: `whitted`, the lecture's tracer (shadow rays stop at glass); `transmissive_shadows`, shadow rays pass straight through dielectrics, attenuated by 1 − R per interface and by absorption; `path`, path tracing with light sampling and multiple importance sampling (interreflection, caustics from area lights and emitters; `max_depth` bounds the path, `min_weight` and `tree` do not apply); `photons`, path tracing plus the caustics of point lights by progressive photon mapping",
-        explain: "Whitted: a shadow ray stops at the first surface, glass included, so glass and water cast black shadows. Transmissive shadows: the shadow ray passes straight through dielectrics, keeping 1 − R at each interface and exp(−σ d) inside: tinted shadows. A common trick, and wrong about where the light lands: real glass bends it into caustics. Path: each sample follows one path, gathering light at every diffuse or glossy surface and finding lights through glass: colour bleeding, sky light in the shadows, caustics from area lights (not from point lights, which a path can never hit). Photons: path tracing, plus photons shot from the point lights through glass and mirrors, gathered where they land: the point light's caustic, blurred at first, sharpening pass by pass.",
+        doc: "how light reaches a surface",
+        explain: "How light reaches a surface: the lecture's tracer, transmissive shadows, or path tracing (the reference), with or without photons.",
         slider: None,
         display_only: false,
     },
@@ -323,6 +416,15 @@ pub const TABLE: &[Spec] = &[
     },
 ];
 
+/// The words of `choices`, comma separated.
+fn words(choices: &[Choice]) -> String {
+    choices
+        .iter()
+        .map(|c| c.word)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The entry of parameter `name`.
 pub fn spec(name: &str) -> Option<&'static Spec> {
     TABLE.iter().find(|s| s.name == name)
@@ -352,7 +454,7 @@ impl Spec {
                 max,
             } => format!("> {min}, ≤ {max}{unit}"),
             Kind::Number { min, max, .. } => format!("{min} to {max}{unit}"),
-            Kind::Choice(words) => words.join(", "),
+            Kind::Choice(choices) => words(choices),
             Kind::WordOrNumber { word, min, max } => format!("{word}, or {min} to {max}{unit}"),
         }
     }
@@ -382,9 +484,9 @@ impl Spec {
                 }
                 _ => Err(out_of_range()),
             },
-            (Kind::Choice(words), v) => match v.as_str() {
-                Some(w) if words.contains(&w) => Ok(()),
-                _ => Err(format!("must be one of {}, got {value}", words.join(", "))),
+            (Kind::Choice(choices), v) => match v.as_str() {
+                Some(w) if choices.iter().any(|c| c.word == w) => Ok(()),
+                _ => Err(format!("must be one of {}, got {value}", words(choices))),
             },
             (Kind::WordOrNumber { word, min, max }, v) => match (v.as_str(), v.as_f64()) {
                 (Some(w), _) if w == word => Ok(()),
@@ -416,7 +518,7 @@ impl Spec {
             Kind::Count { max, min } if max == u64::MAX => format!("at least {min}"),
             Kind::Count { min, max } => format!("between {min} and {max}{unit}"),
             Kind::Number { min, max, .. } => format!("between {min} and {max}{unit}"),
-            Kind::Choice(words) => words.join(", "),
+            Kind::Choice(choices) => words(choices),
             Kind::WordOrNumber { word, min, max } => {
                 format!("{word} or between {min} and {max}{unit}")
             }

@@ -1,0 +1,296 @@
+//! The lecture, slide by slide, as data: each slide a built-in scene, the parameters set on
+//! top of the scene's, what the two sides of its A/B view differ in, the instrument it
+//! opens, the controls its caption asks the lecturer to change, and the caption itself as a
+//! function of the parameters (so it follows what the lecturer changes).
+//!
+//! The window (its Lecture menu and presentation mode) and the command line
+//! (`raylab lecture`, `raylab render --slide N`) both read [`LECTURE`]; this module knows
+//! no egui.
+
+mod compare;
+mod slides;
+
+pub use compare::Comparison;
+pub use slides::LECTURE;
+
+use crate::params::{ParamError, Params};
+use crate::scene::{Scene, SceneError};
+
+/// An instrument a slide opens beside the image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Instrument {
+    /// The Fresnel plot: the dielectric's reflectance against the angle, compared with a
+    /// measured metal's (by its name in [`crate::material::METALS`]) if one is given.
+    FresnelPlot {
+        /// The metal to compare with.
+        metal: Option<&'static str>,
+    },
+    /// The ray-tree inspector on one pixel, given as a fraction of the image's width and
+    /// height.
+    RayTree {
+        /// Across, 0 to 1.
+        x: f32,
+        /// Down, 0 to 1.
+        y: f32,
+    },
+}
+
+/// A slide's caption.
+#[derive(Clone, Copy)]
+pub enum Caption {
+    /// The same text whatever the parameters.
+    Fixed(&'static str),
+    /// Text that follows the parameters as they are now.
+    Follows(fn(&Params) -> String),
+}
+
+/// One slide of the lecture.
+#[derive(Clone, Copy)]
+pub struct Slide {
+    /// Its title, in the Lecture menu and over the slide.
+    pub title: &'static str,
+    /// Its built-in scene.
+    pub scene: &'static str,
+    /// Parameters set on top of the scene's, by name, as `--set` takes them. The slide's
+    /// `spp` is its target: enough for the status bar's noise under 2 % (tests/slides.rs),
+    /// except where the slide is about the noise of few samples.
+    pub params: &'static [(&'static str, &'static str)],
+    /// What the two sides of its A/B view differ in, if it compares two things.
+    pub compare: Option<Comparison>,
+    /// The instrument it opens, if any.
+    pub instrument: Option<Instrument>,
+    /// The parameters its caption asks the lecturer to change: the window shows their
+    /// controls.
+    pub controls: &'static [&'static str],
+    /// What to look at.
+    pub caption: Caption,
+}
+
+/// A slide of `title` on the built-in scene `scene`, the rest set by the builder methods
+/// below; every slide says something ([`Slide::says`] or [`Slide::follows`]).
+pub const fn slide(title: &'static str, scene: &'static str) -> Slide {
+    Slide {
+        title,
+        scene,
+        params: &[],
+        compare: None,
+        instrument: None,
+        controls: &[],
+        caption: Caption::Fixed(""),
+    }
+}
+
+impl Slide {
+    /// With these parameters set on top of the scene's.
+    pub const fn set(self, params: &'static [(&'static str, &'static str)]) -> Slide {
+        Slide { params, ..self }
+    }
+
+    /// Comparing two images that differ as `compare` says.
+    pub const fn compare(self, compare: Comparison) -> Slide {
+        Slide {
+            compare: Some(compare),
+            ..self
+        }
+    }
+
+    /// Opening `instrument`.
+    pub const fn open(self, instrument: Instrument) -> Slide {
+        Slide {
+            instrument: Some(instrument),
+            ..self
+        }
+    }
+
+    /// Asking the lecturer to change these parameters.
+    pub const fn asks(self, controls: &'static [&'static str]) -> Slide {
+        Slide { controls, ..self }
+    }
+
+    /// With this caption.
+    pub const fn says(self, caption: &'static str) -> Slide {
+        Slide {
+            caption: Caption::Fixed(caption),
+            ..self
+        }
+    }
+
+    /// With a caption that follows the parameters.
+    pub const fn follows(self, caption: fn(&Params) -> String) -> Slide {
+        Slide {
+            caption: Caption::Follows(caption),
+            ..self
+        }
+    }
+
+    /// The built-in scene's reference.
+    pub fn reference(&self) -> String {
+        format!("builtin:{}", self.scene)
+    }
+
+    /// Its caption for the parameters `params`.
+    pub fn caption(&self, params: &Params) -> String {
+        match self.caption {
+            Caption::Fixed(text) => text.to_string(),
+            Caption::Follows(f) => f(params),
+        }
+    }
+
+    /// The parameters the slide shows on a scene whose own are `base`: the slide's set on
+    /// top through the checked path (a name or value `--set` would refuse is an error here
+    /// too), then side A's of its comparison.
+    pub fn params_on(&self, base: &Params) -> Result<Params, ParamError> {
+        let p = self.set_on(base)?;
+        Ok(match self.compare {
+            Some(c) => c.side_a(&p),
+            None => p,
+        })
+    }
+
+    /// `base` with the slide's parameters set on top.
+    fn set_on(&self, base: &Params) -> Result<Params, ParamError> {
+        let mut p = base.clone();
+        for (name, value) in self.params {
+            p.set(name, value)?;
+        }
+        Ok(p)
+    }
+
+    /// Side B's parameters, given side A's, where the slide compares two things.
+    pub fn side_b(&self, a: &Params) -> Option<Params> {
+        self.compare.map(|c| c.side_b(a))
+    }
+}
+
+/// A slide set up without the window (`raylab render --slide N`), as the window shows it.
+pub struct SlideSetup {
+    /// The slide.
+    pub slide: &'static Slide,
+    /// Its scene.
+    pub scene: Scene,
+    /// The scene's parameters with the slide's on top (side A, where it compares).
+    pub params: Params,
+}
+
+/// A slide that cannot be set up.
+#[derive(Debug, thiserror::Error)]
+pub enum SlideError {
+    /// The number is not a slide's.
+    #[error(
+        "there is no slide {0}: the lecture's slides are 1 to {1} (`raylab lecture` lists them)"
+    )]
+    NoSuchSlide(usize, usize),
+    /// Its scene does not load.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// Its parameters are refused.
+    #[error(transparent)]
+    Param(#[from] ParamError),
+}
+
+/// Slide `number` (from 1, as the Lecture menu numbers them): its scene loaded and its
+/// parameters set.
+pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
+    let slide = number
+        .checked_sub(1)
+        .and_then(|i| LECTURE.get(i))
+        .ok_or(SlideError::NoSuchSlide(number, LECTURE.len()))?;
+    let scene = Scene::load(&slide.reference())?;
+    let params = slide.params_on(&scene.params)?;
+    Ok(SlideSetup {
+        slide,
+        scene,
+        params,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::BUILTIN_SCENES;
+
+    #[test]
+    fn every_slide_names_what_exists() {
+        for s in LECTURE {
+            let t = s.title;
+            assert!(
+                BUILTIN_SCENES.iter().any(|b| b.name == s.scene),
+                "slide `{t}`: no built-in scene `{}`",
+                s.scene
+            );
+            let scene = Scene::load(&s.reference()).unwrap();
+            let set = s
+                .set_on(&scene.params)
+                .unwrap_or_else(|e| panic!("slide `{t}`: {e}"));
+            for (name, value) in s.params {
+                assert_eq!(set.value_text(name).as_deref(), Some(*value), "{t}: {name}");
+            }
+            let p = s.params_on(&scene.params).unwrap();
+            for name in s.controls {
+                assert!(
+                    crate::params::spec(name).is_some(),
+                    "slide `{t}` asks for `{name}`, which is no parameter"
+                );
+            }
+            if let Some(Instrument::FresnelPlot { metal: Some(m) }) = s.instrument {
+                assert!(
+                    crate::material::metal(m).is_some(),
+                    "slide `{t}`: metal {m}"
+                );
+            }
+            if let Some(Instrument::RayTree { x, y }) = s.instrument {
+                assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y), "{t}");
+            }
+            if let Some(b) = s.side_b(&p) {
+                assert_ne!(p, b, "slide `{t}`: its sides differ");
+            }
+            assert!(!s.caption(&p).is_empty(), "slide `{t}`: a caption");
+        }
+        let mut titles: Vec<_> = LECTURE.iter().map(|s| s.title).collect();
+        titles.sort();
+        titles.dedup();
+        assert_eq!(titles.len(), LECTURE.len(), "titles are unique");
+    }
+
+    #[test]
+    fn a_misspelt_parameter_is_an_error_not_ignored() {
+        const TYPO: Slide = slide("typo", "default").set(&[("max_dpeth", "2")]);
+        assert!(matches!(
+            TYPO.params_on(&Params::default()),
+            Err(ParamError::Unknown { .. })
+        ));
+    }
+
+    #[test]
+    fn the_pruning_caption_follows_max_depth() {
+        let slide = LECTURE
+            .iter()
+            .find(|s| s.title == "Pruning the ray tree")
+            .unwrap();
+        let at = |max_depth| {
+            slide.caption(&Params {
+                max_depth,
+                ..Params::default()
+            })
+        };
+        assert!(at(2).contains("Cut at depth 2"), "{}", at(2));
+        // Raised past the cut, it no longer says the tree is cut.
+        assert!(
+            at(8).contains("At depth 8") && !at(8).contains("Cut at"),
+            "{}",
+            at(8)
+        );
+    }
+
+    #[test]
+    fn no_slide_number_beyond_the_lecture() {
+        let n = LECTURE.len();
+        for bad in [0, n + 1] {
+            assert!(matches!(
+                slide_setup(bad),
+                Err(SlideError::NoSuchSlide(b, m)) if b == bad && m == n
+            ));
+        }
+        assert_eq!(slide_setup(n).unwrap().slide.title, LECTURE[n - 1].title);
+    }
+}

@@ -1,0 +1,139 @@
+//! The lecture's slides, in its order: each a few lines (see [`slide`]).
+
+use super::{Comparison, Instrument, Slide, slide};
+
+/// The lecture, slide by slide.
+pub const LECTURE: &[Slide] = &[
+    slide("Metals vs dielectrics", "metals")
+        .set(&[("spp", "32")])
+        .says(
+            "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. Instruments > Fresnel plot > Compare with a metal.",
+        ),
+    slide("Snell's law", "glass")
+        .set(&[("spp", "128")])
+        .asks(&["ior"])
+        .says(
+            "n1 sin θi = n2 sin θt: the refracted rays bend towards the normal going in and away coming out, so the sphere is a lens and shows the floor upside down. Drag the IOR.",
+        ),
+    slide("The ray tree", "ray-tree")
+        .set(&[("spp", "32")])
+        .open(Instrument::RayTree { x: 0.42, y: 0.5 })
+        .says(
+            "Every hit on glass spawns two rays, reflected (weight R) and refracted (weight 1 − R), and each of those spawns two more: a tree per pixel. The inspector (right) lists the tree of the pixel marked through the front sphere, and draws it over the image: the reflections off its front and back, the rays through it to the amber sphere and beyond. Click another pixel to see its tree.",
+        ),
+    slide("Total internal reflection", "tir")
+        .set(&[("spp", "32")])
+        .asks(&["ior"])
+        .says(
+            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.",
+        ),
+    slide("Pruning the ray tree", "ray-tree")
+        .set(&[("max_depth", "2"), ("spp", "64")])
+        .asks(&["max_depth", "min_weight"])
+        .follows(|p| {
+            let d = p.max_depth;
+            if d <= 3 {
+                format!(
+                    "Every hit on glass spawns a reflected and a refracted ray. Cut at depth {d}: through the front glass the spheres behind turn dark where the tree stops. Raise Max depth, or prune by Min weight instead."
+                )
+            } else {
+                format!(
+                    "At depth {d} the tree reaches through the glass: the spheres behind the front one show in it. Lower Max depth to 2 and they go dark; raise Min weight (now {}) and the faint internal reflections go first.",
+                    p.min_weight
+                )
+            }
+        }),
+    slide("Reflectance against angle: metal and glass", "metals")
+        .set(&[("spp", "32")])
+        .open(Instrument::FresnelPlot { metal: Some("gold") })
+        .says(
+            "The Fresnel plot: gold (top, per colour channel) reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass (below) 4% head-on, rising to 100% only at grazing. Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.",
+        ),
+    slide("Fresnel reflection on the black glazed sphere", "glazed")
+        .set(&[("spp", "32"), ("constant_reflectance", "0.1")])
+        .compare(Comparison::ConstantFresnel)
+        .says(
+            "Left of the divider (A): constant reflectance, 10% at every angle. Right (B): Fresnel, 4% head-on rising to 100% at grazing angles: the bright rim that makes it look glazed. Drag the divider across a sphere to see it change.",
+        ),
+    slide("Fresnel's formulas and Schlick's approximation", "glazed")
+        .compare(Comparison::SchlickExact)
+        .open(Instrument::FresnelPlot { metal: None })
+        .says(
+            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: the exact (Fs² + Fp²)/2. The plot's Schlick − exact curve shows the error for n = 1.5: under 0.01 up to 47°, at most 0.036 (at 85°), on the rims, where both are bright: the images barely differ.",
+        ),
+    slide("The basic ray tracer", "default")
+        .set(&[("spp", "1"), ("pattern", "regular")])
+        .follows(|p| {
+            format!(
+                "One ray through each pixel's centre ({} sample{} per pixel), a shadow ray to the point light: hard shadows, jagged edges. Everything after this slide adds rays: more per pixel, per light, per reflection.",
+                p.spp,
+                if p.spp == 1 { "" } else { "s" }
+            )
+        }),
+    slide("Antialiasing: 1 against 4 samples", "antialiasing")
+        .compare(Comparison::Supersampling)
+        .says(
+            "Left: one sample at each pixel's centre: the far checks turn to moiré and the thin rods break into stair steps (aliasing). Right: 4 jittered samples per pixel, averaged (a box filter): smooth edges, and grey where the checks are finer than a pixel.",
+        ),
+    slide("Regular, random and jittered samples", "antialiasing")
+        .set(&[("spp", "4")])
+        .compare(Comparison::RandomJittered)
+        .asks(&["pattern"])
+        .follows(|p| {
+            format!(
+                "{} samples per pixel. Left: random, independent in each pixel: clumps and gaps, noisier edges. Right: jittered, one in each cell of a 2 × 2 grid: the same cost, less noise. Regular (each cell's centre) would alias again: the Pattern menu has it.",
+                p.spp
+            )
+        }),
+    slide("Blurring to improve images", "soft-shadows")
+        .compare(Comparison::Blurring)
+        .says(
+            "Left (A): one ray through each pixel's centre, one shadow ray to a point light: jagged edges, hard shadows. Right (B): 256 rays per pixel, each through its own point of the pixel and to its own point of the area light, averaged: edges blur into smooth lines, shadows into penumbrae. Distribution ray tracing blurs on purpose, averaging rays spread over the pixel, the light, the lens and the shutter.",
+        ),
+    slide("Soft shadows", "soft-shadows")
+        .set(&[("spp", "256")])
+        .asks(&["light_size"])
+        .says(
+            "Each sample's shadow ray goes to a different point of the area light: the penumbra. Drag Light size; at 0 the light is a point and shadows are hard.",
+        ),
+    slide("Glossy reflection", "glossy")
+        .set(&[("spp", "512")])
+        .says(
+            "Reflected rays jittered over a Phong lobe cos^n around the mirror direction: n = 10 to 10,000 from left to right.",
+        ),
+    slide("Depth of field", "depth-of-field")
+        .set(&[("spp", "256")])
+        .asks(&["focus_distance"])
+        .says(
+            "Eye rays from random points on the lens meet on the plane of focus: the blue sphere is sharp, the others blur by their circle of confusion. Try Click to focus.",
+        ),
+    // A fifth of the frame: the spheres smear over a fifth of their travel and stay
+    // solid enough to see (over the whole frame they were faint ghosts).
+    slide("Motion blur", "motion-blur")
+        .set(&[("shutter", "0.2")])
+        .asks(&["shutter"])
+        .follows(|p| {
+            format!(
+                "Each sample has a time in the shutter interval, open for {:.2} of the frame: the moving spheres smear over their travel in that time, the still one stays sharp. Drag the Shutter interval: 0 freezes them, 1 smears them over the whole frame.",
+                p.shutter
+            )
+        }),
+    // The scene's own polariser is vertical.
+    slide("F_s and F_p: polarisation at Brewster's angle", "polarization")
+        .asks(&["polarizer"])
+        .says(
+            "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, so the reflection is s only, along the surface. A vertical polariser cuts it: the glare on the pond fades and the tiles show; a dark band crosses the sphere. Polariser > Horizontal brings it back.",
+        ),
+    slide("Dispersion", "dispersion")
+        .asks(&["abbe"])
+        .says(
+            "n depends on the wavelength: n(λ) = A + B/λ² through n_d and the Abbe number. Through the flint prism the white slit spreads into its spectrum, blue bent most; the lamps seen in the diamond fringe with colour. Drag the Abbe number (0: none).",
+        ),
+    slide("What the ray tree misses", "default")
+        .set(&[("spp", "64")])
+        .compare(Comparison::WhittedPhotons)
+        .asks(&["transport"])
+        .says(
+            "Left, the lecture's tracer: light comes only along shadow rays and mirror directions, so shadows get a flat ambient. Right, path tracing with photons (the reference): the blue sky lights the shadows, the glass focuses it into its own shadow, and the lamp's light through the glass lands in a bright caustic at its right foot. Drag the divider right: the lecture's tracer leaves that shadow black. Light transport > transmissive shadows is the common fix: tinted, but not focused.",
+        ),
+];
