@@ -79,40 +79,34 @@ impl RaylabApp {
 
     fn start_sheet(&mut self, ctx: &egui::Context) {
         let Some(form) = &mut self.sheet else { return };
-        let values: Vec<String> = form
-            .values
-            .split(',')
-            .map(|v| v.trim().to_string())
-            .filter(|v| !v.is_empty())
-            .collect();
+        let sweep = crate::render::Sweep::of(&form.param, &form.values);
         let (tx, rx) = crossbeam_channel::bounded(1);
         form.running = Some(rx);
         let scene = Arc::clone(&self.scene);
         let camera = self.settings.camera.clone();
         let params = self.settings.params.clone();
-        let name = form.param.clone();
         let path = self.options.snapshot_dir.join(format!(
-            "{}-sweep-{name}-{}.png",
+            "{}-sweep-{}-{}.png",
             scene.name,
+            sweep.name,
             timestamp(SystemTime::now())
         ));
         let ctx = ctx.clone();
         std::thread::spawn(move || {
             let (w, h) = ((scene.width / 2).max(1), (scene.height / 2).max(1));
-            let result =
-                crate::render::sweep_frames(&scene, &camera, &params, w, h, &name, &values, &())
-                    .map_err(|e| e.to_string())
-                    .and_then(|frames| {
-                        let sheet = crate::render::contact_sheet(&frames);
-                        if let Some(dir) = path.parent() {
-                            std::fs::create_dir_all(dir)
-                                .map_err(|e| format!("{}: {e}", dir.display()))?;
-                        }
-                        sheet
-                            .save(&path)
-                            .map_err(|e| format!("{}: {e}", path.display()))?;
-                        Ok(path)
-                    });
+            let result = crate::render::sweep_frames(&scene, &camera, &params, (w, h), &sweep, &())
+                .map_err(|e| e.to_string())
+                .and_then(|frames| {
+                    let sheet = crate::render::contact_sheet(&frames);
+                    if let Some(dir) = path.parent() {
+                        std::fs::create_dir_all(dir)
+                            .map_err(|e| format!("{}: {e}", dir.display()))?;
+                    }
+                    sheet
+                        .save(&path)
+                        .map_err(|e| format!("{}: {e}", path.display()))?;
+                    Ok(path)
+                });
             let _ = tx.send(result);
             ctx.request_repaint();
         });

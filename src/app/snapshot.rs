@@ -4,7 +4,7 @@
 use super::RaylabApp;
 use super::files::snapshot_path;
 use crate::params::Params;
-use crate::render::{Sidecar, sidecar_path, write_image};
+use crate::render::{Rendered, Sidecar, sidecar_path, write_image};
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
@@ -22,23 +22,21 @@ impl RaylabApp {
         // The frame's own parameters: those the engine rendered it with.
         let params = self.main.engine().params().clone();
         let exposure = self.settings.params.exposure;
-        let spp = frame.progress.spp;
         let camera = self.main.camera();
-        let sidecar = Sidecar {
-            raylab_version: crate::VERSION.to_string(),
-            scene: Sidecar::scene_reference(&self.scene.source, &json),
-            width: frame.width,
-            height: frame.height,
-            params: Params {
-                exposure,
-                ..params.clone()
+        let params = Params { exposure, ..params };
+        let sidecar = Sidecar::new(
+            path,
+            &Rendered {
+                scene: &self.scene,
+                camera,
+                params: &params,
+                width: frame.width,
+                height: frame.height,
+                samples: frame.progress.spp,
+                seconds: frame.progress.elapsed.as_secs_f64(),
+                stats: frame.progress.stats,
             },
-            samples: (spp != params.spp).then_some(spp),
-            camera: (*camera != self.scene.camera).then(|| camera.clone()),
-            image: path.file_name().map(|n| n.to_string_lossy().into_owned()),
-            seconds: Some(frame.progress.elapsed.as_secs_f64()),
-            stats: Some(frame.progress.stats),
-        };
+        );
         write_image(
             path,
             frame.width,

@@ -4,8 +4,12 @@ use crate::cli::output::{check_output, default_output};
 use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result};
-use raylab::render::{Film, Sidecar, render_pass, sidecar_path};
+use indicatif::ProgressBar;
+use raylab::lecture::Slide;
+use raylab::params::Params;
+use raylab::render::{Film, Rendered, Sidecar, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
+use raylab::tracer::Stats;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -52,87 +56,122 @@ pub struct RenderArgs {
     quiet: bool,
 }
 
-pub fn render_command(args: RenderArgs) -> Result<()> {
-    let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
-    let (scene, mut params, slide) = match args.slide.map(raylab::lecture::slide_setup) {
-        Some(setup) => {
-            let s = setup?;
-            (s.scene, s.params, Some(s.slide))
+/// What a render is of: the scene, the camera, the parameters, the size and the samples to
+/// take, from the options (a scene, a sidecar or a slide, then the overrides).
+struct Job {
+    scene: Scene,
+    camera: raylab::camera::Camera,
+    params: Params,
+    // Side B's parameters, for a slide that compares two things.
+    params_b: Option<Params>,
+    slide: Option<&'static Slide>,
+    width: u32,
+    height: u32,
+    // Samples per pixel to take (a snapshot still refining holds fewer than its target).
+    samples: u32,
+}
+
+impl Job {
+    fn from_args(args: &RenderArgs) -> Result<Job> {
+        let sidecar = args.params.as_deref().map(Sidecar::read).transpose()?;
+        let (scene, mut params, slide) = match args.slide.map(raylab::lecture::slide_setup) {
+            Some(setup) => {
+                let s = setup?;
+                (s.scene, s.params, Some(s.slide))
+            }
+            None => {
+                let scene_ref = match (&args.scene, &sidecar) {
+                    (Some(s), _) => s.clone(),
+                    (None, Some(sc)) => sc.scene.clone(),
+                    (None, None) => BUILTIN_SCENES[0].name.to_string(),
+                };
+                let scene = Scene::load(&scene_ref)?;
+                let params = match &sidecar {
+                    Some(sc) => sc.params.clone(),
+                    None => scene.params.clone(),
+                };
+                (scene, params, None)
+            }
+        };
+        let (width, height) = match (args.size, &sidecar) {
+            (Some(size), _) => size,
+            (None, Some(sc)) => (sc.width, sc.height),
+            (None, None) => (scene.width, scene.height),
+        };
+        // A snapshot from the window may have moved the camera.
+        let camera = sidecar
+            .as_ref()
+            .and_then(|sc| sc.camera.clone())
+            .unwrap_or_else(|| scene.camera.clone());
+        let mut samples = sidecar.as_ref().and_then(|sc| sc.samples);
+        if let Some(spp) = args.spp {
+            params.set("spp", &spp.to_string()).context("--spp")?;
+            samples = None;
         }
-        None => {
-            let scene_ref = match (&args.scene, &sidecar) {
-                (Some(s), _) => s.clone(),
-                (None, Some(sc)) => sc.scene.clone(),
-                (None, None) => BUILTIN_SCENES[0].name.to_string(),
-            };
-            let scene = Scene::load(&scene_ref)?;
-            let params = match &sidecar {
-                Some(sc) => sc.params.clone(),
-                None => scene.params.clone(),
-            };
-            (scene, params, None)
+        if let Some(seed) = args.seed {
+            params.seed = seed;
         }
-    };
-    let (mut width, mut height) = match &sidecar {
-        Some(sc) => (sc.width, sc.height),
-        None => (scene.width, scene.height),
-    };
-    if let Some((w, h)) = args.size {
-        (width, height) = (w, h);
-    }
-    // A snapshot from the window may have moved the camera.
-    let camera = sidecar
-        .as_ref()
-        .and_then(|sc| sc.camera.clone())
-        .unwrap_or_else(|| scene.camera.clone());
-    // A snapshot of a render still refining holds fewer samples than its target.
-    let mut samples = sidecar.as_ref().and_then(|sc| sc.samples);
-    if let Some(spp) = args.spp {
-        params.set("spp", &spp.to_string()).context("--spp")?;
-        samples = None;
-    }
-    if let Some(seed) = args.seed {
-        params.seed = seed;
-    }
-    params.set_all(&args.set).context("--set")?;
-    let params_b = slide.and_then(|s| s.side_b(&params));
-    let output = match (&args.output, args.slide) {
-        (Some(o), _) => o.clone(),
-        (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}")),
-        (None, None) => default_output(Path::new(""), &scene.name),
-    };
-    check_output(&output, args.caption)?;
-    let json = sidecar_path(&output);
-    if params_b.is_none() {
-        Sidecar::check_target(&json, args.params.as_deref())?;
+        params.set_all(&args.set).context("--set")?;
+        Ok(Job {
+            params_b: slide.and_then(|s| s.side_b(&params)),
+            samples: samples.unwrap_or(params.spp),
+            scene,
+            camera,
+            params,
+            slide,
+            width,
+            height,
+        })
     }
 
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0) as usize)
-        .build()
-        .context("cannot start the worker threads")
-        .map_err(runtime)?;
-    let bar = progress_bar(
-        args.quiet,
-        height as u64 * (1 + params_b.is_some() as u64),
-        "rendering",
-    );
-    let start = Instant::now();
-    let (film, stats) = pool
-        .install(|| {
-            let mut film = Film::new(width, height);
-            let n = samples.unwrap_or(params.spp);
+    /// Renders it on `threads` workers (all cores if `None`), a slide that compares two
+    /// things as its split image: side A left of the middle, B right.
+    fn render(&self, threads: Option<u32>, bar: &ProgressBar) -> Result<(Film, Stats)> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads.unwrap_or(0) as usize)
+            .build()
+            .context("cannot start the worker threads")
+            .map_err(runtime)?;
+        let (scene, camera, w, h) = (&self.scene, &self.camera, self.width, self.height);
+        pool.install(|| {
+            let mut film = Film::new(w, h);
             let observer = Progress(bar.clone());
-            let mut stats = render_pass(&scene, &camera, &params, &mut film, n, &observer)?;
-            if let Some(b) = &params_b {
+            let mut stats = render_pass(
+                scene,
+                camera,
+                &self.params,
+                &mut film,
+                self.samples,
+                &observer,
+            )?;
+            if let Some(b) = &self.params_b {
                 // The A/B view's split, at the window's starting divider: the middle.
-                let mut right = Film::new(width, height);
-                stats += render_pass(&scene, &camera, b, &mut right, b.spp, &observer)?;
-                film.split_with(&right, width / 2);
+                let mut right = Film::new(w, h);
+                stats += render_pass(scene, camera, b, &mut right, b.spp, &observer)?;
+                film.split_with(&right, w / 2);
             }
             Ok::<_, raylab::render::Cancelled>((film, stats))
         })
-        .map_err(runtime)?;
+        .map_err(runtime)
+    }
+}
+
+pub fn render_command(args: RenderArgs) -> Result<()> {
+    let job = Job::from_args(&args)?;
+    let output = match (&args.output, args.slide) {
+        (Some(o), _) => o.clone(),
+        (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}")),
+        (None, None) => default_output(Path::new(""), &job.scene.name),
+    };
+    check_output(&output, args.caption)?;
+    let json = sidecar_path(&output);
+    if job.params_b.is_none() {
+        Sidecar::check_target(&json, args.params.as_deref())?;
+    }
+    let rows = job.height as u64 * (1 + job.params_b.is_some() as u64);
+    let bar = progress_bar(args.quiet, rows, "rendering");
+    let start = Instant::now();
+    let (film, stats) = job.render(args.threads, &bar)?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -142,25 +181,27 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     } else {
         ""
     };
+    let params = &job.params;
     // No one set of parameters makes an A/B split: it gets no sidecar.
-    let sidecar = params_b.is_none().then(|| Sidecar {
-        raylab_version: raylab::VERSION.to_string(),
-        scene: Sidecar::scene_reference(&scene.source, &json),
-        width,
-        height,
-        params: params.clone(),
-        samples,
-        camera: (camera != scene.camera).then(|| camera.clone()),
-        image: output.file_name().map(|n| n.to_string_lossy().into_owned()),
-        seconds: Some(seconds),
-        stats: Some(stats),
+    let sidecar = job.params_b.is_none().then(|| {
+        let rendered = Rendered {
+            scene: &job.scene,
+            camera: &job.camera,
+            params,
+            width: job.width,
+            height: job.height,
+            samples: job.samples,
+            seconds,
+            stats,
+        };
+        Sidecar::new(&output, &rendered)
     });
-    match slide.filter(|_| args.caption) {
+    match job.slide.filter(|_| args.caption) {
         // The caption as it reads for the parameters rendered (after any --set).
         Some(slide) => {
             let image = raylab::render::with_caption(
                 &film.to_srgb8(params.exposure),
-                &slide.caption(&params),
+                &slide.caption(params),
             );
             raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
                 .with_context(|| format!("cannot write {}", output.display()))
@@ -181,33 +222,40 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         return Ok(());
     };
     sidecar.write(&json).map_err(runtime)?;
-
     if !args.quiet {
-        let pixels = (width as u64 * height as u64) as f64;
-        // The status bar's estimate, so a render's noise can be judged without a window.
-        let noise = film
-            .noise(params.exposure)
-            .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
-        let rays = stats.total_rays();
         eprintln!(
-            "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise} wrote {}{replaced} and {}",
-            scene.name,
-            width,
-            height,
-            samples.unwrap_or(params.spp),
-            seconds,
-            stats.samples as f64 / 1e6,
-            rays as f64 / 1e6,
-            rays as f64 / seconds.max(1e-9) / 1e6,
-            rays as f64 / pixels,
-            stats.tir_events,
-            stats.pruned_by_depth,
-            stats.pruned_by_weight,
-            stats.pruned_by_budget,
-            stats.non_finite,
+            "{} wrote {}{replaced} and {}",
+            summary(&job, &film, &stats, seconds),
             output.display(),
             json.display()
         );
     }
     Ok(())
+}
+
+/// What a render took and found, in one line: the status bar's figures, so a render's
+/// noise can be judged without a window.
+fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
+    let pixels = (job.width as u64 * job.height as u64) as f64;
+    let noise = film
+        .noise(job.params.exposure)
+        .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
+    let rays = stats.total_rays();
+    format!(
+        "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}",
+        job.scene.name,
+        job.width,
+        job.height,
+        job.samples,
+        seconds,
+        stats.samples as f64 / 1e6,
+        rays as f64 / 1e6,
+        rays as f64 / seconds.max(1e-9) / 1e6,
+        rays as f64 / pixels,
+        stats.tir_events,
+        stats.pruned_by_depth,
+        stats.pruned_by_weight,
+        stats.pruned_by_budget,
+        stats.non_finite,
+    )
 }

@@ -43,7 +43,8 @@ pub struct SweepArgs {
 }
 
 pub fn sweep_command(args: &SweepArgs) -> Result<()> {
-    let (name, values) = raylab::render::parse_sweep(&args.param).context("--param")?;
+    let sweep = raylab::render::parse_sweep(&args.param).context("--param")?;
+    let (name, values) = (&sweep.name, &sweep.values);
     let scene = Scene::load(&args.scene)?;
     let mut params = scene.params.clone();
     if let Some(spp) = args.spp {
@@ -75,10 +76,8 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
         &scene,
         &scene.camera,
         &params,
-        w,
-        h,
-        &name,
-        &values,
+        (w, h),
+        &sweep,
         &Progress(bar.clone()),
     )?;
     bar.finish_and_clear();

@@ -23,17 +23,35 @@ pub enum SheetError {
     Cancelled(#[from] Cancelled),
 }
 
-/// Parses `name=v1,v2,...` into the name and its values.
-pub fn parse_sweep(spec: &str) -> Result<(String, Vec<String>), ParamError> {
+/// A parameter and the values a sweep gives it, as `--set` takes them.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Sweep {
+    /// The parameter.
+    pub name: String,
+    /// Its values, one image each.
+    pub values: Vec<String>,
+}
+
+impl Sweep {
+    /// Parameter `name` at the comma-separated `values` (`1,4,16`; blanks dropped).
+    pub fn of(name: &str, values: &str) -> Sweep {
+        Sweep {
+            name: name.trim().to_string(),
+            values: values
+                .split(',')
+                .map(|v| v.trim().to_string())
+                .filter(|v| !v.is_empty())
+                .collect(),
+        }
+    }
+}
+
+/// Parses `name=v1,v2,...` into the parameter and its values.
+pub fn parse_sweep(spec: &str) -> Result<Sweep, ParamError> {
     let (name, values) = spec
         .split_once('=')
         .ok_or_else(|| ParamError::Syntax(spec.to_string()))?;
-    let values: Vec<String> = values
-        .split(',')
-        .map(|v| v.trim().to_string())
-        .filter(|v| !v.is_empty())
-        .collect();
-    Ok((name.trim().to_string(), values))
+    Ok(Sweep::of(name, values))
 }
 
 /// Columns of a sheet of `n` images: at most four across.
@@ -51,20 +69,18 @@ fn label_height(height: u32) -> u32 {
     (height / 10).clamp(16, 40)
 }
 
-/// Renders one `width` × `height` image of `scene` through `camera` for each value of
-/// parameter `name` (set as `--set name=value` would, on top of `base`), each with a strip
-/// under it labelled `name = value`: the frames of a sweep.
-#[allow(clippy::too_many_arguments)]
+/// Renders one image of `scene` through `camera`, `size` (width, height) pixels, for each
+/// value of the sweep's parameter (set as `--set name=value` would, on top of `base`), each
+/// with a strip under it labelled `name = value`: the frames of a sweep.
 pub fn sweep_frames(
     scene: &Scene,
     camera: &Camera,
     base: &Params,
-    width: u32,
-    height: u32,
-    name: &str,
-    values: &[String],
+    size: (u32, u32),
+    sweep: &Sweep,
     observer: &dyn PassObserver,
 ) -> Result<Vec<RgbImage>, SheetError> {
+    let ((width, height), name, values) = (size, sweep.name.as_str(), &sweep.values);
     if values.is_empty() {
         return Err(SheetError::Empty);
     }
@@ -140,7 +156,10 @@ mod tests {
     fn sweep_specs_parse() {
         assert_eq!(
             parse_sweep("spp=1, 4,16").unwrap(),
-            ("spp".into(), vec!["1".into(), "4".into(), "16".into()])
+            Sweep {
+                name: "spp".into(),
+                values: vec!["1".into(), "4".into(), "16".into()]
+            }
         );
         assert!(parse_sweep("spp").is_err());
     }
@@ -152,18 +171,8 @@ mod tests {
             spp: 1,
             ..scene.params.clone()
         };
-        let values: Vec<String> = ["1", "2", "3", "4", "5"].map(String::from).to_vec();
-        let frames = sweep_frames(
-            &scene,
-            &scene.camera,
-            &base,
-            40,
-            30,
-            "max_depth",
-            &values,
-            &(),
-        )
-        .unwrap();
+        let five = parse_sweep("max_depth=1,2,3,4,5").unwrap();
+        let frames = sweep_frames(&scene, &scene.camera, &base, (40, 30), &five, &()).unwrap();
         let sheet = contact_sheet(&frames);
         assert_eq!(sheet.width(), 4 * 40 + 5 * GAP);
         let label = label_height(30);
@@ -192,11 +201,12 @@ mod tests {
             }
         }
         // A bad value is an error before any rendering.
-        let sweep = |values: &[String]| {
-            sweep_frames(&scene, &scene.camera, &base, 8, 8, "spp", values, &())
+        let sweep = |spec: &str| {
+            let sweep = parse_sweep(spec).unwrap();
+            sweep_frames(&scene, &scene.camera, &base, (8, 8), &sweep, &())
         };
-        assert!(sweep(&["0".into()]).is_err());
-        assert!(sweep(&[]).is_err());
+        assert!(sweep("spp=0").is_err());
+        assert!(sweep("spp=").is_err());
 
         // As an animation: a GIF of the five frames that loops, each as rendered (GIF's
         // palette of 256 colours per frame keeps a flat label strip exact).

@@ -85,7 +85,43 @@ pub fn sidecar_path(image: &Path) -> PathBuf {
     PathBuf::from(name)
 }
 
+/// A finished render, as its sidecar records it.
+pub struct Rendered<'a> {
+    /// The scene.
+    pub scene: &'a crate::scene::Scene,
+    /// The camera it was seen through (the scene's, or one the user moved).
+    pub camera: &'a Camera,
+    /// Every parameter.
+    pub params: &'a Params,
+    /// Its size in pixels.
+    pub width: u32,
+    /// Its height in pixels.
+    pub height: u32,
+    /// Samples per pixel done (fewer than `params.spp` in a snapshot still refining).
+    pub samples: u32,
+    /// How long it took.
+    pub seconds: f64,
+    /// Its rays and pruning counters.
+    pub stats: Stats,
+}
+
 impl Sidecar {
+    /// The sidecar of `image`, written at `sidecar_path(image)`, describing `r`.
+    pub fn new(image: &Path, r: &Rendered) -> Sidecar {
+        Sidecar {
+            raylab_version: crate::VERSION.to_string(),
+            scene: Sidecar::scene_reference(&r.scene.source, &sidecar_path(image)),
+            width: r.width,
+            height: r.height,
+            params: r.params.clone(),
+            samples: (r.samples != r.params.spp).then_some(r.samples),
+            camera: (*r.camera != r.scene.camera).then(|| r.camera.clone()),
+            image: image.file_name().map(|n| n.to_string_lossy().into_owned()),
+            seconds: Some(r.seconds),
+            stats: Some(r.stats),
+        }
+    }
+
     /// How a sidecar at `sidecar` names the scene `source`: relative to its own folder
     /// where a relative path leads there, with `/` between folders on every system.
     pub fn scene_reference(source: &crate::scene::SceneSource, sidecar: &Path) -> String {

@@ -7,6 +7,7 @@ mod gltf;
 pub mod input;
 mod materials;
 mod obj;
+mod objects;
 mod values;
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};

@@ -379,6 +379,22 @@ impl<'a> Tracer<'a> {
         }
     }
 
+    /// The nearest light `ray` meets before `nearest` (which becomes its distance), and the
+    /// radiance it sends back along the ray. Only lights with an area can be met.
+    #[inline(always)]
+    fn light_seen(&self, ray: &Ray, nearest: &mut f32) -> Option<(&PreparedLight, Color)> {
+        let mut seen = None;
+        if self.lights_seen {
+            for light in &self.lights {
+                if let Some((t, radiance)) = light.hit(ray, *nearest) {
+                    *nearest = t;
+                    seen = Some((light, radiance));
+                }
+            }
+        }
+        seen
+    }
+
     /// `pol`: the analyzer of a camera with a polariser, through every interface above.
     fn trace_in<R: Recorder, P: Polarization>(
         &self,
@@ -396,16 +412,7 @@ impl<'a> Tracer<'a> {
         let hit = self.scene.intersect(ray, f32::INFINITY);
         // Area lights are seen where nothing is in front of them.
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
-        let mut emitted = None;
-        if self.lights_seen {
-            for light in &self.lights {
-                if let Some((t, radiance)) = light.hit(ray, nearest) {
-                    nearest = t;
-                    emitted = Some(radiance);
-                }
-            }
-        }
-        let (radiance, end) = if let Some(radiance) = emitted {
+        let (radiance, end) = if let Some((_, radiance)) = self.light_seen(ray, &mut nearest) {
             (pol.seen(along(nearest, radiance)), End::LightHit)
         } else if let Some(hit) = &hit {
             let tr = sigma.map(|s| transmittance(s, hit.surface.t));

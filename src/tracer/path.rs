@@ -22,7 +22,7 @@
 use super::media::transmittance;
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
-use super::{End, Media, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::{End, Media, RayKind, Recorder, Stats, Tracer, TreeNode, Walk};
 use crate::material::{Interaction, Part, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
@@ -109,6 +109,49 @@ impl<P: Polarization> PathState<P> {
             stokes_weights: self.pol.as_ref().and_then(P::weights),
             wavelength: self.wavelength,
         }
+    }
+
+    /// After [`ROULETTE_AFTER`] bounces, whether the path goes on: with the chance of its
+    /// throughput's largest channel (at most 1), the survivor divided by that chance.
+    fn survives_roulette(&mut self, depth: u32, rng: &mut SampleStream) -> bool {
+        if depth < ROULETTE_AFTER {
+            return true;
+        }
+        let q = self.throughput.max_element().min(1.0);
+        if q <= 0.0 || rng.next_1d() >= q {
+            return false;
+        }
+        self.throughput /= q;
+        true
+    }
+
+    /// The path leaving `hit` (node `id`), seen as `at`, on `side` along `dir`: its next ray.
+    fn set_out(
+        &mut self,
+        at: &Interaction,
+        hit: &Hit,
+        side: Side,
+        dir: Vec3,
+        id: usize,
+        stats: &mut Stats,
+    ) {
+        let n_side = cross(&mut self.media, at, hit, side);
+        self.kind = match side {
+            Side::Reflect => {
+                stats.reflection_rays += 1;
+                RayKind::Reflect
+            }
+            Side::Transmit => {
+                stats.refraction_rays += 1;
+                RayKind::Refract
+            }
+        };
+        self.parent = Some(id);
+        self.ray = Ray {
+            origin: offset_ray_origin(hit.surface.p, n_side),
+            dir,
+            time: self.ray.time,
+        };
     }
 
     /// Unpolarised radiance `c` arriving along the path, as the camera sees it.
@@ -209,13 +252,7 @@ impl Tracer<'_> {
         let sigma = self.absorption_in(&st.media);
         let hit = self.scene.intersect(&ray, f32::INFINITY);
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
-        let mut light_hit = None;
-        for light in &self.lights {
-            if let Some((t, radiance)) = light.hit(&ray, nearest) {
-                nearest = t;
-                light_hit = Some((light, radiance));
-            }
-        }
+        let light_hit = self.light_seen(&ray, &mut nearest);
         let end_point = if nearest.is_finite() {
             ray.at(nearest)
         } else {
@@ -326,30 +363,10 @@ impl Tracer<'_> {
             }
         };
         st.throughput *= weight / p_choice;
-        if depth >= ROULETTE_AFTER {
-            let q = st.throughput.max_element().min(1.0);
-            if q <= 0.0 || w.rng.next_1d() >= q {
-                return Next::End(End::Roulette);
-            }
-            st.throughput /= q;
+        if !st.survives_roulette(depth, w.rng) {
+            return Next::End(End::Roulette);
         }
-        let n_side = cross(&mut st.media, &at, &hit, side);
-        st.kind = match side {
-            Side::Reflect => {
-                w.stats.reflection_rays += 1;
-                RayKind::Reflect
-            }
-            Side::Transmit => {
-                w.stats.refraction_rays += 1;
-                RayKind::Refract
-            }
-        };
-        st.parent = Some(id);
-        st.ray = Ray {
-            origin: offset_ray_origin(p, n_side),
-            dir,
-            time: ray.time,
-        };
+        st.set_out(&at, &hit, side, dir, id, w.stats);
         Next::On
     }
 

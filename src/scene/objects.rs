@@ -1,0 +1,323 @@
+//! A scene file's objects: spheres, planes, quads, boxes and meshes (OBJ or glTF), each
+//! with its material, built and checked where they are written.
+
+use super::file::{Assets, Source};
+use super::gltf::load_gltf;
+use super::materials::{MaterialDef, MaterialTable, default_material, material};
+use super::obj::{ObjPart, load_obj};
+use super::values::{Dir, Length, V3};
+use super::{Material, Object, SceneError};
+use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
+use crate::math::Vec3;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::path::Path;
+use toml::Spanned;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SphereDef {
+    name: Option<String>,
+    center: V3,
+    radius: Length,
+    velocity: Option<V3>,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct PlaneDef {
+    name: Option<String>,
+    point: V3,
+    normal: Dir,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct QuadDef {
+    name: Option<String>,
+    corner: V3,
+    edge_u: V3,
+    edge_v: V3,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct BoxDef {
+    name: Option<String>,
+    min: V3,
+    max: V3,
+    rotate: Option<V3>,
+    velocity: Option<V3>,
+    material: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MeshDef {
+    name: Option<String>,
+    file: Spanned<String>,
+    material: Option<Spanned<String>>,
+    scale: Option<Length>,
+    rotate: Option<V3>,
+    translate: Option<V3>,
+    velocity: Option<V3>,
+    #[serde(default = "yes")]
+    smooth: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// The refusal of geometry that reaches beyond what the renderer handles.
+fn beyond_limits(what: &str) -> String {
+    format!(
+        "{what} reaches beyond ±{:e} scene units, the largest coordinate raylab handles",
+        crate::geometry::MAX_COORDINATE
+    )
+}
+
+/// The material objects get when they name none: a mid-grey diffuse.
+const DEFAULT_MATERIAL: &str = "default";
+
+/// The rotation of `rotate = [x, y, z]` degrees: about x, then y, then z.
+fn rotation(rotate: Option<V3>) -> glam::Quat {
+    rotate.map_or(glam::Quat::IDENTITY, |r| {
+        let r = r.0 * (std::f32::consts::PI / 180.0);
+        glam::Quat::from_euler(glam::EulerRot::ZYX, r.z, r.y, r.x)
+    })
+}
+
+/// The objects of a file as they are built: their materials, and where each is written
+/// (for the check of its extent once all are in).
+pub(super) struct Objects<'s> {
+    src: &'s Source<'s>,
+    materials: MaterialTable,
+    objects: Vec<Object>,
+    spans: Vec<Range<usize>>,
+}
+
+/// A file's materials (by name) and objects, built.
+pub(super) struct Built {
+    pub(super) materials: Vec<(String, Material)>,
+    pub(super) objects: Vec<Object>,
+}
+
+/// `name`, or the kind and number of the `n`-th (from 0) object of its kind.
+fn name_or(name: Option<String>, kind: &str, n: usize) -> String {
+    name.unwrap_or_else(|| format!("{kind} {}", n + 1))
+}
+
+impl<'s> Objects<'s> {
+    /// No objects yet, the file's materials defined.
+    pub(super) fn new(src: &'s Source<'s>, defs: BTreeMap<String, MaterialDef>) -> Objects<'s> {
+        let mut materials = MaterialTable::default();
+        for (name, def) in defs {
+            materials.add(name, material(def));
+        }
+        Objects {
+            src,
+            materials,
+            objects: Vec::new(),
+            spans: Vec::new(),
+        }
+    }
+
+    /// The material an object names (the default one, if none).
+    fn resolve(&mut self, name: &Option<Spanned<String>>) -> Result<u32, SceneError> {
+        match name {
+            None => Ok(self
+                .materials
+                .add(DEFAULT_MATERIAL.to_string(), default_material())),
+            Some(s) => self.materials.get(s.get_ref()).ok_or_else(|| {
+                self.src.error(
+                    s.span(),
+                    format!(
+                        "unknown material `{}` (defined: {})",
+                        s.get_ref(),
+                        self.materials.names()
+                    ),
+                )
+            }),
+        }
+    }
+
+    /// Adds an object written at `span`.
+    fn push(&mut self, span: Range<usize>, name: String, shape: Shape, material: u32) {
+        self.spans.push(span);
+        self.objects.push(Object {
+            name,
+            shape,
+            material,
+        });
+    }
+
+    pub(super) fn spheres(&mut self, defs: Vec<Spanned<SphereDef>>) -> Result<(), SceneError> {
+        for (n, s) in defs.into_iter().enumerate() {
+            let span = s.span();
+            let s = s.into_inner();
+            let material = self.resolve(&s.material)?;
+            let shape = Shape::Sphere(Sphere {
+                velocity: s.velocity.map_or(Vec3::ZERO, |v| v.0),
+                ..Sphere::new(s.center.0, s.radius.0)
+            });
+            self.push(span, name_or(s.name, "sphere", n), shape, material);
+        }
+        Ok(())
+    }
+
+    pub(super) fn planes(&mut self, defs: Vec<Spanned<PlaneDef>>) -> Result<(), SceneError> {
+        for (n, p) in defs.into_iter().enumerate() {
+            let span = p.span();
+            let p = p.into_inner();
+            let material = self.resolve(&p.material)?;
+            let shape = Shape::Plane(Plane::new(p.point.0, p.normal.0));
+            self.push(span, name_or(p.name, "plane", n), shape, material);
+        }
+        Ok(())
+    }
+
+    pub(super) fn quads(&mut self, defs: Vec<Spanned<QuadDef>>) -> Result<(), SceneError> {
+        for (n, q) in defs.into_iter().enumerate() {
+            let span = q.span();
+            let q = q.into_inner();
+            let area = q.edge_u.0.cross(q.edge_v.0).length();
+            if !(area > 0.0 && area.is_finite()) {
+                return Err(self.src.error(
+                    span,
+                    "quad edges `edge_u` and `edge_v` must not be parallel or zero",
+                ));
+            }
+            let material = self.resolve(&q.material)?;
+            let shape = Shape::Quad(Quad::new(q.corner.0, q.edge_u.0, q.edge_v.0));
+            self.push(span, name_or(q.name, "quad", n), shape, material);
+        }
+        Ok(())
+    }
+
+    pub(super) fn boxes(&mut self, defs: Vec<Spanned<BoxDef>>) -> Result<(), SceneError> {
+        for (n, b) in defs.into_iter().enumerate() {
+            let span = b.span();
+            let b = b.into_inner();
+            let (lo, hi) = (b.min.0, b.max.0);
+            if !lo.cmplt(hi).all() {
+                return Err(self
+                    .src
+                    .error(span, "box `min` must be below `max` on every axis"));
+            }
+            let center = 0.5 * (lo + hi);
+            let rotate = glam::Affine3A::from_translation(center.into())
+                * glam::Affine3A::from_quat(rotation(b.rotate))
+                * glam::Affine3A::from_translation((-center).into());
+            let mut mesh = Mesh::cuboid(lo, hi)
+                .and_then(|m| m.transformed(&rotate, false))
+                .map_err(|e| self.src.error(span.clone(), e.to_string()))?;
+            mesh.velocity = b.velocity.map_or(Vec3::ZERO, |v| v.0);
+            let material = self.resolve(&b.material)?;
+            self.push(span, name_or(b.name, "box", n), Shape::Mesh(mesh), material);
+        }
+        Ok(())
+    }
+
+    /// Meshes from model files beside the scene (`assets`): one object per part of a
+    /// model, each with its own material unless the scene names one.
+    pub(super) fn meshes(
+        &mut self,
+        defs: Vec<MeshDef>,
+        assets: &dyn Assets,
+    ) -> Result<(), SceneError> {
+        for (n, m) in defs.into_iter().enumerate() {
+            let span = m.file.span();
+            let parts = self.model(&m, assets)?;
+            let transform = glam::Affine3A::from_scale_rotation_translation(
+                glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
+                rotation(m.rotate),
+                m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
+            );
+            let base = name_or(m.name, "mesh", n);
+            let single = parts.len() == 1;
+            let rel = m.file.get_ref();
+            for part in parts {
+                let material = match (&m.material, part.material) {
+                    (Some(_), _) | (None, None) => self.resolve(&m.material)?,
+                    (None, Some((mtl_name, mat))) => {
+                        self.materials.add(format!("{rel}:{mtl_name}"), mat)
+                    }
+                };
+                let mut mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
+                    self.src
+                        .error(span.clone(), format!("after its transform: {e}"))
+                })?;
+                mesh.velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
+                let mesh = Shape::Mesh(mesh);
+                if !mesh.within_limits() {
+                    return Err(self.src.error(span, beyond_limits("the mesh")));
+                }
+                let name = if single {
+                    base.clone()
+                } else {
+                    format!("{base}/{}", part.name)
+                };
+                self.push(span.clone(), name, mesh, material);
+            }
+        }
+        Ok(())
+    }
+
+    /// The parts of the model file a mesh names: OBJ, or glTF by its extension.
+    fn model(&self, m: &MeshDef, assets: &dyn Assets) -> Result<Vec<ObjPart>, SceneError> {
+        let rel = m.file.get_ref().as_str();
+        let gltf = match super::input::extension(Path::new(rel)).as_deref() {
+            Some("gltf" | "glb") => true,
+            // A file without an extension is read as OBJ, as it always was.
+            None | Some("obj") => false,
+            Some(other) => {
+                return Err(self.src.error(
+                    m.file.span(),
+                    format!(
+                        "unsupported model format `.{other}`: a mesh is an OBJ (.obj) or glTF 2.0 (.gltf, .glb) file"
+                    ),
+                ));
+            }
+        };
+        let kind = if gltf { "glTF" } else { "OBJ" };
+        let bytes = assets.read(rel).map_err(|e| {
+            self.src.error(
+                m.file.span(),
+                format!("cannot read {kind} file `{}`: {e}", assets.label(rel)),
+            )
+        })?;
+        let label = assets.label(rel);
+        let dir = Path::new(rel).parent().unwrap_or(Path::new(""));
+        let beside = |name: &str| assets.read(&dir.join(name).to_string_lossy());
+        if gltf {
+            load_gltf(&bytes, &label, &beside)
+        } else {
+            load_obj(&bytes, &label, &|name| beside(name).ok())
+        }
+    }
+
+    /// The materials and the objects, once every object is checked to lie within the
+    /// coordinates the renderer handles (points and lengths were checked as they were
+    /// read; what they make may still reach out).
+    pub(super) fn finish(self) -> Result<Built, SceneError> {
+        if let Some((o, span)) = self
+            .objects
+            .iter()
+            .zip(&self.spans)
+            .find(|(o, _)| !o.shape.within_limits())
+        {
+            return Err(self
+                .src
+                .error(span.clone(), beyond_limits(&format!("object `{}`", o.name))));
+        }
+        Ok(Built {
+            materials: self.materials.list,
+            objects: self.objects,
+        })
+    }
+}
