@@ -7,7 +7,7 @@ use egui_kittest::kittest::{NodeT, Queryable};
 use raylab::app::{AppOptions, RaylabApp};
 use raylab::lecture::LECTURE;
 use raylab::optics::FresnelMode;
-use raylab::render::{Sidecar, sidecar_path};
+use raylab::render::{Sidecar, sidecar_path, to_srgba8};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -532,6 +532,30 @@ fn the_cost_heat_map_shows_rays_per_sample() {
         max > 4.0,
         "glass spheres make deep trees: {max} rays per sample"
     );
+    // The image shown is the heat map: not the render, and brighter where rays cost more
+    // (black through purple, red and orange to pale yellow).
+    let exposure = h.state().params().exposure;
+    let shown = h.state().shown_pixels().to_vec();
+    assert_eq!(shown.len(), 4 * frame.cost.len());
+    assert_ne!(shown, to_srgba8(&frame.pixels, exposure));
+    let mut by_cost: Vec<(f32, u32)> = frame
+        .cost
+        .iter()
+        .zip(shown.chunks(4))
+        .map(|(&c, p)| (c, p[..3].iter().map(|&v| v as u32).sum()))
+        .collect();
+    by_cost.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for w in by_cost.windows(2) {
+        // Each channel is rounded on its own: the sum may step back by a unit or two.
+        assert!(
+            w[1].1 + 2 >= w[0].1,
+            "cost {} then {}: {w:?}",
+            w[0].0,
+            w[1].0
+        );
+    }
+    let (cheapest, dearest) = (by_cost[0], by_cost[by_cost.len() - 1]);
+    assert!(dearest.1 > cheapest.1 + 200, "{cheapest:?} {dearest:?}");
     assert!(
         h.query_all_by_label_contains("rays/sample")
             .next()
@@ -563,6 +587,16 @@ fn the_cost_heat_map_shows_rays_per_sample() {
         "a shallower tree costs less: {max} against {max_before}"
     );
     assert_eq!(scale(&h), "cost 0–32 rays/sample");
+    // Off again, the render is shown.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Cost heat map").click();
+    h.run_steps(3);
+    let frame = h.state().latest_frame().unwrap();
+    assert_eq!(
+        h.state().shown_pixels(),
+        to_srgba8(&frame.pixels, h.state().params().exposure)
+    );
 }
 
 /// Opens the toolbar menu `menu` and clicks its entry `item`, once the menu shows it (a

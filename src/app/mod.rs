@@ -249,6 +249,12 @@ impl RaylabApp {
         self.main.frame()
     }
 
+    /// The main view's image as it is shown: sRGB RGBA rows of the newest frame's grid
+    /// (the cost heat map's colours while it is on).
+    pub fn shown_pixels(&self) -> &[u8] {
+        self.main.pixels()
+    }
+
     /// The messages shown at the bottom right.
     pub fn toasts(&self) -> Vec<String> {
         self.toasts.texts()

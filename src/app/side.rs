@@ -33,6 +33,8 @@ pub(crate) struct Side {
     // whether pixels are sharp squares; `None` after a new frame arrived.
     name: &'static str,
     shown: Option<Shown>,
+    // The texture's pixels (sRGB RGBA, the frame's grid), as last uploaded.
+    pixels: Vec<u8>,
     // The newest frame's fewest and most rays per sample, found once when it arrived.
     cost_range: Option<(f32, f32)>,
     paused: bool,
@@ -65,6 +67,7 @@ impl Side {
             texture: None,
             name,
             shown: None,
+            pixels: Vec::new(),
             cost_range: None,
             paused: false,
         })
@@ -147,6 +150,12 @@ impl Side {
             None => self.texture = Some(ctx.load_texture(self.name, image, options)),
         }
         self.shown = Some((exposure, cost, sharp));
+        self.pixels = rgba;
+    }
+
+    /// The texture's pixels as last uploaded: sRGB RGBA rows of the newest frame's grid.
+    pub(crate) fn pixels(&self) -> &[u8] {
+        &self.pixels
     }
 
     /// Pauses a running engine or resumes a paused one.

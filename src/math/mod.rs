@@ -130,11 +130,6 @@ pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
     )
 }
 
-/// The largest component: the weight of a colour for pruning by attenuation.
-pub fn max_component(c: Color) -> f32 {
-    c.max_element()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

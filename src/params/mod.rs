@@ -441,37 +441,18 @@ mod tests {
 
     #[test]
     fn the_table_names_every_field_in_order() {
-        let fields: Vec<String> = Params::default().to_map().keys().cloned().collect();
-        let mut sorted = Params::names();
-        sorted.sort();
+        // Serialised, the fields come in their declaration order.
+        let text = serde_json::to_string(&Params::default()).unwrap();
+        let declared: Vec<&str> = text
+            .trim_matches(|c| c == '{' || c == '}')
+            .split(',')
+            .filter_map(|kv| kv.split_once(':'))
+            .map(|(k, _)| k.trim_matches('"'))
+            .collect();
         assert_eq!(
-            fields, sorted,
-            "the table and the struct name the same parameters"
+            declared,
+            Params::names(),
+            "the table lists Params's fields, in their order"
         );
-        let names = Params::names();
-        for n in [
-            "spp",
-            "pattern",
-            "light_size",
-            "phong_exponent",
-            "aperture",
-            "focus_distance",
-            "shutter_open",
-            "shutter",
-            "seed",
-            "ior",
-            "abbe",
-            "fresnel",
-            "constant_reflectance",
-            "absorption_scale",
-            "tree",
-            "transport",
-            "max_depth",
-            "min_weight",
-            "polarizer",
-            "exposure",
-        ] {
-            assert!(names.iter().any(|m| m == n), "{n} missing");
-        }
     }
 }

@@ -16,7 +16,8 @@ pub const BAND_ROWS: u32 = 4;
 /// Watches a pass: asked before every pixel whether to go on, told after each band of rows
 /// is done.
 pub trait PassObserver: Sync {
-    /// False stops the pass (bands already started finish).
+    /// False stops the pass at the next pixel, in every band (none finishes its rows): the
+    /// film then holds a partial pass, and the pass returns [`Cancelled`].
     fn keep_going(&self) -> bool {
         true
     }

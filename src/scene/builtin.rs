@@ -139,4 +139,33 @@ mod tests {
             assert!(!scene.shapes.is_empty());
         }
     }
+
+    #[test]
+    fn every_scene_file_is_built_in_and_every_built_in_scene_is_its_file() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut files: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned()))
+            .collect();
+        files.sort();
+        let mut built_in: Vec<String> = BUILTIN_SCENES.iter().map(|b| b.name.into()).collect();
+        built_in.sort();
+        assert_eq!(files, built_in, "scenes/*.toml and the built-in scenes");
+        for b in BUILTIN_SCENES {
+            let text = std::fs::read_to_string(dir.join(format!("{}.toml", b.name))).unwrap();
+            assert_eq!(text, b.text, "builtin:{} is scenes/{0}.toml", b.name);
+        }
+        // And every model file beside them is embedded for them.
+        let models: Vec<String> = std::fs::read_dir(dir.join("models"))
+            .unwrap()
+            .flatten()
+            .map(|e| format!("models/{}", e.file_name().to_string_lossy()))
+            .collect();
+        for m in &models {
+            assert!(ASSETS.iter().any(|(p, _)| p == m), "{m} is not embedded");
+        }
+    }
 }
