@@ -59,7 +59,7 @@ fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
     version,
     about = "An interactive lab for dielectrics and distribution ray tracing",
     after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
-                  Scenes are TOML files (see scenes/README.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\
+                  Scenes are TOML files (see docs/scenes.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\
                   RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).",
     args_conflicts_with_subcommands = true
 )]
@@ -82,7 +82,7 @@ enum Command {
     /// Print the parameter table: every name `--set` takes, its default, its valid values
     /// and what it does.
     Params {
-        /// As a Markdown table (README's).
+        /// As a Markdown table (docs/parameters.md's).
         #[arg(long)]
         markdown: bool,
     },
@@ -98,7 +98,11 @@ enum Command {
     Bench(BenchArgs),
     /// List the lecture's slides: number, title, scene, and the two sides of those that
     /// compare (render one with `raylab render --slide N`).
-    Lecture,
+    Lecture {
+        /// Slide by slide in Markdown, with each caption (docs/lecture.md's).
+        #[arg(long)]
+        markdown: bool,
+    },
     /// Print the ray tree of one sample of one pixel, as the window's inspector shows it:
     /// every reflected, refracted and shadow ray with the lecture's quantities where it
     /// meets a surface.
@@ -146,11 +150,13 @@ fn parse_rgb(s: &str) -> Result<[f32; 3], String> {
     }
 }
 
+/// An index of refraction, in the range scene files and `--set ior` take.
 fn parse_ior(s: &str) -> Result<f32, String> {
+    let (lo, hi) = raylab::params::IOR_RANGE;
     match s.trim().parse::<f32>() {
-        Ok(n) if n.is_finite() && (1.0..=3.0).contains(&n) => Ok(n),
+        Ok(n) if n.is_finite() && (lo..=hi).contains(&n) => Ok(n),
         Ok(n) => Err(format!(
-            "{n} is out of range (an index of refraction from 1 to 3)"
+            "{n} is out of range (an index of refraction from {lo} to {hi})"
         )),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
@@ -232,7 +238,11 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
-        Some(Command::Lecture) => {
+        Some(Command::Lecture { markdown: true }) => {
+            say_raw!("{}", raylab::lecture::markdown()?);
+            Ok(())
+        }
+        Some(Command::Lecture { markdown: false }) => {
             for (i, s) in raylab::lecture::LECTURE.iter().enumerate() {
                 let (title, scene) = (s.title, s.scene);
                 match s.compare.map(|c| c.labels()) {

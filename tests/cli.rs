@@ -706,10 +706,10 @@ fn mentions(text: &str, option: &str) -> bool {
 }
 
 #[test]
-fn readme_documents_every_subcommand_and_option_the_help_lists() {
+fn the_docs_name_every_subcommand_and_option_the_help_lists() {
     let dir = tempfile::tempdir().unwrap();
-    let readme =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cli.md");
+    let readme = std::fs::read_to_string(docs).unwrap();
     let top = String::from_utf8_lossy(&raylab(&["--help"], dir.path()).stdout).into_owned();
     let commands: Vec<String> = top
         .lines()
@@ -737,5 +737,8 @@ fn readme_documents_every_subcommand_and_option_the_help_lists() {
             missing.push(format!("`raylab {option}`"));
         }
     }
-    assert!(missing.is_empty(), "README does not mention: {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "docs/cli.md does not mention: {missing:?}"
+    );
 }

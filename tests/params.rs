@@ -1,4 +1,4 @@
-//! The parameter table: README documents exactly it, every parameter changes the image (or,
+//! The parameter table: docs/parameters.md documents exactly it, every parameter changes the image (or,
 //! for display-only ones, only the display), and its ranges are what `--set` enforces.
 
 use raylab::math::Color;
@@ -7,13 +7,13 @@ use raylab::render::{render, to_srgba8};
 use raylab::scene::Scene;
 
 #[test]
-fn readme_documents_the_parameter_table_exactly() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md"))
-        .expect("README.md");
+fn the_docs_hold_the_parameter_table_exactly() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/parameters.md");
+    let docs = std::fs::read_to_string(path).expect("docs/parameters.md");
     let table = markdown_table();
     assert!(
-        readme.contains(&table),
-        "README.md's parameter table differs from the table in src/params/table.rs; \
+        docs.contains(&table),
+        "docs/parameters.md's table differs from the table in src/params/table.rs; \
          paste the output of `raylab params --markdown`:\n{table}"
     );
 }

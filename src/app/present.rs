@@ -215,12 +215,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn readme_lists_every_shortcut_as_the_help_does() {
-        let readme = include_str!("../../README.md");
+    fn the_docs_list_every_shortcut_as_the_help_does() {
+        let docs = include_str!("../../docs/window.md");
         for (keys, _) in SHORTCUTS {
             assert!(
-                readme.contains(&format!("| {keys} |")),
-                "README's key table lacks `{keys}`"
+                docs.contains(&format!("| {keys} |")),
+                "docs/window.md's key table lacks `{keys}`"
             );
         }
     }

@@ -204,6 +204,58 @@ pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
     })
 }
 
+/// The lecture as Markdown, slide by slide, as `docs/lecture.md` shows it (`raylab lecture
+/// --markdown`): each slide's number and title, its scene and parameters, what its sides
+/// compare, what it opens and asks for, and its caption as it first reads.
+pub fn markdown() -> Result<String, SlideError> {
+    let mut out = String::new();
+    for number in 1..=LECTURE.len() {
+        let setup = slide_setup(number)?;
+        let s = setup.slide;
+        out += &format!(
+            "### {number}. {}
+
+",
+            s.title
+        );
+        let mut facts = vec![format!("scene `{}`", s.scene)];
+        if !s.params.is_empty() {
+            let set: Vec<String> = s.params.iter().map(|(n, v)| format!("`{n}={v}`")).collect();
+            facts.push(set.join(" "));
+        }
+        if let Some(c) = s.compare {
+            let (a, b) = c.labels();
+            facts.push(format!("A/B view, {a} | {b}"));
+        }
+        match s.instrument {
+            Some(Instrument::FresnelPlot { metal: None }) => {
+                facts.push("opens the Fresnel plot".into())
+            }
+            Some(Instrument::FresnelPlot { metal: Some(m) }) => {
+                facts.push(format!("opens the Fresnel plot with {m}"))
+            }
+            Some(Instrument::RayTree { .. }) => {
+                facts.push("opens the ray-tree inspector on a pixel".into())
+            }
+            None => {}
+        }
+        if !s.controls.is_empty() {
+            let asks: Vec<String> = s.controls.iter().map(|n| format!("`{n}`")).collect();
+            facts.push(format!("asks for {}", asks.join(", ")));
+        }
+        out += &format!(
+            "{}.
+
+{}
+
+",
+            facts.join("; "),
+            s.caption(&setup.params)
+        );
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,6 +1,6 @@
 //! The parameter table: each parameter's name, label, kind and range, unit, slider and
 //! documentation, written once. Validation, the window's sliders and tooltips, `--set`,
-//! `raylab params` and README's table all read it.
+//! `raylab params` and docs/parameters.md's table all read it.
 
 /// What values a parameter takes.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,4 +1,4 @@
-//! The scene file format (TOML), documented in `scenes/README.md`.
+//! The scene file format (TOML), documented in `docs/scenes.md`.
 //!
 //! Numbers are checked as they are read (finite, in range), so that serde's error carries
 //! the span of the offending value and the message can name its line and column.
