@@ -1,11 +1,12 @@
 //! Materials: each kind's data and every answer about it, in the spirit of pbrt's BxDFs.
 //!
-//! At a hit the tracer asks the material [`Material::scatter`] and gets a [`Scatter`]: what
-//! the surface emits, which BRDF the lights are seen through (shadow rays), and which child
-//! rays it spawns with which weights, each [`Lobe`] saying how its direction was drawn
-//! ([`LobeKind`]) and with what density; [`Scatter::parts`] is the same split as path
-//! tracing chooses between. The other questions are the material's too: what it emits at a
-//! point ([`Material::emission`], for light samples of emitting surfaces), whether photons
+//! At a hit the tracer asks the material what it emits ([`Material::emission`]: a light ends
+//! the ray there), and otherwise [`Material::scatter`], and gets a [`Scatter`]: which BRDF
+//! the lights are seen through (shadow rays), and which child rays it spawns with which
+//! weights, each [`Lobe`] saying how its direction was drawn ([`LobeKind`]) and with what
+//! density; [`Scatter::parts`] is the same split as path tracing chooses between. The other
+//! questions are the material's too: whether it emits (for light samples of emitting
+//! surfaces, [`Material::emits`]), whether photons
 //! pass it in one direction ([`Material::mirror_like`]), what a transmissive shadow ray
 //! keeps crossing it ([`Material::shadow_transmittance`]), its Mueller matrices (the
 //! polariser), and whether it disperses or absorbs. The tracer walks the tree, prunes,
@@ -133,10 +134,8 @@ impl Material {
             Material::Mirror(m) => m.scatter(hit),
             Material::Glossy(m) => m.scatter(hit, u),
             Material::Conductor(m) => m.scatter(hit, u),
-            Material::Emissive(m) => Scatter {
-                emitted: Some(m.radiance.eval(hit.uv)),
-                ..Scatter::default()
-            },
+            // It emits (`emission`) and reflects nothing.
+            Material::Emissive(_) => Scatter::default(),
             Material::Dielectric(m) => m.scatter(hit),
             Material::Glazed(m) => m.scatter(hit),
         }

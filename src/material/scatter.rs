@@ -95,11 +95,10 @@ pub struct Direct {
     pub scale: f32,
 }
 
-/// What a material does with a ray that hits it.
+/// What a material does with a ray that hits it (what it emits is
+/// [`super::Material::emission`], asked first: a light ends the ray).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Scatter {
-    /// Radiance emitted towards the ray; `Some` ends the ray at a light.
-    pub emitted: Option<Color>,
     /// Shading by the lights (one shadow ray each) and the ambient term.
     pub direct: Option<Direct>,
     /// Child rays, at most two.
@@ -235,8 +234,11 @@ mod tests {
             // Photons pass it one way exactly where every lobe has one direction.
             let one_way = s.lobes().count() > 0 && s.lobes().all(Lobe::is_delta);
             assert_eq!(m.mirror_like(), one_way, "{kind}");
-            assert_eq!(m.emission(hit.uv), s.emitted, "{kind}");
-            assert_eq!(m.emits(), s.emitted.is_some(), "{kind}");
+            // A light scatters nothing: its rays end there.
+            if m.emits() {
+                assert_eq!(s, Scatter::default(), "{kind}");
+            }
+            assert_eq!(m.emission(hit.uv).is_some(), m.emits(), "{kind}");
             // A shadow ray passes only where light can enter (a glaze's base is opaque).
             let enters = s.lobes().any(|l| l.side == Side::Transmit);
             assert_eq!(m.shadow_transmittance(&hit).is_some(), enters, "{kind}");

@@ -282,8 +282,7 @@ impl Tracer<'_> {
             w.rng,
         );
         record_hit(w.rec, id, &hit, &at);
-        let scatter = material.scatter(&at, w.rng);
-        if let Some(radiance) = scatter.emitted {
+        if let Some(radiance) = material.emission(at.uv) {
             let cos_e = (-ray.dir).dot(at.n_geom);
             let mis = st.came.map_or(1.0, |pdf| {
                 power_heuristic(pdf, self.emitters.pdf(hit.object, hit.surface.t, cos_e))
@@ -291,6 +290,7 @@ impl Tracer<'_> {
             *added = st.seen(st.throughput * radiance * mis);
             return Next::End(End::LightHit);
         }
+        let scatter = material.scatter(&at, w.rng);
         if let Some(i) = scatter.interface {
             record_interface(w.rec, id, i);
         }

@@ -31,10 +31,10 @@ impl Tracer<'_> {
         let (entering, n_geom) = (at.entering, at.n_geom);
         record_hit(w.rec, id, hit, &at);
         let material = &self.materials[hit.material as usize];
-        let scatter = material.scatter(&at, w.rng);
-        if let Some(radiance) = scatter.emitted {
+        if let Some(radiance) = material.emission(at.uv) {
             return (pol.seen(radiance), End::LightHit);
         }
+        let scatter = material.scatter(&at, w.rng);
         // The polariser's analyzer in this interface's s/p frame.
         let s_frame = pol.at_interface(ray.dir, at.n_shade);
         let child_ray = |lobe: &Lobe| Ray {
