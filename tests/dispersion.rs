@@ -1,5 +1,8 @@
 //! Dispersion in images: a dispersive clear sphere keeps a white furnace white, and a
 //! prism spreads a white slit where Snell's law with Cauchy's n(λ) puts each wavelength.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 use raylab::camera::Camera;
 use raylab::geometry::{Shape, Sphere};

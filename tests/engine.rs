@@ -1,5 +1,8 @@
 //! The progressive engine: fresh generations, the same pixels as the CLI's kernel, and
 //! clean shutdown.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 use raylab::math::Color;
 use raylab::params::Params;

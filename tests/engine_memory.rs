@@ -1,5 +1,8 @@
 //! Memory does not grow with restarts (its own test binary, so that no other test's
 //! allocations disturb the measurement). Linux only: resident memory is read from /proc.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 #![cfg(target_os = "linux")]
 
 use raylab::params::Params;

@@ -6,6 +6,9 @@
 //!
 //! `cargo test --release --test fuzz` runs 10,000 cases in seconds. A longer
 //! run: `RAYLAB_FUZZ_CASES=100000 RAYLAB_FUZZ_SEED=7 cargo test --release --test fuzz`.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 mod common;
 

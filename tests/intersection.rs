@@ -1,5 +1,8 @@
 //! Intersection: the BVH finds exactly what testing every primitive finds, and rays
 //! leaving a surface neither hit it again (acne) nor pass through nearby geometry (leaks).
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Quad, Shape, Sphere};

@@ -1,5 +1,8 @@
 //! The parameter table: docs/parameters.md documents exactly it, every parameter changes the image (or,
 //! for display-only ones, only the display), and its ranges are what `--set` enforces.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 use raylab::math::Color;
 use raylab::params::{Kind, Params, TABLE, markdown_table};

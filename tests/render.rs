@@ -1,4 +1,7 @@
 //! Rendering: determinism, and images checked against closed forms.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Shape};
