@@ -1,0 +1,78 @@
+//! Helpers shared by the tests that drive the window through its accessibility tree
+//! (egui_kittest, no display needed): a window on a scene, stepping it until something
+//! holds, menus and clicks.
+
+#![allow(dead_code)] // Each window test file uses its own share of these.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raylab::app::{AppOptions, RaylabApp};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+pub fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
+    let options = AppOptions {
+        scene: Some(scene.to_string()),
+        snapshot_dir: snapshots.to_path_buf(),
+        threads: Some(1),
+        persist: false,
+        ..Default::default()
+    };
+    Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| RaylabApp::new(cc, options.clone()).expect("the engine starts"))
+}
+
+/// Steps the UI until `done` holds, with the workers rendering in between.
+pub fn step_until(
+    h: &mut Harness<'static, RaylabApp>,
+    what: &str,
+    done: impl Fn(&RaylabApp) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while !done(h.state()) {
+        assert!(
+            Instant::now() < deadline,
+            "timed out waiting for {what} (slide {:?}, loading {}, scene {}, caption {})",
+            h.state().slide(),
+            h.state().is_loading(),
+            h.state().scene().source.reference(),
+            h.state().caption().is_some()
+        );
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    h.step();
+}
+
+/// Opens the toolbar menu `menu` and clicks its entry `item`, once the menu shows it (a
+/// scene still loading can hold the menu's first frames back).
+pub fn choose_from_menu(h: &mut Harness<'static, RaylabApp>, menu: &str, item: &str) {
+    for _ in 0..20 {
+        if h.query_by_label(item).is_none() {
+            h.get_by_label(menu).click();
+            h.run_steps(3);
+        }
+        if let Some(entry) = h.query_by_label(item) {
+            entry.click();
+            h.run_steps(2);
+            return;
+        }
+    }
+    panic!("the {menu} menu never showed `{item}`");
+}
+
+/// A click at `pos` as a user makes it: hover, press, release.
+pub fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
+    h.hover_at(pos);
+    h.run_steps(2);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+        h.run_steps(2);
+    }
+}

@@ -1,0 +1,299 @@
+//! The window's instruments, driven as a user would: the ray-tree inspector, the A/B view,
+//! the contact sheet, the cost heat map, the Fresnel plot.
+
+#[path = "common/window.rs"]
+mod window;
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::{NodeT, Queryable};
+use raylab::app::RaylabApp;
+use raylab::optics::FresnelMode;
+use raylab::render::to_srgba8;
+use window::{app, click_at, step_until};
+
+#[test]
+fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Ray-tree inspector: click a pixel").click();
+    h.run_steps(3);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    // Click the glass sphere: a little left of the image's centre, above the middle. The
+    // image lies between the controls and the instruments' dock.
+    // The controls panel is 320 points wide; the dock starts left of its heading.
+    let left = 320.0;
+    let right = h.get_by_label("Ray-tree inspector").rect().min.x - 8.0;
+    let shown_width = right - left;
+    let centre = egui::pos2(
+        (left + right) / 2.0 - 0.05 * shown_width,
+        800.0 / 2.0 - 0.11 * shown_width * 9.0 / 16.0,
+    );
+    click_at(&mut h, centre);
+    h.run_steps(1);
+    let tree = h.state().inspected_tree().expect("a tree");
+    let root = &tree.nodes[0];
+    let hit = root.hit.expect("the camera ray hits something");
+    assert_eq!(
+        h.state().scene().object_names[hit.object as usize],
+        "glass sphere"
+    );
+    assert_eq!(hit.n1_n2, Some((1.0, 1.5)));
+    h.get_by_label("Camera ray, level 0: glass sphere (glass) — split into child rays");
+    // Moving the IOR re-inspects the same pixel.
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(hit.n1_n2, Some((1.0, 2.0)));
+    // The Fresnel plot opens from the same menu.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Fresnel plot").click();
+    h.run_steps(3);
+    // Both directions at once: into the glass, and out of it, where the critical angle
+    // for n = 2.0 is asin(1/2) = 30°.
+    h.get_by_label("Air into material");
+    h.get_by_label("Material out to air");
+    h.query_all_by_label_contains("critical 30.00°")
+        .next()
+        .expect("the critical angle for n = 2");
+}
+
+#[test]
+fn a_b_compare_renders_both_sides() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glazed", dir.path());
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("A/B compare").click();
+    h.run_steps(3);
+    h.get_by_label("constant | Fresnel").click();
+    h.run_steps(3);
+    assert_eq!(
+        h.state().params().fresnel,
+        Some(FresnelMode::Constant),
+        "side A"
+    );
+    let (b, _) = h.state().compare_side_b().expect("the A/B view is on");
+    assert_eq!(b.fresnel, Some(FresnelMode::Exact), "side B");
+    step_until(&mut h, "both sides to finish", |a| {
+        a.latest_frame().is_some_and(|f| f.progress.done())
+            && a.compare_side_b()
+                .is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
+    });
+    // The two sides differ only in the Fresnel model: the same light, other reflections.
+    let a = h.state().latest_frame().unwrap().pixels.clone();
+    let b = h
+        .state()
+        .compare_side_b()
+        .unwrap()
+        .1
+        .unwrap()
+        .pixels
+        .clone();
+    assert_eq!(a.len(), b.len());
+    assert!(a.iter().zip(b.iter()).any(|(x, y)| x != y));
+    // Other controls move both sides.
+    h.get_by_role_and_label(Role::Slider, "Max depth")
+        .set_value_accesskit(2.0);
+    h.run_steps(3);
+    assert_eq!(h.state().compare_side_b().unwrap().0.max_depth, 2);
+    // So do the resolution and the scene.
+    h.get_by_role_and_label(Role::ComboBox, "Resolution")
+        .click();
+    h.run_steps(3);
+    h.get_by_label("25%").click();
+    h.run_steps(3);
+    step_until(&mut h, "both sides at 25%", |a| {
+        let quarter = |f: &raylab::render::Frame| (f.width, f.height) == (240, 135);
+        a.latest_frame().is_some_and(quarter)
+            && a.compare_side_b()
+                .is_some_and(|(_, f)| f.is_some_and(quarter))
+    });
+    h.state_mut().open_scene("glass");
+    step_until(&mut h, "the new scene", |a| a.scene().name == "glass");
+    step_until(
+        &mut h,
+        "side B finished on it",
+        RaylabApp::compare_side_b_settled,
+    );
+    let (b, frame) = h.state().compare_side_b().unwrap();
+    let (b, frame) = (b.clone(), frame.unwrap().clone());
+    assert_eq!(b.fresnel, Some(FresnelMode::Exact));
+    assert_eq!(
+        h.state().params().fresnel,
+        Some(FresnelMode::Constant),
+        "side A keeps its side"
+    );
+    let glass = raylab::scene::Scene::load("glass").unwrap();
+    let expected: Vec<_> = raylab::render::render(&glass, &b, 240, 135, &())
+        .unwrap()
+        .0
+        .pixels()
+        .collect();
+    assert!(
+        *frame.pixels == expected,
+        "side B renders the scene opened, with its parameters"
+    );
+}
+
+#[test]
+fn the_contact_sheet_button_saves_a_sheet() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glazed", dir.path());
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Contact sheet…").click();
+    h.run_steps(3);
+    h.get_by_label("Render sheet").click();
+    h.run_steps(2);
+    step_until(&mut h, "the sheet", |a| {
+        a.toasts().iter().any(|t| t.contains("contact sheet"))
+    });
+    let sheet = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .find(|e| e.file_name().to_string_lossy().contains("-sweep-spp-"))
+        .expect("the sheet file");
+    let img = image::open(sheet.path()).unwrap();
+    // Three tiles of half the scene's 960×540.
+    assert_eq!(img.width(), 3 * 480 + 4 * 8);
+}
+
+#[test]
+fn the_cost_heat_map_shows_rays_per_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("ray-tree", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Cost heat map").click();
+    h.run_steps(3);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    let frame = h.state().latest_frame().unwrap();
+    let max = frame.cost.iter().cloned().fold(0.0f32, f32::max);
+    assert!(
+        max > 4.0,
+        "glass spheres make deep trees: {max} rays per sample"
+    );
+    // The image shown is the heat map: not the render, and brighter where rays cost more
+    // (black through purple, red and orange to pale yellow).
+    let exposure = h.state().params().exposure;
+    let shown = h.state().shown_pixels().to_vec();
+    assert_eq!(shown.len(), 4 * frame.cost.len());
+    assert_ne!(shown, to_srgba8(&frame.pixels, exposure));
+    let mut by_cost: Vec<(f32, u32)> = frame
+        .cost
+        .iter()
+        .zip(shown.chunks(4))
+        .map(|(&c, p)| (c, p[..3].iter().map(|&v| v as u32).sum()))
+        .collect();
+    by_cost.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for w in by_cost.windows(2) {
+        // Each channel is rounded on its own: the sum may step back by a unit or two.
+        assert!(
+            w[1].1 + 2 >= w[0].1,
+            "cost {} then {}: {w:?}",
+            w[0].0,
+            w[1].0
+        );
+    }
+    let (cheapest, dearest) = (by_cost[0], by_cost[by_cost.len() - 1]);
+    assert!(dearest.1 > cheapest.1 + 200, "{cheapest:?} {dearest:?}");
+    assert!(
+        h.query_all_by_label_contains("rays/sample")
+            .next()
+            .is_some(),
+        "the heat map's scale in the status bar"
+    );
+    // One fixed scale, 0 to 32 by default: pruning the tree changes the colours' costs,
+    // not the scale.
+    let scale = |h: &Harness<'static, RaylabApp>| {
+        h.query_all_by_label_contains(" rays/sample")
+            .next()
+            .and_then(|n| n.accesskit_node().value())
+            .unwrap_or_default()
+    };
+    assert_eq!(scale(&h), "cost 0–32 rays/sample");
+    let max_before = max;
+    h.get_by_role_and_label(Role::Slider, "Max depth")
+        .set_value_accesskit(2.0);
+    h.run_steps(2);
+    let generation = h.state().engine().generation();
+    step_until(&mut h, "a frame at depth 2", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.generation == generation && !f.is_preview())
+    });
+    let frame = h.state().latest_frame().unwrap();
+    let max = frame.cost.iter().cloned().fold(0.0f32, f32::max);
+    assert!(
+        max < max_before,
+        "a shallower tree costs less: {max} against {max_before}"
+    );
+    assert_eq!(scale(&h), "cost 0–32 rays/sample");
+    // Off again, the render is shown.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Cost heat map").click();
+    h.run_steps(3);
+    let frame = h.state().latest_frame().unwrap();
+    assert_eq!(
+        h.state().shown_pixels(),
+        to_srgba8(&frame.pixels, h.state().params().exposure)
+    );
+}
+
+#[test]
+fn the_fresnel_plot_marks_an_inspected_ray_only_where_it_meets_glass() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    for item in ["Fresnel plot", "Ray-tree inspector: click a pixel"] {
+        h.get_by_label("Instruments").click();
+        h.run_steps(3);
+        h.get_by_label(item).click();
+        h.run_steps(3);
+        h.key_press(egui::Key::Escape);
+        h.run_steps(2);
+    }
+    // The image lies between the 320-point controls and the dock.
+    let (left, right) = (320.0, h.get_by_label("Fresnel plot").rect().min.x - 8.0);
+    let width = right - left;
+    let (mid_x, mid_y) = ((left + right) / 2.0, 400.0);
+    // The floor, near the image's bottom edge.
+    click_at(&mut h, egui::pos2(mid_x, mid_y + 0.22 * width * 9.0 / 16.0));
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(h.state().scene().object_names[hit.object as usize], "floor");
+    assert!(
+        h.query_all_by_label_contains("inspected ray")
+            .next()
+            .is_none()
+    );
+    // The glass sphere: marked at its angle of incidence.
+    click_at(
+        &mut h,
+        egui::pos2(mid_x - 0.05 * width, mid_y - 0.11 * width * 9.0 / 16.0),
+    );
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(
+        h.state().scene().object_names[hit.object as usize],
+        "glass sphere"
+    );
+    h.query_all_by_label_contains("inspected ray")
+        .next()
+        .expect("the plot marks the ray on glass");
+}

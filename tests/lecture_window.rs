@@ -1,0 +1,184 @@
+//! The lecture in the window, driven as a lecturer would: the Lecture menu, presentation
+//! mode and a clicker's keys, every slide's caption, the shortcut list.
+
+#[path = "common/window.rs"]
+mod window;
+
+use egui::accesskit::Role;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raylab::app::RaylabApp;
+use raylab::lecture::LECTURE;
+use window::{app, choose_from_menu, step_until};
+
+#[test]
+fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.get_by_label("Lecture").click();
+    h.run_steps(3);
+    let n = LECTURE
+        .iter()
+        .position(|s| s.title == "Pruning the ray tree")
+        .unwrap();
+    h.get_by_label(&format!("{}. Pruning the ray tree", n + 1))
+        .click();
+    h.run_steps(2);
+    step_until(&mut h, "the slide's scene", |a| {
+        a.scene().name == "ray-tree"
+    });
+    assert_eq!(h.state().params().max_depth, 2);
+    assert!(h.state().caption().unwrap().contains("depth 2"));
+    // Sample patterns for the slide's settings.
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Sample patterns").click();
+    h.run_steps(3);
+    h.get_by_label("Point on the lens");
+}
+
+/// Steps until slide `i` is shown: its scene loaded, its caption up.
+fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
+    let (title, scene) = (LECTURE[i].title, LECTURE[i].scene);
+    step_until(h, title, |a| {
+        // Not loading: a slide on the scene already shown must still arrive.
+        !a.is_loading()
+            && a.slide() == Some(i)
+            && a.scene().source.reference() == format!("builtin:{scene}")
+            && a.caption().is_some()
+    });
+}
+
+#[test]
+fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    let shows = wait_for_slide;
+    h.key_press(egui::Key::F5);
+    h.step();
+    assert!(h.state().presenting(), "F5 enters presentation mode");
+    // The toolbar and the controls are hidden.
+    assert!(h.query_by_label("Instruments").is_none());
+    assert!(h.query_by_role_and_label(Role::Slider, "IOR").is_none());
+    h.key_press(egui::Key::PageDown);
+    shows(&mut h, 0);
+    h.key_press(egui::Key::ArrowRight);
+    shows(&mut h, 1);
+    h.key_press(egui::Key::PageUp);
+    shows(&mut h, 0);
+    // Before the first slide there is none: Page Up stays.
+    h.key_press(egui::Key::ArrowLeft);
+    h.run_steps(3);
+    assert_eq!(h.state().slide(), Some(0));
+    // Three presses that land in one frame (a quick clicker, xdotool) step three slides.
+    // (The harness's own key_press gives each event a frame of its own.)
+    let three_in_one_frame = |h: &mut Harness<'static, RaylabApp>, key| {
+        for pressed in [true, true, true, false] {
+            h.input_mut().events.push(egui::Event::Key {
+                key,
+                pressed,
+                modifiers: egui::Modifiers::NONE,
+                repeat: false,
+                physical_key: None,
+            });
+        }
+        h.step();
+    };
+    three_in_one_frame(&mut h, egui::Key::PageDown);
+    assert_eq!(h.state().slide(), Some(3));
+    shows(&mut h, 3);
+    three_in_one_frame(&mut h, egui::Key::PageUp);
+    assert_eq!(h.state().slide(), Some(0));
+    shows(&mut h, 0);
+    // The caption is on screen, in the strip below the image.
+    let caption = h.state().caption().unwrap().to_string();
+    h.get_by_label(&caption);
+    h.key_press(egui::Key::Escape);
+    h.step();
+    assert!(!h.state().presenting(), "Esc leaves");
+    h.get_by_label("Instruments");
+}
+
+#[test]
+fn f1_lists_every_shortcut_and_esc_closes_the_list() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.key_press(egui::Key::F1);
+    h.run_steps(2);
+    assert!(h.state().help_open());
+    h.get_by_label("Keyboard shortcuts");
+    h.get_by_label("F5 or F11");
+    h.get_by_label("Page Down, Right or Down arrow");
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    assert!(!h.state().help_open());
+    assert!(h.query_by_label("F5 or F11").is_none());
+}
+
+/// Whether `text` names the control `label` as the panel writes it (a whole word or
+/// words, same case: "raise Max depth", not "the ray tree").
+fn names(text: &str, label: &str) -> bool {
+    text.match_indices(label).any(|(i, _)| {
+        let before = text[..i].chars().next_back();
+        let after = text[i + label.len()..].chars().next();
+        !before.is_some_and(char::is_alphanumeric) && !after.is_some_and(char::is_alphanumeric)
+    })
+}
+
+#[test]
+fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    for (i, slide) in LECTURE.iter().enumerate() {
+        let (title, sides) = (slide.title, slide.compare);
+        choose_from_menu(&mut h, "Lecture", &format!("{}. {title}", i + 1));
+        wait_for_slide(&mut h, i);
+        h.run_steps(3);
+        assert_eq!(
+            h.state().compare_side_b().is_some(),
+            sides.is_some(),
+            "{title}: the A/B view as the slide says"
+        );
+        // The slides about reflectance against angle show the Fresnel plot; no other.
+        let plotted = title.starts_with("Reflectance against angle")
+            || title.starts_with("Fresnel's formulas");
+        assert_eq!(
+            h.query_by_label("Fresnel plot").is_some(),
+            plotted,
+            "{title}: the Fresnel plot as the slide needs"
+        );
+        // Its instruments sit in the dock beside the image, clear of it and of the
+        // controls (the IOR slider the Fresnel plot follows among them).
+        let image = h.get_by_label("Image").rect();
+        let ior = h.get_by_role_and_label(Role::Slider, "IOR").rect();
+        for instrument in ["Fresnel plot", "Ray-tree inspector"] {
+            for node in h.query_all_by_label(instrument) {
+                let r = node.rect();
+                assert!(
+                    !r.intersects(image) && !r.intersects(ior) && r.left() >= image.right(),
+                    "{title}: {instrument} at {r:?} covers the image {image:?} or IOR {ior:?}"
+                );
+            }
+        }
+        // The slide about the tree opens the inspector on its pixel; no other.
+        assert_eq!(
+            h.state().inspected_tree().is_some(),
+            title == "The ray tree",
+            "{title}: the inspector as the slide needs"
+        );
+        let caption = h.state().caption().unwrap();
+        for spec in raylab::params::TABLE {
+            if names(&caption, spec.label) {
+                assert!(
+                    h.query_all_by_label_contains(spec.label).next().is_some(),
+                    "slide `{title}` names `{}`, which is not in view",
+                    spec.label
+                );
+            }
+        }
+    }
+}
