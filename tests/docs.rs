@@ -119,6 +119,47 @@ fn the_parameter_page_commands_run() {
 }
 
 #[test]
+fn the_window_page_commands_run() {
+    commands_of_page_run("docs/window.md");
+}
+
+#[test]
+fn the_performance_page_commands_run() {
+    commands_of_page_run("docs/performance.md");
+}
+
+/// The pages whose commands the tests above run.
+const RUN: &[&str] = &[
+    "README.md",
+    "docs/cli.md",
+    "docs/lecture.md",
+    "docs/parameters.md",
+    "docs/window.md",
+    "docs/performance.md",
+];
+
+#[test]
+fn every_page_with_a_raylab_command_is_run() {
+    let mut pages = vec!["README.md".to_string()];
+    for entry in std::fs::read_dir(repo().join("docs")).unwrap().flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if name.ends_with(".md") {
+            pages.push(format!("docs/{name}"));
+        }
+    }
+    for page in pages {
+        let commands = shell_lines(&read(&page))
+            .iter()
+            .filter(|l| raylab_args(l).is_some())
+            .count();
+        assert!(
+            commands == 0 || RUN.contains(&page.as_str()),
+            "{page} has {commands} raylab commands that no test runs"
+        );
+    }
+}
+
+#[test]
 fn the_lecture_page_holds_every_slide_as_the_code_has_it() {
     let slides = raylab::lecture::markdown().unwrap();
     assert!(
