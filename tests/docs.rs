@@ -16,8 +16,12 @@ fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The page's text, its line ends as the code writes them (a checkout may end lines with
+/// CR LF).
 fn read(page: &str) -> String {
-    std::fs::read_to_string(repo().join(page)).unwrap_or_else(|e| panic!("{page}: {e}"))
+    std::fs::read_to_string(repo().join(page))
+        .unwrap_or_else(|e| panic!("{page}: {e}"))
+        .replace("\r\n", "\n")
 }
 
 /// The lines of the page's ```sh blocks, comments cut off, blank lines left out.

@@ -12,7 +12,10 @@ use raylab::scene::Scene;
 #[test]
 fn the_docs_hold_the_parameter_table_exactly() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/parameters.md");
-    let docs = std::fs::read_to_string(path).expect("docs/parameters.md");
+    // A checkout may end lines with CR LF; the table is written with LF.
+    let docs = std::fs::read_to_string(path)
+        .expect("docs/parameters.md")
+        .replace("\r\n", "\n");
     let table = markdown_table();
     assert!(
         docs.contains(&table),
