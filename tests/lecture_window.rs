@@ -1,5 +1,8 @@
 //! The lecture in the window, driven as a lecturer would: the Lecture menu, presentation
 //! mode and a clicker's keys, every slide's caption, the shortcut list.
+// Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
+// unwrap in #[test] functions only).
+#![allow(clippy::unwrap_used)]
 
 #[path = "common/window.rs"]
 mod window;
@@ -9,7 +12,8 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raylab::app::RaylabApp;
 use raylab::lecture::LECTURE;
-use window::{app, choose_from_menu, step_until};
+use raylab::params::{Kind, TABLE, spec};
+use window::{app, app_sized, choose_from_menu, step_until};
 
 #[test]
 fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
@@ -181,4 +185,148 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
             }
         }
     }
+}
+
+/// Moves the control of parameter `name` as a lecturer would: a slider to a point a third
+/// of the way along its range, a menu to another entry.
+fn move_control(h: &mut Harness<'static, RaylabApp>, name: &str) {
+    let spec = spec(name).unwrap();
+    match spec.kind {
+        Kind::Choice(choices) => {
+            let now = h.state().params().value_text(name);
+            let other = choices
+                .iter()
+                .find(|c| Some(c.word) != now.as_deref())
+                .unwrap();
+            h.get_by_role_and_label(Role::ComboBox, spec.label).click();
+            h.run_steps(3);
+            h.get_by_label(other.label).click();
+        }
+        _ => {
+            let range = spec.slider.unwrap();
+            let value = if range.log {
+                (range.min.max(1e-3).ln() * 0.63 + range.max.ln() * 0.37).exp()
+            } else {
+                range.min + 0.37 * (range.max - range.min)
+            };
+            let value = if matches!(spec.kind, Kind::Count { .. }) {
+                value.round()
+            } else {
+                value
+            };
+            h.get_by_role_and_label(Role::Slider, spec.label)
+                .set_value_accesskit(value);
+        }
+    }
+    h.run_steps(3);
+}
+
+/// Whether `caption` asks the lecturer to use the control `label`: "Drag the IOR", "Raise
+/// Max depth", "prune by Min weight", "Try Click to focus", "Light transport > ...".
+fn asks(caption: &str, label: &str) -> bool {
+    let verbs = [
+        "Drag the", "Drag", "Set the", "Raise", "Lower", "raise", "prune by", "Try",
+    ];
+    verbs
+        .iter()
+        .any(|v| names(caption, &format!("{v} {label}")))
+        || caption.contains(&format!("{label} > "))
+}
+
+/// What a caption calls the control of parameter `name` where that is not its slider's
+/// label: the polariser's section, the focus control's button.
+fn alias(name: &str) -> &str {
+    match name {
+        "polarizer" => "Polariser",
+        "focus_distance" => "Click to focus",
+        other => spec(other).map_or(other, |s| s.label),
+    }
+}
+
+#[test]
+fn every_slide_can_be_taught_without_leaving_presentation_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    for size in [(1920.0, 1080.0), (1280.0, 720.0)] {
+        let mut h = app_sized("default", dir.path(), size);
+        h.step();
+        h.key_press(egui::Key::F5);
+        h.step();
+        for (i, slide) in LECTURE.iter().enumerate() {
+            h.key_press(egui::Key::PageDown);
+            wait_for_slide(&mut h, i);
+            h.run_steps(3);
+            let title = slide.title;
+            assert!(h.state().presenting(), "{title}");
+            // The caption asks for the controls the slide shows, and for no other.
+            let caption = h.state().caption().unwrap();
+            for s in TABLE {
+                assert_eq!(
+                    asks(&caption, s.label) || asks(&caption, alias(s.name)),
+                    slide.controls.contains(&s.name),
+                    "`{title}` asks for `{}` and shows it, or neither",
+                    s.label
+                );
+            }
+            // Each control the slide shows is there, large, and moving it changes what
+            // the engine renders.
+            for name in slide.controls {
+                let before = h.state().engine().params().clone();
+                move_control(&mut h, name);
+                let after = h.state().engine().params().clone();
+                assert_ne!(before, after, "`{title}` at {size:?}: moving `{name}`");
+            }
+            // `]` steps the first control.
+            if let Some(first) = slide.controls.first() {
+                let before = h.state().params().value_text(first);
+                h.key_press(egui::Key::CloseBracket);
+                h.run_steps(2);
+                assert_ne!(
+                    h.state().params().value_text(first),
+                    before,
+                    "`{title}`: ] steps `{first}`"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn presentation_mode_shows_progress_and_space_does_not_pause_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app_sized("default", dir.path(), (1920.0, 1080.0));
+    h.step();
+    h.key_press(egui::Key::F5);
+    h.key_press(egui::Key::PageDown);
+    wait_for_slide(&mut h, 0);
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    h.run_steps(2);
+    let target = LECTURE[0]
+        .params
+        .iter()
+        .find(|(n, _)| *n == "spp")
+        .unwrap()
+        .1;
+    assert!(
+        h.query_all_by_label_contains(&format!("/ {target} spp"))
+            .next()
+            .is_some(),
+        "the samples done of the target"
+    );
+    // A clicker's Space leaves the lecture refining.
+    h.key_press(egui::Key::Space);
+    h.run_steps(2);
+    assert!(h.query_all_by_label_contains("paused").next().is_none());
+    // Out of presentation, Space pauses, and presentation mode says so.
+    h.key_press(egui::Key::Escape);
+    h.run_steps(2);
+    h.key_press(egui::Key::Space);
+    h.run_steps(2);
+    h.key_press(egui::Key::F5);
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_label_contains("paused").next().is_some(),
+        "paused, shown in presentation mode"
+    );
 }

@@ -45,6 +45,11 @@ impl Lecture {
         self.current
     }
 
+    /// The slide shown, if any.
+    pub(crate) fn shown(&self) -> Option<&'static Slide> {
+        self.shown
+    }
+
     /// The caption shown, if any, for the parameters `params` as they are now.
     pub(crate) fn caption(&self, params: &Params) -> Option<String> {
         self.shown.map(|s| s.caption(params))

@@ -23,6 +23,7 @@ mod snapshot;
 mod toasts;
 mod toolbar;
 mod view;
+mod widgets;
 
 use crate::camera::Camera;
 use crate::params::Params;
@@ -302,6 +303,25 @@ impl RaylabApp {
         self.loader.is_loading()
     }
 
+    /// The controls over the window's settings (the side panel's, and the slide's in
+    /// presentation mode), opening the sections of the parameters in `open`.
+    fn with_controls<T>(
+        &mut self,
+        open: &'static [&'static str],
+        f: impl FnOnce(&mut Controls) -> T,
+    ) -> T {
+        let s = &mut self.settings;
+        f(&mut Controls {
+            params: &mut s.params,
+            camera: &mut s.camera,
+            unlimited: &mut s.unlimited,
+            click_to_focus: &mut self.instruments.click_to_focus,
+            resolution: &mut s.resolution,
+            scene: &self.scene,
+            open,
+        })
+    }
+
     /// What the engines render, by the controls.
     fn told(&self) -> Told {
         Told {
@@ -423,20 +443,8 @@ impl eframe::App for RaylabApp {
             .default_size(320.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    let s = &mut self.settings;
                     let open = self.lecture.take_open();
-                    controls_ui(
-                        ui,
-                        &mut Controls {
-                            params: &mut s.params,
-                            camera: &mut s.camera,
-                            unlimited: &mut s.unlimited,
-                            click_to_focus: &mut self.instruments.click_to_focus,
-                            resolution: &mut s.resolution,
-                            scene: &self.scene,
-                            open,
-                        },
-                    );
+                    self.with_controls(open, |c| controls_ui(ui, c));
                 });
             });
         self.instruments_dock_ui(ui);

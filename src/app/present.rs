@@ -3,6 +3,8 @@
 //! UI scale with a projector preset, and the help overlay listing every shortcut.
 
 use super::RaylabApp;
+use super::controls::Controls;
+use super::widgets::{param_ui, step_param};
 use crate::lecture::LECTURE;
 use egui::{Color32, Key, RichText};
 
@@ -24,7 +26,14 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
         "Page Up, Left or Up arrow",
         "previous slide (presentation mode)",
     ),
-    ("Space", "pause or resume refining"),
+    (
+        "Space",
+        "pause or resume refining (not in presentation mode, where a clicker may send it)",
+    ),
+    (
+        "[ and ]",
+        "step the slide's first control down or up (presentation mode)",
+    ),
     ("R", "restart refining from the first sample"),
     ("F", "fit the image to the window"),
     ("1", "one image pixel per screen pixel"),
@@ -52,6 +61,24 @@ pub(crate) const UI_SCALES: &[(&str, f32)] = &[
 /// from the back of a hall (never under 20).
 pub(crate) fn caption_size(height: f32) -> f32 {
     (height / 26.0).max(20.0)
+}
+
+/// A style whose every text is `size` points (and whose sliders, boxes and spacing grow
+/// with it), for what presentation mode shows a hall.
+pub(crate) fn hall_style(style: &mut egui::Style, size: f32) {
+    for font in style.text_styles.values_mut() {
+        font.size = size;
+    }
+    let s = &mut style.spacing;
+    s.interact_size = egui::vec2(size * 2.0, size * 1.3);
+    s.slider_width = size * 8.0;
+    s.icon_width = size * 0.9;
+    s.icon_width_inner = size * 0.5;
+    s.icon_spacing = size * 0.3;
+    s.item_spacing = egui::vec2(size * 0.4, size * 0.25);
+    s.button_padding = egui::vec2(size * 0.3, size * 0.1);
+    // Labels as bright as the caption's text: grey is lost on a projector.
+    style.visuals.override_text_color = Some(Color32::from_gray(235));
 }
 
 /// What the hall adds to the window's state.
@@ -104,6 +131,10 @@ impl RaylabApp {
             if by != 0 {
                 self.step_slide(by);
             }
+            let notches = presses(&[Key::CloseBracket]) - presses(&[Key::OpenBracket]);
+            for _ in 0..notches.unsigned_abs() {
+                self.step_first_control(notches > 0);
+            }
         }
     }
 
@@ -126,34 +157,105 @@ impl RaylabApp {
         }
     }
 
-    /// Presentation mode's view: the caption in a strip of its own along the bottom (so
-    /// it covers nothing), the slide's number and title small above it, the image above.
+    /// The controls the shown slide asks for, as the side panel has them.
+    fn with_slide_controls(&mut self, f: impl FnOnce(&mut Controls, &'static [&'static str])) {
+        let Some(slide) = self.lecture.shown() else {
+            return;
+        };
+        self.with_controls(&[], |c| f(c, slide.controls));
+    }
+
+    /// `]` and `[`: the slide's first control one notch up or down.
+    fn step_first_control(&mut self, up: bool) {
+        self.with_slide_controls(|c, controls| {
+            if let Some(name) = controls.first() {
+                step_param(c, name, up);
+            }
+        });
+    }
+
+    /// Presentation mode's view: along the bottom a strip of its own (so it covers
+    /// nothing) with the slide's number and title, its progress, the controls its caption
+    /// asks for and the caption, all at the caption's size; the image above.
     pub(super) fn presentation_ui(&mut self, ui: &mut egui::Ui) {
-        let height = ui.ctx().content_rect().height();
+        let size = caption_size(ui.ctx().content_rect().height());
         let caption = self.caption();
         let title = self.lecture.current().map(|i| (i, LECTURE[i].title));
+        let progress = self.progress_text();
         egui::Panel::bottom("caption")
             .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
             .show_separator_line(false)
             .show(ui, |ui| {
-                if let Some((i, title)) = title {
-                    ui.label(
-                        RichText::new(format!("{} / {}  {title}", i + 1, LECTURE.len()))
-                            .size(caption_size(height) * 0.6)
-                            .color(Color32::GRAY),
-                    );
-                }
+                ui.horizontal(|ui| {
+                    if let Some((i, title)) = title {
+                        let text = format!("{} / {}  {title}", i + 1, LECTURE.len());
+                        ui.label(
+                            RichText::new(text)
+                                .size(size)
+                                .color(Color32::WHITE)
+                                .strong(),
+                        );
+                    }
+                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                        ui.label(RichText::new(progress).size(size).color(Color32::GRAY));
+                    });
+                });
+                self.progress_bar_ui(ui, size);
+                ui.scope(|ui| {
+                    hall_style(ui.style_mut(), size);
+                    self.with_slide_controls(|c, controls| {
+                        // Each control's parts in a row (its slider, presets, readout),
+                        // the controls side by side: the image keeps the height.
+                        ui.horizontal_wrapped(|ui| {
+                            for name in controls {
+                                param_ui(ui, c, name);
+                                ui.add_space(size);
+                            }
+                        });
+                    });
+                });
                 let text =
                     caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
-                ui.label(
-                    RichText::new(text)
-                        .size(caption_size(height))
-                        .color(Color32::WHITE),
-                );
+                ui.label(RichText::new(text).size(size).color(Color32::WHITE));
             });
         egui::CentralPanel::default()
             .frame(egui::Frame::new().fill(Color32::BLACK))
             .show(ui, |ui| self.image_panel_ui(ui));
+    }
+
+    /// How far the image has refined, as presentation mode says it: samples per pixel of
+    /// the target, and "paused" while paused.
+    fn progress_text(&self) -> String {
+        let Some(f) = self.main.frame() else {
+            return "starting".into();
+        };
+        let p = &f.progress;
+        let spp = match p.target {
+            Some(t) => format!("{} / {t} spp", p.spp),
+            None => format!("{} spp", p.spp),
+        };
+        if self.main.paused() {
+            format!("paused, {spp}")
+        } else {
+            spp
+        }
+    }
+
+    /// A thin bar across the strip: the fraction of the target done.
+    fn progress_bar_ui(&self, ui: &mut egui::Ui, size: f32) {
+        let fraction = self.main.frame().map_or(0.0, |f| match f.progress.target {
+            Some(t) => (f.progress.spp as f32 / t.max(1) as f32).min(1.0),
+            None => 1.0,
+        });
+        let (rect, _) = ui.allocate_exact_size(
+            egui::vec2(ui.available_width(), (size / 8.0).max(3.0)),
+            egui::Sense::hover(),
+        );
+        let painter = ui.painter();
+        painter.rect_filled(rect, 0.0, Color32::from_gray(40));
+        let done =
+            egui::Rect::from_min_size(rect.min, egui::vec2(rect.width() * fraction, rect.height()));
+        painter.rect_filled(done, 0.0, Color32::from_rgb(70, 130, 220));
     }
 
     /// The help overlay: every shortcut, centred over the window.

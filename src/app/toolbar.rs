@@ -219,7 +219,8 @@ impl RaylabApp {
                 plain && i.key_pressed(Key::Num1),
             )
         });
-        if space {
+        // A presentation clicker may send Space: it does not pause a lecture.
+        if space && !self.hall.presenting {
             self.main.toggle_pause();
         }
         if r {

@@ -1,13 +1,14 @@
 //! The lecture's slides, in its order: each a few lines (see [`slide`]).
 
 use super::{Comparison, Instrument, Slide, slide};
+use crate::params::Pattern;
 
 /// The lecture, slide by slide.
 pub const LECTURE: &[Slide] = &[
     slide("Metals vs dielectrics", "metals")
         .set(&[("spp", "32")])
         .says(
-            "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. Instruments > Fresnel plot > Compare with a metal.",
+            "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. The next slide plots both against the angle.",
         ),
     slide("Snell's law", "glass")
         .set(&[("spp", "128")])
@@ -80,8 +81,16 @@ pub const LECTURE: &[Slide] = &[
         .compare(Comparison::RandomJittered)
         .asks(&["pattern"])
         .follows(|p| {
+            let left = match p.pattern {
+                Pattern::Regular => {
+                    "regular, each cell's centre, the same in every pixel: the edges alias again"
+                }
+                Pattern::Random => "random, independent in each pixel: clumps and gaps, noisier edges",
+                Pattern::Jittered => "jittered too: the same image on both sides",
+                Pattern::Sobol => "Sobol points, evenly spread at every count: as even as jittered",
+            };
             format!(
-                "{} samples per pixel. Left: random, independent in each pixel: clumps and gaps, noisier edges. Right: jittered, one in each cell of a 2 × 2 grid: the same cost, less noise. Regular (each cell's centre) would alias again: the Pattern menu has it.",
+                "{} samples per pixel. Left: {left}. Right: jittered, one in each cell of a 2 × 2 grid: the same cost, less noise. Set the Pattern to regular and the left side aliases again.",
                 p.spp
             )
         }),

@@ -11,6 +11,11 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 pub fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
+    app_sized(scene, snapshots, (1280.0, 800.0))
+}
+
+/// A window of `size` (width, height) on `scene`, its snapshots going to `snapshots`.
+pub fn app_sized(scene: &str, snapshots: &Path, size: (f32, f32)) -> Harness<'static, RaylabApp> {
     let options = AppOptions {
         scene: Some(scene.to_string()),
         snapshot_dir: snapshots.to_path_buf(),
@@ -19,7 +24,7 @@ pub fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
         ..Default::default()
     };
     Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
+        .with_size(egui::vec2(size.0, size.1))
         .build_eframe(move |cc| RaylabApp::new(cc, options.clone()).expect("the engine starts"))
 }
 
