@@ -225,7 +225,7 @@ fn move_control(h: &mut Harness<'static, RaylabApp>, name: &str) {
 /// Max depth", "prune by Min weight", "Try Click to focus", "Light transport > ...".
 fn asks(caption: &str, label: &str) -> bool {
     let verbs = [
-        "Drag the", "Drag", "Set the", "Raise", "Lower", "raise", "prune by", "Try",
+        "Drag the", "Drag", "drag the", "Set the", "Raise", "Lower", "raise", "prune by", "Try",
     ];
     verbs
         .iter()
@@ -329,4 +329,68 @@ fn presentation_mode_shows_progress_and_space_does_not_pause_it() {
         h.query_all_by_label_contains("paused").next().is_some(),
         "paused, shown in presentation mode"
     );
+}
+
+/// Clicks the image where the pinhole ray meets object `name` first (the first such point
+/// of a 40 × 24 grid over the image, fitted in the middle of its area).
+fn click_on(h: &mut Harness<'static, RaylabApp>, name: &str) {
+    let area = h.get_by_label("Image").rect();
+    let scene = h.state().scene();
+    let aspect = scene.width as f32 / scene.height as f32;
+    let fitted = egui::vec2(area.width().min(area.height() * aspect), 0.0);
+    let fitted = egui::vec2(fitted.x, fitted.x / aspect);
+    let image = egui::Rect::from_center_size(area.center(), fitted);
+    let object = scene.object_names.iter().position(|n| n == name).unwrap() as u32;
+    let film = (0..24)
+        .flat_map(|j| (0..40).map(move |i| ((i as f32 + 0.5) / 40.0, (j as f32 + 0.5) / 24.0)))
+        .find(|&(x, y)| {
+            raylab::tracer::pick(scene, &scene.camera, aspect, glam::Vec2::new(x, y))
+                .is_some_and(|p| p.object == object)
+        })
+        .unwrap_or_else(|| panic!("{name} is in view"));
+    let pos = image.min + egui::vec2(film.0 * image.width(), film.1 * image.height());
+    window::click_at(h, pos);
+    h.run_steps(2);
+}
+
+#[test]
+fn captions_follow_the_inspected_pixel_and_the_focus() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app_sized("default", dir.path(), (1920.0, 1080.0));
+    h.step();
+    h.key_press(egui::Key::F5);
+    let tree = LECTURE
+        .iter()
+        .position(|s| s.title == "The ray tree")
+        .unwrap();
+    for _ in 0..=tree {
+        h.key_press(egui::Key::PageDown);
+    }
+    wait_for_slide(&mut h, tree);
+    h.run_steps(3);
+    assert!(h.state().caption().unwrap().contains("front sphere"));
+    click_on(&mut h, "floor");
+    let caption = h.state().caption().unwrap();
+    assert!(caption.contains("on the floor"), "{caption}");
+
+    let dof = LECTURE
+        .iter()
+        .position(|s| s.title == "Depth of field")
+        .unwrap();
+    for _ in tree..dof {
+        h.key_press(egui::Key::PageDown);
+    }
+    wait_for_slide(&mut h, dof);
+    h.run_steps(3);
+    assert!(
+        h.state()
+            .caption()
+            .unwrap()
+            .contains("the blue sphere is sharp")
+    );
+    h.get_by_label("Click to focus").click();
+    h.run_steps(2);
+    click_on(&mut h, "nearest");
+    let caption = h.state().caption().unwrap();
+    assert!(caption.contains("the red sphere is sharp"), "{caption}");
 }

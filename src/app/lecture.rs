@@ -3,7 +3,7 @@
 
 use super::RaylabApp;
 use super::compare::CompareKind;
-use crate::lecture::{Instrument, LECTURE, Slide};
+use crate::lecture::{Instrument, LECTURE, Shown, Slide};
 use crate::params::Params;
 use crate::scene::Scene;
 use egui::Color32;
@@ -50,9 +50,9 @@ impl Lecture {
         self.shown
     }
 
-    /// The caption shown, if any, for the parameters `params` as they are now.
-    pub(crate) fn caption(&self, params: &Params) -> Option<String> {
-        self.shown.map(|s| s.caption(params))
+    /// The caption shown, if any, for what is shown now.
+    pub(crate) fn caption(&self, shown: &Shown) -> Option<String> {
+        self.shown.map(|s| s.caption(shown))
     }
 
     /// The parameters whose controls the slide just arrived asks for (once).
@@ -106,15 +106,11 @@ impl RaylabApp {
         }
         // A slide about the ray tree opens the inspector on its pixel; the others leave
         // clicks on the image to the view.
-        let on = match slide.instrument {
-            Some(Instrument::RayTree { x, y }) => Some((x, y)),
-            Some(Instrument::FresnelPlot { .. }) | None => None,
-        };
-        self.instruments.inspect_mode = on.is_some();
-        if let Some((fx, fy)) = on {
-            let size = super::render_size(&self.scene, self.settings.resolution);
-            let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n - 1);
-            self.inspect((at(fx, size.0), at(fy, size.1)), size);
+        let size = super::render_size(&self.scene, self.settings.resolution);
+        let pixel = slide.inspected_pixel(size);
+        self.instruments.inspect_mode = pixel.is_some();
+        if let Some(pixel) = pixel {
+            self.inspect(pixel, size);
         }
     }
 }

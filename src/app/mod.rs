@@ -295,7 +295,16 @@ impl RaylabApp {
 
     /// The caption of the lecture slide shown, if any, as it reads now.
     pub fn caption(&self) -> Option<String> {
-        self.lecture.caption(&self.settings.params)
+        let inspected = self.instruments.inspection.as_ref().map(|i| {
+            let root = i.tree.nodes.first();
+            root.and_then(|n| n.hit.map(|h| h.object))
+        });
+        self.lecture.caption(&crate::lecture::Shown {
+            params: &self.settings.params,
+            scene: &self.scene,
+            camera: &self.settings.camera,
+            inspected,
+        })
     }
 
     /// Whether a scene is loading.

@@ -199,9 +199,16 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     match job.slide.filter(|_| args.caption) {
         // The caption as it reads for the parameters rendered (after any --set).
         Some(slide) => {
+            let (scene, camera) = (&job.scene, &job.camera);
+            let shown = raylab::lecture::Shown {
+                params,
+                scene,
+                camera,
+                inspected: slide.inspected(scene, camera, (job.width, job.height)),
+            };
             let image = raylab::render::with_caption(
                 &film.to_srgb8(params.exposure),
-                &slide.caption(params),
+                &slide.caption(&shown),
             );
             raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
                 .with_context(|| format!("cannot write {}", output.display()))

@@ -7,12 +7,14 @@
 //! (`raylab lecture`, `raylab render --slide N`) both read [`LECTURE`]; this module knows
 //! no egui.
 
+mod captions;
 mod compare;
 mod slides;
 
 pub use compare::Comparison;
 pub use slides::LECTURE;
 
+use crate::camera::Camera;
 use crate::params::{ParamError, Params};
 use crate::scene::{Scene, SceneError};
 
@@ -35,13 +37,27 @@ pub enum Instrument {
     },
 }
 
+/// What a caption reads: what is shown as it is now.
+#[derive(Clone, Copy)]
+pub struct Shown<'a> {
+    /// The parameters.
+    pub params: &'a Params,
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The camera (the user may have moved it).
+    pub camera: &'a Camera,
+    /// The object the inspected pixel's camera ray meets first (`Some(None)`: nothing);
+    /// `None` while no pixel is inspected.
+    pub inspected: Option<Option<u32>>,
+}
+
 /// A slide's caption.
 #[derive(Clone, Copy)]
 pub enum Caption {
-    /// The same text whatever the parameters.
+    /// The same text whatever is shown.
     Fixed(&'static str),
-    /// Text that follows the parameters as they are now.
-    Follows(fn(&Params) -> String),
+    /// Text that follows what is shown: the parameters, the focus, the inspected pixel.
+    Follows(fn(&Shown) -> String),
 }
 
 /// One slide of the lecture.
@@ -115,8 +131,8 @@ impl Slide {
         }
     }
 
-    /// With a caption that follows the parameters.
-    pub const fn follows(self, caption: fn(&Params) -> String) -> Slide {
+    /// With a caption that follows what is shown.
+    pub const fn follows(self, caption: fn(&Shown) -> String) -> Slide {
         Slide {
             caption: Caption::Follows(caption),
             ..self
@@ -128,12 +144,38 @@ impl Slide {
         format!("builtin:{}", self.scene)
     }
 
-    /// Its caption for the parameters `params`.
-    pub fn caption(&self, params: &Params) -> String {
+    /// Its caption for what is shown.
+    pub fn caption(&self, shown: &Shown) -> String {
         match self.caption {
             Caption::Fixed(text) => text.to_string(),
-            Caption::Follows(f) => f(params),
+            Caption::Follows(f) => f(shown),
         }
+    }
+
+    /// What the inspected pixel's ray meets first on an image of `size`, where the slide
+    /// opens the inspector on a pixel (`None` if it does not): as the window shows it.
+    pub fn inspected(
+        &self,
+        scene: &Scene,
+        camera: &Camera,
+        size: (u32, u32),
+    ) -> Option<Option<u32>> {
+        let (x, y) = self.inspected_pixel(size)?;
+        let film = glam::Vec2::new(
+            (x as f32 + 0.5) / size.0 as f32,
+            (y as f32 + 0.5) / size.1 as f32,
+        );
+        let aspect = size.0 as f32 / size.1 as f32;
+        Some(crate::tracer::pick(scene, camera, aspect, film).map(|p| p.object))
+    }
+
+    /// The pixel the slide's inspector opens on, in an image of `size`.
+    pub fn inspected_pixel(&self, size: (u32, u32)) -> Option<(u32, u32)> {
+        let Some(Instrument::RayTree { x, y }) = self.instrument else {
+            return None;
+        };
+        let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n.max(1) - 1);
+        Some((at(x, size.0), at(y, size.1)))
     }
 
     /// The parameters the slide shows on a scene whose own are `base`: the slide's set on
@@ -243,15 +285,14 @@ pub fn markdown() -> Result<String, SlideError> {
             let asks: Vec<String> = s.controls.iter().map(|n| format!("`{n}`")).collect();
             facts.push(format!("asks for {}", asks.join(", ")));
         }
-        out += &format!(
-            "{}.
-
-{}
-
-",
-            facts.join("; "),
-            s.caption(&setup.params)
-        );
+        let scene = &setup.scene;
+        let shown = Shown {
+            params: &setup.params,
+            scene,
+            camera: &scene.camera,
+            inspected: s.inspected(scene, &scene.camera, (scene.width, scene.height)),
+        };
+        out += &format!("{}.\n\n{}\n\n", facts.join("; "), s.caption(&shown));
     }
     Ok(out)
 }
@@ -296,7 +337,13 @@ mod tests {
             if let Some(b) = s.side_b(&p) {
                 assert_ne!(p, b, "slide `{t}`: its sides differ");
             }
-            assert!(!s.caption(&p).is_empty(), "slide `{t}`: a caption");
+            let shown = Shown {
+                params: &p,
+                scene: &scene,
+                camera: &scene.camera,
+                inspected: None,
+            };
+            assert!(!s.caption(&shown).is_empty(), "slide `{t}`: a caption");
         }
         let mut titles: Vec<_> = LECTURE.iter().map(|s| s.title).collect();
         titles.sort();
@@ -319,10 +366,17 @@ mod tests {
             .iter()
             .find(|s| s.title == "Pruning the ray tree")
             .unwrap();
+        let scene = Scene::load(&slide.reference()).unwrap();
         let at = |max_depth| {
-            slide.caption(&Params {
+            let params = Params {
                 max_depth,
                 ..Params::default()
+            };
+            slide.caption(&Shown {
+                params: &params,
+                scene: &scene,
+                camera: &scene.camera,
+                inspected: None,
             })
         };
         assert!(at(2).contains("Cut at depth 2"), "{}", at(2));
@@ -332,6 +386,79 @@ mod tests {
             "{}",
             at(8)
         );
+    }
+
+    fn slide_titled(title: &str) -> &'static Slide {
+        LECTURE.iter().find(|s| s.title == title).unwrap()
+    }
+
+    #[test]
+    fn the_depth_of_field_caption_names_the_sphere_in_focus() {
+        let slide = slide_titled("Depth of field");
+        let setup =
+            slide_setup(LECTURE.iter().position(|s| std::ptr::eq(s, slide)).unwrap() + 1).unwrap();
+        let scene = &setup.scene;
+        let caption = |params: &Params| {
+            slide.caption(&Shown {
+                params,
+                scene,
+                camera: &scene.camera,
+                inspected: None,
+            })
+        };
+        assert!(caption(&setup.params).contains("the blue sphere is sharp"));
+        // Focused at the nearest (red) sphere's depth, as Click to focus would set it.
+        let nearest = scene
+            .object_names
+            .iter()
+            .position(|n| n == "nearest")
+            .unwrap();
+        let crate::geometry::Shape::Sphere(s) = &scene.shapes[nearest] else {
+            panic!("the nearest sphere");
+        };
+        let forward = scene.camera.pinhole(1.0).forward();
+        let depth = (s.center - scene.camera.position).dot(forward);
+        let near = Params {
+            focus_distance: Some(depth),
+            ..setup.params.clone()
+        };
+        assert!(
+            caption(&near).contains("the red sphere is sharp"),
+            "{}",
+            caption(&near)
+        );
+        assert!(caption(&near).contains(&format!("{depth:.1} units")));
+        let pinhole = Params {
+            aperture: 0.0,
+            ..setup.params.clone()
+        };
+        assert!(caption(&pinhole).contains("everything is sharp"));
+    }
+
+    #[test]
+    fn the_ray_tree_caption_names_what_the_inspected_pixel_meets() {
+        let slide = slide_titled("The ray tree");
+        let scene = Scene::load(&slide.reference()).unwrap();
+        let caption = |inspected| {
+            slide.caption(&Shown {
+                params: &scene.params,
+                scene: &scene,
+                camera: &scene.camera,
+                inspected,
+            })
+        };
+        let id = |name: &str| scene.object_names.iter().position(|n| n == name).unwrap() as u32;
+        // The slide's own pixel is on the front sphere.
+        let own = slide.inspected(&scene, &scene.camera, (scene.width, scene.height));
+        assert_eq!(own, Some(Some(id("front sphere"))));
+        assert!(caption(own).contains("front sphere's front and back"));
+        let floor = caption(Some(Some(id("floor"))));
+        assert!(
+            floor.contains("on the floor") && !floor.contains("front sphere"),
+            "{floor}"
+        );
+        assert!(caption(Some(None)).contains("meets nothing"));
+        assert!(caption(None).contains("Click a pixel"));
     }
 
     #[test]

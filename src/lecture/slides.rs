@@ -1,5 +1,6 @@
 //! The lecture's slides, in its order: each a few lines (see [`slide`]).
 
+use super::captions::{inspected_object, sharp_sphere};
 use super::{Comparison, Instrument, Slide, slide};
 use crate::params::Pattern;
 
@@ -19,9 +20,21 @@ pub const LECTURE: &[Slide] = &[
     slide("The ray tree", "ray-tree")
         .set(&[("spp", "32")])
         .open(Instrument::RayTree { x: 0.42, y: 0.5 })
-        .says(
-            "Every hit on glass spawns two rays, reflected (weight R) and refracted (weight 1 − R), and each of those spawns two more: a tree per pixel. The inspector (right) lists the tree of the pixel marked through the front sphere, and draws it over the image: the reflections off its front and back, the rays through it to the amber sphere and beyond. Click another pixel to see its tree.",
-        ),
+        .follows(|s| {
+            let tree = "Every hit on glass spawns a reflected ray (weight R) and a refracted one (weight 1 − R), and each of those two more: a tree per pixel.";
+            match inspected_object(s) {
+                Some(Some("front sphere")) => format!(
+                    "{tree} The inspector lists the marked pixel's tree and draws it: reflections off the front sphere's front and back, rays through it to the amber sphere and beyond. Click another pixel."
+                ),
+                Some(Some(object)) => format!(
+                    "{tree} The inspector lists the tree of the marked pixel, on the {object}, and draws it over the image. Click another pixel."
+                ),
+                Some(None) => format!(
+                    "{tree} The marked pixel's ray meets nothing: click a pixel on the glass."
+                ),
+                None => format!("{tree} Click a pixel to see its tree."),
+            }
+        }),
     slide("Total internal reflection", "tir")
         .set(&[("spp", "32")])
         .asks(&["ior"])
@@ -31,7 +44,8 @@ pub const LECTURE: &[Slide] = &[
     slide("Pruning the ray tree", "ray-tree")
         .set(&[("max_depth", "2"), ("spp", "64")])
         .asks(&["max_depth", "min_weight"])
-        .follows(|p| {
+        .follows(|s| {
+            let p = s.params;
             let d = p.max_depth;
             if d <= 3 {
                 format!(
@@ -64,7 +78,8 @@ pub const LECTURE: &[Slide] = &[
         ),
     slide("The basic ray tracer", "default")
         .set(&[("spp", "1"), ("pattern", "regular")])
-        .follows(|p| {
+        .follows(|s| {
+            let p = s.params;
             format!(
                 "One ray through each pixel's centre ({} sample{} per pixel), a shadow ray to the point light: hard shadows, jagged edges. Everything after this slide adds rays: more per pixel, per light, per reflection.",
                 p.spp,
@@ -80,7 +95,8 @@ pub const LECTURE: &[Slide] = &[
         .set(&[("spp", "4")])
         .compare(Comparison::RandomJittered)
         .asks(&["pattern"])
-        .follows(|p| {
+        .follows(|s| {
+            let p = s.params;
             let left = match p.pattern {
                 Pattern::Regular => {
                     "regular, each cell's centre, the same in every pixel: the edges alias again"
@@ -112,16 +128,25 @@ pub const LECTURE: &[Slide] = &[
         ),
     slide("Depth of field", "depth-of-field")
         .set(&[("spp", "256")])
-        .asks(&["focus_distance"])
-        .says(
-            "Eye rays from random points on the lens meet on the plane of focus: the blue sphere is sharp, the others blur by their circle of confusion. Try Click to focus.",
-        ),
+        .asks(&["focus_distance", "aperture"])
+        .follows(|s| {
+            if s.params.aperture <= 0.0 {
+                return "A pinhole (aperture 0): every eye ray starts at one point, and everything is sharp. Drag the Aperture to open the lens.".into();
+            }
+            match sharp_sphere(s) {
+                Some((colour, focus)) => format!(
+                    "Eye rays from random points on the lens meet on the plane of focus, {focus:.1} units away: the {colour} sphere is sharp, the others blur by their circle of confusion. Try Click to focus, or drag the Aperture."
+                ),
+                None => "Eye rays from random points on the lens meet on the plane of focus: what lies there is sharp, the rest blurs. Try Click to focus.".into(),
+            }
+        }),
     // A fifth of the frame: the spheres smear over a fifth of their travel and stay
     // solid enough to see (over the whole frame they were faint ghosts).
     slide("Motion blur", "motion-blur")
         .set(&[("shutter", "0.2")])
         .asks(&["shutter"])
-        .follows(|p| {
+        .follows(|s| {
+            let p = s.params;
             format!(
                 "Each sample has a time in the shutter interval, open for {:.2} of the frame: the moving spheres smear over their travel in that time, the still one stays sharp. Drag the Shutter interval: 0 freezes them, 1 smears them over the whole frame.",
                 p.shutter
