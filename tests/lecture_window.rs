@@ -394,3 +394,77 @@ fn captions_follow_the_inspected_pixel_and_the_focus() {
     let caption = h.state().caption().unwrap();
     assert!(caption.contains("the red sphere is sharp"), "{caption}");
 }
+
+/// Every piece of text the last frame drew where it can be seen: its size (points) and
+/// its words.
+fn texts(h: &Harness<'static, RaylabApp>) -> Vec<(f32, String)> {
+    fn walk(shape: &egui::Shape, clip: egui::Rect, out: &mut Vec<(f32, String)>) {
+        match shape {
+            egui::Shape::Vec(shapes) => shapes.iter().for_each(|s| walk(s, clip, out)),
+            egui::Shape::Text(t) => {
+                let rect = t.galley.rect.translate(t.pos.to_vec2());
+                if !rect.intersects(clip) {
+                    return;
+                }
+                let job = &t.galley.job;
+                for section in &job.sections {
+                    let r = &section.byte_range;
+                    let text = &job.text[r.start.0..r.end.0];
+                    if !text.trim().is_empty() {
+                        out.push((section.format.font_id.size, text.to_string()));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let screen = h.ctx.content_rect();
+    let mut out = Vec::new();
+    for clipped in &h.output().shapes {
+        walk(
+            &clipped.shape,
+            clipped.clip_rect.intersect(screen),
+            &mut out,
+        );
+    }
+    out
+}
+
+/// Whether `text` is a number as plots write them ("0.5", "30", "−0.1", "90°").
+fn numeric(text: &str) -> bool {
+    text.chars()
+        .all(|c| c.is_ascii_digit() || " .,-−+°%".contains(c))
+}
+
+#[test]
+fn every_text_in_presentation_mode_is_the_captions_size() {
+    let dir = tempfile::tempdir().unwrap();
+    for (size, caption) in [
+        ((1920.0, 1080.0), 1080.0 / 26.0),
+        ((1280.0, 720.0), 720.0 / 26.0),
+    ] {
+        let mut h = app_sized("default", dir.path(), size);
+        h.step();
+        h.key_press(egui::Key::F5);
+        for (i, slide) in LECTURE.iter().enumerate() {
+            h.key_press(egui::Key::PageDown);
+            wait_for_slide(&mut h, i);
+            h.run_steps(4);
+            let seen = texts(&h);
+            assert!(seen.len() >= 3, "{}: {seen:?}", slide.title);
+            for (points, text) in seen {
+                // Numbers in plots may be half the caption's size; every word is its size.
+                let least = if numeric(&text) {
+                    caption / 2.0
+                } else {
+                    caption
+                };
+                assert!(
+                    points >= least - 0.01,
+                    "`{}` at {size:?}: `{text}` is {points:.1} points, under {least:.1}",
+                    slide.title
+                );
+            }
+        }
+    }
+}

@@ -139,8 +139,9 @@ impl RaylabApp {
         let (a, b) = c.kind.labels();
         let b_spp = c.side.frame().map_or(0, |f| f.progress.spp);
         // In a hall the labels grow with the caption.
+        // In a hall the labels are the caption's size.
         let size = if self.hall.presenting {
-            super::present::caption_size(ui.ctx().content_rect().height()) * 0.7
+            super::present::caption_size(ui.ctx().content_rect().height())
         } else {
             15.0
         };

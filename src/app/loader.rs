@@ -199,7 +199,10 @@ impl RaylabApp {
                 LoadPurpose::Open => "Opened",
                 LoadPurpose::Reload => "Reloaded",
             };
-            self.toasts.info(format!("{verb} {}", scene.name));
+            // A slide in presentation mode says what it is in its own title.
+            if !(self.hall.presenting && slide.is_some()) {
+                self.toasts.info(format!("{verb} {}", scene.name));
+            }
             self.keep_side_a();
             self.instruments.inspection = None;
             self.error = None;

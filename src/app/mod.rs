@@ -436,9 +436,10 @@ impl eframe::App for RaylabApp {
         let held = ctx.input(|i| i.pointer.any_down());
         self.history.observe(&self.settings.params, held);
         if self.hall.presenting {
+            self.hall_style_ui(&ctx);
             self.instruments_dock_ui(ui);
             self.presentation_ui(ui);
-            self.toasts.ui(&ctx);
+            self.toasts.ui(&ctx, self.hall.presenting);
             self.help_ui(&ctx);
             if self.settings != before {
                 ctx.request_repaint();
@@ -459,7 +460,7 @@ impl eframe::App for RaylabApp {
         self.instruments_dock_ui(ui);
         CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
         self.dialog_ui(&ctx);
-        self.toasts.ui(&ctx);
+        self.toasts.ui(&ctx, self.hall.presenting);
         self.sheet_ui(&ctx);
         self.help_ui(&ctx);
         // What the controls changed reaches the engines in the next logic(): at once.

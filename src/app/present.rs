@@ -88,6 +88,11 @@ pub(crate) struct Hall {
     pub presenting: bool,
     /// The help overlay is open.
     pub help: bool,
+    /// The window's style before presentation mode made every text the caption's size.
+    desk_style: Option<std::sync::Arc<egui::Style>>,
+    /// The text size presentation mode last set (the style is set again only when the
+    /// screen's height changes it: egui lays a frame out again after a change of style).
+    hall_size: f32,
 }
 
 impl RaylabApp {
@@ -140,9 +145,31 @@ impl RaylabApp {
 
     /// Enters or leaves presentation mode (fullscreen, panels hidden, image fitted).
     pub(super) fn set_presenting(&mut self, ctx: &egui::Context, on: bool) {
+        if on && !self.hall.presenting {
+            self.hall.desk_style = Some(ctx.global_style());
+        }
+        if !on && let Some(style) = self.hall.desk_style.take() {
+            ctx.set_global_style(style);
+            self.hall.hall_size = 0.0;
+        }
         self.hall.presenting = on;
         ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(on));
         self.view.fit();
+    }
+
+    /// In presentation mode, every text the caption's size for the screen as it is now:
+    /// the instruments, the A/B labels, the toasts, the help. Called before anything is
+    /// drawn.
+    pub(super) fn hall_style_ui(&mut self, ctx: &egui::Context) {
+        let size = caption_size(ctx.content_rect().height());
+        if let (true, Some(desk)) = (self.hall.presenting, &self.hall.desk_style)
+            && (size - self.hall.hall_size).abs() > 0.01
+        {
+            let mut style = (**desk).clone();
+            hall_style(&mut style, size);
+            ctx.set_global_style(style);
+            self.hall.hall_size = size;
+        }
     }
 
     /// The slide `by` away from the one shown (the first, with none shown yet), within
@@ -201,17 +228,17 @@ impl RaylabApp {
                     });
                 });
                 self.progress_bar_ui(ui, size);
-                ui.scope(|ui| {
-                    hall_style(ui.style_mut(), size);
-                    self.with_slide_controls(|c, controls| {
-                        // Each control's parts in a row (its slider, presets, readout),
-                        // the controls side by side: the image keeps the height.
-                        ui.horizontal_wrapped(|ui| {
-                            for name in controls {
-                                param_ui(ui, c, name);
-                                ui.add_space(size);
-                            }
-                        });
+                self.with_slide_controls(|c, controls| {
+                    if controls.is_empty() {
+                        return;
+                    }
+                    // Each control's parts in a row (its slider, presets, readout), the
+                    // controls side by side: the image keeps the height.
+                    ui.horizontal_wrapped(|ui| {
+                        for name in controls {
+                            param_ui(ui, c, name);
+                            ui.add_space(size);
+                        }
                     });
                 });
                 let text =

@@ -37,15 +37,23 @@ impl Toasts {
         self.0.iter().map(|t| t.text.clone()).collect()
     }
 
-    /// Drops the expired ones and draws the rest.
-    pub(crate) fn ui(&mut self, ctx: &egui::Context) {
+    /// Drops the expired ones and draws the rest: at the bottom right, or in presentation
+    /// mode (`top`) at the top right, clear of the caption strip.
+    pub(crate) fn ui(&mut self, ctx: &egui::Context, top: bool) {
         let now = Instant::now();
         self.0.retain(|t| t.until > now);
         if self.0.is_empty() {
             return;
         }
         egui::Area::new(egui::Id::unique("raylab-toasts"))
-            .anchor(egui::Align2::RIGHT_BOTTOM, [-12.0, -36.0])
+            .anchor(
+                if top {
+                    egui::Align2::RIGHT_TOP
+                } else {
+                    egui::Align2::RIGHT_BOTTOM
+                },
+                if top { [-12.0, 12.0] } else { [-12.0, -36.0] },
+            )
             .order(egui::Order::Foreground)
             .interactable(false)
             .show(ctx, |ui| {
@@ -64,12 +72,13 @@ impl Toasts {
                             // text its own width up to 420 points, so a long message wraps
                             // into lines, not a word per line.
                             let font = egui::TextStyle::Body.resolve(ui.style());
+                            let size = font.size;
                             let natural = ui
                                 .painter()
                                 .layout_no_wrap(t.text.clone(), font, Color32::WHITE)
                                 .size()
                                 .x;
-                            ui.set_width(natural.min(420.0));
+                            ui.set_width(natural.min(34.0 * size));
                             ui.label(RichText::new(&t.text).color(Color32::WHITE));
                         });
                 }

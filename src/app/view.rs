@@ -98,7 +98,7 @@ pub(crate) fn image_ui(
                 area.center(),
                 egui::Align2::CENTER_CENTER,
                 "rendering…",
-                egui::FontId::proportional(18.0),
+                egui::TextStyle::Heading.resolve(ui.style()),
                 Color32::GRAY,
             );
         }

@@ -62,7 +62,7 @@ pub const LECTURE: &[Slide] = &[
         .set(&[("spp", "32")])
         .open(Instrument::FresnelPlot { metal: Some("gold") })
         .says(
-            "The Fresnel plot: gold (top, per colour channel) reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass (below) 4% head-on, rising to 100% only at grazing. Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.",
+            "The Fresnel plot: gold, per colour channel, reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass 4% head-on, rising to 100% only at grazing (Compare with a metal: none plots it alone). Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.",
         ),
     slide("Fresnel reflection on the black glazed sphere", "glazed")
         .set(&[("spp", "32"), ("constant_reflectance", "0.1")])

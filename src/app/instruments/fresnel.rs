@@ -4,6 +4,7 @@
 
 use crate::material::METALS;
 use crate::optics::{brewster_angle, conductor_table, critical_angle, fresnel_table};
+use egui::{Color32, RichText};
 use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
 
 /// The Fresnel plots for `ior`, both ways across the interface: from air into the
@@ -11,12 +12,15 @@ use egui_plot::{Legend, Line, LineStyle, Plot, PlotPoints, VLine};
 /// With `metal` (an index into [`METALS`]) the first plot is that metal's instead, so a
 /// conductor and a dielectric are seen on the same axes. `marker` is an inspected ray's
 /// angle of incidence (degrees) and whether it was going into the denser medium: it is
-/// marked on that plot.
+/// marked on that plot. In a `hall` (presentation mode, every text large) one plot is
+/// shown, taller, the inspected ray's way across (else into the material), its legend in
+/// rows of text under it rather than over the curves.
 pub(crate) fn fresnel_plot_ui(
     ui: &mut egui::Ui,
     ior: f32,
     marker: Option<(f32, bool)>,
     metal: &mut Option<usize>,
+    hall: bool,
 ) {
     ui.horizontal(|ui| {
         ui.label("Compare with a metal:");
@@ -30,24 +34,49 @@ pub(crate) fn fresnel_plot_ui(
             });
     });
     if let Some(i) = *metal {
-        metal_curves_ui(ui, i);
-        ui.strong("Air into material");
-        fresnel_curves_ui(ui, 1.0, ior, marker.filter(|m| m.1).map(|m| m.0));
+        metal_curves_ui(ui, i, hall);
+        if !hall {
+            ui.strong("Air into material");
+            fresnel_curves_ui(ui, 1.0, ior, marker.filter(|m| m.1).map(|m| m.0), hall);
+        }
         return;
     }
     for (title, n1, n2, into) in [
         ("Air into material", 1.0, ior, true),
         ("Material out to air", ior, 1.0, false),
     ] {
+        if hall && marker.map_or(!into, |(_, m)| m != into) {
+            continue;
+        }
         ui.strong(title);
         let mark = marker.filter(|&(_, m)| m == into).map(|(a, _)| a);
-        fresnel_curves_ui(ui, n1, n2, mark);
+        fresnel_curves_ui(ui, n1, n2, mark, hall);
+    }
+}
+
+/// A plot's legend as rows of text under it: each curve's name in its colour, after a
+/// stroke of its style.
+fn legend_rows_ui(ui: &mut egui::Ui, entries: &[(String, Color32, &str)]) {
+    ui.horizontal_wrapped(|ui| {
+        for (name, colour, stroke) in entries {
+            ui.label(RichText::new(format!("{stroke} {name}")).color(*colour));
+        }
+    });
+}
+
+/// The plot's height: taller in a hall, where its numbers are large.
+fn plot_height(ui: &egui::Ui, hall: bool) -> f32 {
+    if hall {
+        10.0 * egui::TextStyle::Body.resolve(ui.style()).size
+    } else {
+        230.0
     }
 }
 
 /// A measured metal's R (thick), R_s (dashed) and R_p (dotted) from air, one colour per
-/// channel: high at every angle, dipping a little in p before rising to 1 at grazing.
-fn metal_curves_ui(ui: &mut egui::Ui, index: usize) {
+/// channel: high at every angle, dipping a little in p before rising to 1 at grazing. Its
+/// legend is under it: six entries over curves that run high would hide them.
+fn metal_curves_ui(ui: &mut egui::Ui, index: usize, hall: bool) {
     let m = &METALS[index];
     let rows = conductor_table(1.0, m.eta, m.k, 0.25);
     let fmt = |v: [f32; 3]| format!("{:.2}, {:.2}, {:.2}", v[0], v[1], v[2]);
@@ -63,33 +92,39 @@ fn metal_curves_ui(ui: &mut egui::Ui, index: usize) {
         ("green", egui::Color32::from_rgb(70, 175, 80)),
         ("blue", egui::Color32::from_rgb(70, 120, 235)),
     ];
-    // The curves run high: the legend goes in room made below them.
-    let legend = Legend::default().position(egui_plot::Corner::LeftBottom);
-    reflectance_plot(("metal-plot", index))
-        .legend(legend)
-        .include_y(-0.55)
-        .show(ui, |p| {
-            for (c, (channel, colour)) in channels.into_iter().enumerate() {
-                let series = |f: &dyn Fn(&crate::optics::ConductorRow) -> f32| {
-                    curve(&rows, |r| (r.theta_i, f(r)))
-                };
-                p.line(
-                    Line::new(format!("R {channel}"), series(&|r| r.r[c]))
-                        .color(colour)
-                        .width(2.5),
-                );
-                p.line(
-                    Line::new("Rs (dashed)", series(&|r| r.r_s[c]))
-                        .color(colour)
-                        .style(LineStyle::dashed_dense()),
-                );
-                p.line(
-                    Line::new("Rp (dotted)", series(&|r| r.r_p[c]))
-                        .color(colour)
-                        .style(LineStyle::dotted_dense()),
-                );
-            }
-        });
+    // The curves run high: the legend goes under the plot, not over them.
+    let plot = reflectance_plot(("metal-plot", index), ui, hall, false);
+    plot.show(ui, |p| {
+        for (c, (channel, colour)) in channels.into_iter().enumerate() {
+            let series = |f: &dyn Fn(&crate::optics::ConductorRow) -> f32| {
+                curve(&rows, |r| (r.theta_i, f(r)))
+            };
+            p.line(
+                Line::new(format!("R {channel}"), series(&|r| r.r[c]))
+                    .color(colour)
+                    .width(2.5),
+            );
+            p.line(
+                Line::new("Rs (dashed)", series(&|r| r.r_s[c]))
+                    .color(colour)
+                    .style(LineStyle::dashed_dense()),
+            );
+            p.line(
+                Line::new("Rp (dotted)", series(&|r| r.r_p[c]))
+                    .color(colour)
+                    .style(LineStyle::dotted_dense()),
+            );
+        }
+    });
+    {
+        let mut entries: Vec<(String, Color32, &str)> = channels
+            .iter()
+            .map(|(channel, colour)| (format!("R {channel}"), *colour, "—"))
+            .collect();
+        entries.push(("Rs".into(), Color32::LIGHT_GRAY, "- -"));
+        entries.push(("Rp".into(), Color32::LIGHT_GRAY, "···"));
+        legend_rows_ui(ui, &entries);
+    }
 }
 
 /// A plot line through `rows`, each giving (θi in degrees, value).
@@ -103,13 +138,17 @@ fn curve<R>(rows: &[R], point: impl Fn(&R) -> (f32, f32)) -> PlotPoints<'static>
         .into()
 }
 
-/// The plot both kinds of curve share: reflectance 0..1 against 0..90 degrees.
-fn reflectance_plot(id: impl std::hash::Hash + std::fmt::Debug) -> Plot<'static> {
-    // Top left, where a dielectric's curves are low (R under 0.1 below 30°): the legend
-    // covers none of them, nor the rise towards grazing it is there to explain.
-    Plot::new(id)
-        .legend(Legend::default().position(egui_plot::Corner::LeftTop))
-        .height(230.0)
+/// The plot both kinds of curve share: reflectance 0..1 against 0..90 degrees, taller in a
+/// `hall`, its legend over the curves if `legend_inside` (else the caller draws it under
+/// the plot).
+fn reflectance_plot(
+    id: impl std::hash::Hash + std::fmt::Debug,
+    ui: &egui::Ui,
+    hall: bool,
+    legend_inside: bool,
+) -> Plot<'static> {
+    let plot = Plot::new(id)
+        .height(plot_height(ui, hall))
         .include_x(0.0)
         .include_x(90.0)
         .include_y(-0.1)
@@ -120,12 +159,19 @@ fn reflectance_plot(id: impl std::hash::Hash + std::fmt::Debug) -> Plot<'static>
         .allow_scroll(false)
         .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [5.0, 10.0, 30.0]))
         .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [0.05, 0.1, 0.5]))
-        .y_axis_formatter(|mark, _| format!("{:.1}", mark.value))
+        .y_axis_formatter(|mark, _| format!("{:.1}", mark.value));
+    if legend_inside {
+        // Top left, where a dielectric's curves are low (R under 0.1 below 30°): the
+        // legend covers none of them, nor the rise towards grazing it is there to explain.
+        plot.legend(Legend::default().position(egui_plot::Corner::LeftTop))
+    } else {
+        plot
+    }
 }
 
 /// R_s, R_p, exact R, Schlick and naive Schlick against the angle of incidence from `n1`
 /// into `n2`, with Brewster's and the critical angle marked and the error of Schlick.
-fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
+fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>, hall: bool) {
     let rows = fresnel_table(n1, n2, 0.25);
     let series =
         |f: &dyn Fn(&crate::optics::FresnelRow) -> f32| curve(&rows, |r| (r.theta_i, f(r)));
@@ -136,22 +182,66 @@ fn fresnel_curves_ui(ui: &mut egui::Ui, n1: f32, n2: f32, marker: Option<f32>) {
         rows[0].r_exact,
         critical.map_or(String::new(), |c| format!(", critical {c:.2}°"))
     ));
-    reflectance_plot(("fresnel-plot", n1 > n2)).show(ui, |p| {
-        p.line(Line::new("Rs = Fs²", series(&|r| r.f_s * r.f_s)));
-        p.line(Line::new("Rp = Fp²", series(&|r| r.f_p * r.f_p)));
-        p.line(Line::new("R exact", series(&|r| r.r_exact)).width(2.5));
-        p.line(Line::new("Schlick", series(&|r| r.r_schlick)));
-        p.line(Line::new("naive Schlick", series(&|r| r.r_schlick_naive)));
-        p.line(Line::new(
+    type Of = fn(&crate::optics::FresnelRow) -> f32;
+    // Each its own colour, far apart in hue (egui_plot's own drew two alike greens).
+    let curves: [(&str, Color32, f32, Of); 6] = [
+        ("Rs = Fs²", Color32::from_rgb(235, 90, 70), 1.5, |r| {
+            r.f_s * r.f_s
+        }),
+        ("Rp = Fp²", Color32::from_rgb(80, 140, 240), 1.5, |r| {
+            r.f_p * r.f_p
+        }),
+        ("R exact", Color32::from_rgb(245, 245, 245), 2.5, |r| {
+            r.r_exact
+        }),
+        ("Schlick", Color32::from_rgb(90, 200, 90), 1.5, |r| {
+            r.r_schlick
+        }),
+        (
+            "naive Schlick",
+            Color32::from_rgb(210, 110, 220),
+            1.5,
+            |r| r.r_schlick_naive,
+        ),
+        (
             "Schlick − exact",
-            series(&|r| r.r_schlick - r.r_exact),
-        ));
-        p.vline(VLine::new(format!("Brewster {brewster:.1}°"), brewster));
+            Color32::from_rgb(240, 190, 60),
+            1.5,
+            |r| r.r_schlick - r.r_exact,
+        ),
+    ];
+    let plot = reflectance_plot(("fresnel-plot", n1 > n2), ui, hall, !hall);
+    let vlines = |p: &mut egui_plot::PlotUi| {
+        p.vline(VLine::new(format!("Brewster {brewster:.1}°"), brewster).color(Color32::GRAY));
         if let Some(c) = critical {
-            p.vline(VLine::new(format!("critical {c:.1}°"), c));
+            p.vline(VLine::new(format!("critical {c:.1}°"), c).color(Color32::DARK_GRAY));
         }
         if let Some(m) = marker {
-            p.vline(VLine::new(format!("inspected ray {m:.1}°"), m).width(2.0));
+            p.vline(
+                VLine::new(format!("inspected ray {m:.1}°"), m)
+                    .width(2.0)
+                    .color(Color32::YELLOW),
+            );
         }
+    };
+    plot.show(ui, |p| {
+        for (name, colour, width, of) in curves {
+            p.line(Line::new(name, series(&of)).color(colour).width(width));
+        }
+        vlines(p);
     });
+    if hall {
+        let mut entries: Vec<(String, Color32, &str)> = curves
+            .iter()
+            .map(|(name, colour, _, _)| (name.to_string(), *colour, "—"))
+            .collect();
+        entries.push((format!("Brewster {brewster:.1}°"), Color32::GRAY, "|"));
+        if let Some(c) = critical {
+            entries.push((format!("critical {c:.1}°"), Color32::DARK_GRAY, "|"));
+        }
+        if let Some(m) = marker {
+            entries.push((format!("inspected ray {m:.1}°"), Color32::YELLOW, "|"));
+        }
+        legend_rows_ui(ui, &entries);
+    }
 }

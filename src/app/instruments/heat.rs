@@ -58,7 +58,12 @@ pub(crate) fn draw_colour_bar(painter: &egui::Painter, image: egui::Rect, (lo, h
         );
         painter.rect_filled(rect, 0.0, egui::Color32::from_rgb(r, g, b));
     }
-    let font = egui::FontId::proportional(13.0);
+    // Numbers, at half the body text's size or 13 points, whichever is larger (a hall's
+    // text is large).
+    let body = egui::TextStyle::Body
+        .resolve(painter.ctx().global_style().as_ref())
+        .size;
+    let font = egui::FontId::proportional((body * 0.5).max(13.0));
     let white = egui::Color32::WHITE;
     let y = min.y + size.y + 2.0;
     painter.text(

@@ -132,11 +132,21 @@ impl RaylabApp {
         if !(i.show_fresnel || i.inspect_mode || i.inspection.is_some() || i.show_patterns) {
             return;
         }
+        // In a hall the image keeps two thirds of the width, whatever the text's size.
+        let width = ui.ctx().content_rect().width();
+        let (default, max) = if self.hall.presenting {
+            (width / 3.0, width / 3.0)
+        } else {
+            (420.0, width * 0.6)
+        };
         egui::Panel::right("instruments")
             .resizable(true)
-            .default_size(420.0)
+            .default_size(default)
+            .max_size(max)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| self.instruments_ui(ui));
+                // Rows wider than the dock scroll (a hall's text is large): the dock keeps
+                // its width, and the image the rest.
+                egui::ScrollArea::both().show(ui, |ui| self.instruments_ui(ui));
             });
     }
 
@@ -162,7 +172,8 @@ impl RaylabApp {
             if !heading(ui, "Fresnel plot") {
                 i.show_fresnel = false;
             }
-            fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal);
+            let hall = self.hall.presenting;
+            fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal, hall);
             ui.separator();
         }
         if i.inspect_mode || i.inspection.is_some() {
