@@ -154,6 +154,16 @@ fn the_contact_sheet_button_saves_a_sheet() {
     h.run_steps(3);
     h.get_by_label("Contact sheet…").click();
     h.run_steps(3);
+    // The form is in the dock beside the image: it covers no control, nor the image.
+    let form = h.get_by_label("Render sheet").rect();
+    let image = h.get_by_label("Image").rect();
+    assert!(form.left() >= image.right(), "{form:?} beside {image:?}");
+    for control in ["Scene", "Instruments"] {
+        let c = h.get_by_label(control).rect();
+        assert!(!form.intersects(c), "{form:?} covers {control} at {c:?}");
+    }
+    let ior = h.get_by_role_and_label(Role::Slider, "IOR").rect();
+    assert!(!form.intersects(ior));
     h.get_by_label("Render sheet").click();
     h.run_steps(2);
     step_until(&mut h, "the sheet", |a| {

@@ -11,6 +11,7 @@
 mod compare;
 mod controls;
 mod files;
+mod fit;
 mod history;
 mod instruments;
 mod lecture;
@@ -52,7 +53,8 @@ use view::ViewState;
 pub struct AppOptions {
     /// The scene to open (a file or built-in name); `None` reopens the last one.
     pub scene: Option<String>,
-    /// Where snapshots go.
+    /// Where snapshots go (the pictures folder's `raylab` unless told; Save as… changes it,
+    /// and the window remembers the folder where `persist` is on).
     pub snapshot_dir: PathBuf,
     /// Where the scene picker looks for scene files.
     pub scenes_dir: PathBuf,
@@ -68,13 +70,22 @@ impl Default for AppOptions {
     fn default() -> Self {
         AppOptions {
             scene: None,
-            snapshot_dir: PathBuf::from("screenshots"),
+            snapshot_dir: default_snapshot_dir(),
             scenes_dir: PathBuf::from("scenes"),
             threads: None,
             close_after: None,
             persist: true,
         }
     }
+}
+
+/// Where snapshots go at first: the user's pictures folder (as the platform names it:
+/// ~/Pictures, XDG_PICTURES_DIR, the Pictures known folder), in a folder `raylab`; failing
+/// that the home folder's `raylab`, or `raylab-snapshots` here. Save as… moves it.
+fn default_snapshot_dir() -> PathBuf {
+    dirs::picture_dir()
+        .or_else(dirs::home_dir)
+        .map_or_else(|| PathBuf::from("raylab-snapshots"), |d| d.join("raylab"))
 }
 
 /// What the controls hold.
@@ -110,6 +121,8 @@ pub struct RaylabApp {
     // egui's zoom factor (the UI scale), remembered between runs.
     ui_scale: f32,
     history: History,
+    // Whether the first window was checked against its screen (`fit.rs`).
+    fitted: bool,
 }
 
 /// Opens the previewer window and runs it until it is closed.
@@ -149,8 +162,14 @@ fn default_scene() -> Scene {
 
 impl RaylabApp {
     /// Builds the app: opens the scene (or the remembered one), starts the engine.
-    pub fn new(cc: &eframe::CreationContext<'_>, options: AppOptions) -> Result<Self, EngineError> {
+    pub fn new(
+        cc: &eframe::CreationContext<'_>,
+        mut options: AppOptions,
+    ) -> Result<Self, EngineError> {
         let remembered = options.persist.then(|| persist::load(cc)).flatten();
+        if let Some(dir) = remembered.as_ref().and_then(|r| r.snapshot_dir.clone()) {
+            options.snapshot_dir = dir;
+        }
         let ui_scale = remembered
             .as_ref()
             .map_or(1.0, |r| r.ui_scale.clamp(0.5, 3.0));
@@ -222,6 +241,7 @@ impl RaylabApp {
             hall: Hall::default(),
             ui_scale,
             history: History::default(),
+            fitted: false,
         })
     }
 
@@ -386,6 +406,7 @@ impl RaylabApp {
 
 impl eframe::App for RaylabApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
+        self.fit_to_screen(ctx);
         self.receive_scenes(ctx);
         self.loader.poll();
         self.receive_sheet();
@@ -461,7 +482,6 @@ impl eframe::App for RaylabApp {
         CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
         self.dialog_ui(&ctx);
         self.toasts.ui(&ctx, self.hall.presenting);
-        self.sheet_ui(&ctx);
         self.help_ui(&ctx);
         // What the controls changed reaches the engines in the next logic(): at once.
         if self.settings != before {
@@ -472,7 +492,27 @@ impl eframe::App for RaylabApp {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         if self.options.persist {
             let s = &self.settings;
-            persist::save(storage, &self.scene, s, self.ui_scale);
+            persist::save(
+                storage,
+                &self.scene,
+                s,
+                self.ui_scale,
+                &self.options.snapshot_dir,
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn snapshots_go_to_a_folder_of_the_users_not_where_raylab_was_started() {
+        let dir = default_snapshot_dir();
+        assert_eq!(dir.file_name().and_then(|n| n.to_str()), Some("raylab"));
+        if dirs::home_dir().is_some() {
+            assert!(dir.is_absolute(), "{}", dir.display());
         }
     }
 }

@@ -17,6 +17,8 @@ pub(super) struct Persisted {
     pub(super) resolution: f32,
     pub(super) unlimited: bool,
     pub(super) ui_scale: f32,
+    /// The folder of the last Save as…, where snapshots go from then on.
+    pub(super) snapshot_dir: Option<std::path::PathBuf>,
 }
 
 impl Default for Persisted {
@@ -28,6 +30,7 @@ impl Default for Persisted {
             resolution: 1.0,
             unlimited: false,
             ui_scale: 1.0,
+            snapshot_dir: None,
         }
     }
 }
@@ -39,12 +42,13 @@ pub(super) fn load(cc: &eframe::CreationContext<'_>) -> Option<Persisted> {
     cc.storage.and_then(|s| eframe::get_value(s, STORAGE_KEY))
 }
 
-/// Remembers `scene`, `settings` and the UI scale for the next run.
+/// Remembers `scene`, `settings`, the UI scale and the snapshots' folder for the next run.
 pub(super) fn save(
     storage: &mut dyn eframe::Storage,
     scene: &Scene,
     settings: &Settings,
     ui_scale: f32,
+    snapshot_dir: &std::path::Path,
 ) {
     let state = Persisted {
         scene: scene.source.reference(),
@@ -53,6 +57,7 @@ pub(super) fn save(
         resolution: settings.resolution,
         unlimited: settings.unlimited,
         ui_scale,
+        snapshot_dir: Some(snapshot_dir.to_path_buf()),
     };
     eframe::set_value(storage, STORAGE_KEY, &state);
 }

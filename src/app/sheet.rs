@@ -1,5 +1,5 @@
-//! The contact sheet window: one labelled image per value of a parameter, rendered on a
-//! thread of its own and saved beside the snapshots.
+//! The contact sheet form, in the instruments' dock: one labelled image per value of a
+//! parameter, rendered on a thread of its own and saved beside the snapshots.
 
 use super::RaylabApp;
 use super::files::timestamp;
@@ -41,12 +41,13 @@ impl RaylabApp {
         }
     }
 
-    /// The form's window.
-    pub(super) fn sheet_ui(&mut self, ctx: &egui::Context) {
+    /// The form, in the dock beside the image (where it covers no control); `open` turns
+    /// false when it is closed.
+    pub(super) fn sheet_form_ui(&mut self, ui: &mut egui::Ui, open: bool) {
+        let ctx = ui.ctx().clone();
         let Some(form) = &mut self.sheet else { return };
-        let mut open = true;
         let mut start = false;
-        egui::Window::new("Contact sheet").open(&mut open).show(ctx, |ui| {
+        {
             egui::ComboBox::from_label("Parameter")
                 .selected_text(form.param.as_str())
                 .show_ui(ui, |ui| {
@@ -56,10 +57,13 @@ impl RaylabApp {
                 });
             ui.horizontal(|ui| {
                 ui.label("Values");
-                ui.text_edit_singleline(&mut form.values)
-                    .on_hover_text("Comma separated, as --set takes them: 1,4,16 or schlick,exact.");
+                ui.text_edit_singleline(&mut form.values).on_hover_text(
+                    "Comma separated, as --set takes them: 1,4,16 or schlick,exact.",
+                );
             });
-            ui.label("Each image is half the scene's size, with the other parameters as they are now.");
+            ui.label(
+                "Each image is half the scene's size, with the other parameters as they are now.",
+            );
             if form.running.is_some() {
                 ui.horizontal(|ui| {
                     ui.spinner();
@@ -68,9 +72,9 @@ impl RaylabApp {
             } else if ui.button("Render sheet").clicked() {
                 start = true;
             }
-        });
+        }
         if start {
-            self.start_sheet(ctx);
+            self.start_sheet(&ctx);
         }
         if !open {
             self.sheet = None;

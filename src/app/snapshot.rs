@@ -60,14 +60,20 @@ impl RaylabApp {
         self.report_save(&path);
     }
 
-    /// Saves to `path` and says how it went.
-    pub(super) fn report_save(&mut self, path: &Path) {
+    /// Saves to `path` and says how it went, naming the files in full; whether it saved.
+    pub(super) fn report_save(&mut self, path: &Path) -> bool {
         match self.save_to(path) {
             Ok(p) => {
-                let text = format!("Saved {} and {}", p.display(), sidecar_path(&p).display());
-                self.toasts.info(text);
+                let full = std::path::absolute(&p).unwrap_or(p);
+                let json = sidecar_path(&full);
+                self.toasts
+                    .info(format!("Saved {} and {}", full.display(), json.display()));
+                true
             }
-            Err(e) => self.toasts.error(format!("Not saved: {e}")),
+            Err(e) => {
+                self.toasts.error(format!("Not saved: {e}"));
+                false
+            }
         }
     }
 }

@@ -266,7 +266,14 @@ impl RaylabApp {
                 self.dialog = None;
                 match purpose {
                     Purpose::Open => self.open_scene(&path.display().to_string()),
-                    Purpose::SaveAs => self.report_save(&path),
+                    Purpose::SaveAs => {
+                        // Snapshots go where the user last saved from now on.
+                        if self.report_save(&path)
+                            && let Some(dir) = path.parent().filter(|d| d.is_dir())
+                        {
+                            self.options.snapshot_dir = dir.to_path_buf();
+                        }
+                    }
                 }
             }
         }

@@ -129,7 +129,9 @@ impl RaylabApp {
     /// that none covers the image it explains or the controls it follows.
     pub(super) fn instruments_dock_ui(&mut self, ui: &mut egui::Ui) {
         let i = &self.instruments;
-        if !(i.show_fresnel || i.inspect_mode || i.inspection.is_some() || i.show_patterns) {
+        let sheet = self.sheet.is_some();
+        if !(i.show_fresnel || i.inspect_mode || i.inspection.is_some() || i.show_patterns || sheet)
+        {
             return;
         }
         // In a hall the image keeps two thirds of the width, whatever the text's size.
@@ -200,6 +202,11 @@ impl RaylabApp {
                 i.show_patterns = false;
             }
             patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
+            ui.separator();
+        }
+        if self.sheet.is_some() {
+            let open = heading(ui, "Contact sheet");
+            self.sheet_form_ui(ui, open);
         }
     }
 }
