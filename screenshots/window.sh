@@ -8,7 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 export DISPLAY=":${RAYLAB_DISPLAY:-97}"
-Xvfb "$DISPLAY" -screen 0 1280x720x24 >/dev/null 2>&1 &
+# 48 pixels more than the window: room for a taskbar, so the window keeps its first size
+# (a window that does not fit its screen is made to fit).
+Xvfb "$DISPLAY" -screen 0 1280x768x24 >/dev/null 2>&1 &
 xvfb=$!
 # Start from each scene's defaults, not from what an earlier run remembered.
 XDG_DATA_HOME=$(mktemp -d)
@@ -25,7 +27,7 @@ launch() {
   xdotool windowfocus --sync "$win"
 }
 quit() { kill "$app" 2>/dev/null || true; wait "$app" 2>/dev/null || true; }
-shot() { import -window root "screenshots/$1.png"; echo "screenshots/$1.png"; }
+shot() { import -window root -crop 1280x720+0+0 +repage "screenshots/$1.png"; echo "screenshots/$1.png"; }
 click() { xdotool mousemove "$1" "$2"; sleep 0.2; xdotool click 1; sleep 0.3; }
 # Press at (x1, y1), move to (x2, y2) in steps; the button stays down.
 press_and_move() {

@@ -453,6 +453,7 @@ impl eframe::App for RaylabApp {
         let before = self.settings.clone();
         self.shortcuts(&ctx);
         self.hall_keys(&ctx);
+        self.settle_ui(&ctx);
         self.ui_scale = ctx.zoom_factor();
         let held = ctx.input(|i| i.pointer.any_down());
         self.history.observe(&self.settings.params, held);

@@ -48,6 +48,9 @@ pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
     ("F1 or ?", "list these shortcuts"),
 ];
 
+/// How long a window may take to become fullscreen or leave it.
+const SETTLE: std::time::Duration = std::time::Duration::from_millis(1500);
+
 /// UI scales offered in the View menu: a name and egui's zoom factor.
 pub(crate) const UI_SCALES: &[(&str, f32)] = &[
     ("laptop (100 %)", 1.0),
@@ -93,6 +96,10 @@ pub(crate) struct Hall {
     /// The text size presentation mode last set (the style is set again only when the
     /// screen's height changes it: egui lays a frame out again after a change of style).
     hall_size: f32,
+    /// Until when to keep drawing after entering or leaving fullscreen: the window's new
+    /// size can arrive after the frame drawn for it, which then stayed on screen (the
+    /// toolbar gone, half the window black) until the next repaint.
+    settle_until: Option<std::time::Instant>,
 }
 
 impl RaylabApp {
@@ -154,7 +161,20 @@ impl RaylabApp {
         }
         self.hall.presenting = on;
         ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(on));
+        self.hall.settle_until = Some(std::time::Instant::now() + SETTLE);
         self.view.fit();
+    }
+
+    /// While the window settles into or out of fullscreen, a frame every 50 ms: the last
+    /// one is laid out for the size it ends at.
+    pub(super) fn settle_ui(&mut self, ctx: &egui::Context) {
+        match self.hall.settle_until {
+            Some(t) if std::time::Instant::now() < t => {
+                ctx.request_repaint_after(std::time::Duration::from_millis(50));
+            }
+            Some(_) => self.hall.settle_until = None,
+            None => {}
+        }
     }
 
     /// In presentation mode, every text the caption's size for the screen as it is now:

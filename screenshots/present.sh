@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Screenshots of presentation mode, as a hall sees it: the window under Xvfb at 1920x1080
+# (a projector) and at 1280x720 (a laptop), F5, then Page Down to five slides, each shot
+# once its image is clean. Writes screenshots/present-{1080,720}-{snell,ray-tree,schlick,
+# soft-shadows,polarization}.png.
+# Needs: apt-get install xvfb xdotool imagemagick
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+# Slide numbers and names, in the lecture's order (raylab lecture lists them).
+slides=(2:snell 3:ray-tree 8:schlick 13:soft-shadows 17:polarization)
+display=${RAYLAB_DISPLAY:-96}
+for size in 1920x1080 1280x720; do
+  w=${size%x*}; h=${size#*x}
+  # A display of its own for each size: the last one may still be shutting down.
+  export DISPLAY=":$display"
+  display=$((display + 1))
+  # Room for a taskbar under the window, which keeps its size; the shots are the window.
+  Xvfb "$DISPLAY" -screen 0 "${w}x$((h + 48))x24" >/dev/null 2>&1 &
+  xvfb=$!
+  XDG_DATA_HOME=$(mktemp -d)
+  export XDG_DATA_HOME
+  for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.2; done
+  RAYLAB_CLOSE_AFTER=300 ./target/release/raylab default --threads 2 >/dev/null 2>&1 &
+  app=$!
+  win=$(xdotool search --sync --name '^raylab' | head -1)
+  xdotool windowsize "$win" "$w" "$h"
+  xdotool windowfocus --sync "$win"
+  sleep 2
+  xdotool key F5
+  sleep 1
+  at=0
+  for entry in "${slides[@]}"; do
+    n=${entry%%:*}; name=${entry#*:}
+    while [ "$at" -lt "$n" ]; do xdotool key Next; sleep 0.3; at=$((at + 1)); done
+    sleep 12
+    out="screenshots/present-$h-$name.png"
+    import -window root -crop "${w}x$h+0+0" +repage "$out"
+    echo "$out"
+  done
+  kill "$app" 2>/dev/null || true
+  wait "$app" 2>/dev/null || true
+  kill "$xvfb" 2>/dev/null || true
+  wait "$xvfb" 2>/dev/null || true
+  rm -rf "$XDG_DATA_HOME"
+done
