@@ -11,7 +11,7 @@ use egui_kittest::kittest::{NodeT, Queryable};
 use raylab::app::RaylabApp;
 use raylab::optics::FresnelMode;
 use raylab::render::{Sidecar, sidecar_path};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use window::{app, step_until};
 
 #[test]
@@ -440,5 +440,34 @@ fn a_sliders_tooltip_shows_on_hover_but_not_while_it_is_dragged() {
     assert!(
         ior.is_some_and(|n| n > 1.2),
         "the drag moved the IOR: {ior:?}"
+    );
+}
+
+#[test]
+fn a_drag_on_a_refined_image_shows_within_one_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "the target reached", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.progress.done() && !f.is_preview())
+    });
+    let before = h.state().engine().generation();
+    // The frame in which the slider moves tells the engine at once...
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(1.7);
+    h.step();
+    let generation = h.state().engine().generation();
+    assert!(generation > before, "the move started a new image");
+    // ...so the engine's first preview waits for the very next frame, which shows it.
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while h.state().engine().frames().is_empty() {
+        assert!(Instant::now() < deadline, "no preview came");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    h.step();
+    let shown = h.state().latest_frame().unwrap();
+    assert_eq!(
+        shown.generation, generation,
+        "the next frame shows the new image"
     );
 }

@@ -351,6 +351,16 @@ impl RaylabApp {
         })
     }
 
+    /// Tells the engines what the controls changed (each is told only what differs).
+    fn sync_engines(&mut self) {
+        let told = self.told();
+        let params = &self.settings.params;
+        self.main.sync(&told, params);
+        if let Some(c) = &mut self.compare {
+            c.side.sync(&told, &c.kind.side_b(params));
+        }
+    }
+
     /// What the engines render, by the controls.
     fn told(&self) -> Told {
         Told {
@@ -411,9 +421,7 @@ impl eframe::App for RaylabApp {
         self.loader.poll();
         self.receive_sheet();
         self.dropped_files(ctx);
-        let told = self.told();
-        let params = &self.settings.params;
-        self.main.sync(&told, params);
+        self.sync_engines();
         // A pass that failed inside raylab stops its generation: the banner says so (once
         // a frame, so that Dismiss holds until the next failure).
         if self.main.receive()
@@ -422,7 +430,6 @@ impl eframe::App for RaylabApp {
             self.error = Some(format!("The render stopped: {failure}"));
         }
         if let Some(c) = &mut self.compare {
-            c.side.sync(&told, &c.kind.side_b(params));
             c.side.receive();
         }
         // The heat map's scale from the frames just taken, for both sides alike.
@@ -464,6 +471,7 @@ impl eframe::App for RaylabApp {
             self.toasts.ui(&ctx, self.hall.presenting);
             self.help_ui(&ctx);
             if self.settings != before {
+                self.sync_engines();
                 ctx.request_repaint();
             }
             return;
@@ -484,8 +492,10 @@ impl eframe::App for RaylabApp {
         self.dialog_ui(&ctx);
         self.toasts.ui(&ctx, self.hall.presenting);
         self.help_ui(&ctx);
-        // What the controls changed reaches the engines in the next logic(): at once.
+        // What the controls changed reaches the engines now, not in the next frame: the
+        // first preview (a millisecond's work) is there for the next frame to show.
         if self.settings != before {
+            self.sync_engines();
             ctx.request_repaint();
         }
     }
