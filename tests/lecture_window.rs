@@ -438,11 +438,33 @@ fn numeric(text: &str) -> bool {
 
 #[test]
 fn every_text_in_presentation_mode_is_the_captions_size() {
+    present_every_slide(|h, slide, size| {
+        let caption = size.1 / 26.0;
+        let seen = texts(h);
+        assert!(seen.len() >= 3, "{}: {seen:?}", slide.title);
+        for (points, text) in seen {
+            // Numbers in plots may be half the caption's size; every word is its size.
+            let least = if numeric(&text) {
+                caption / 2.0
+            } else {
+                caption
+            };
+            assert!(
+                points >= least - 0.01,
+                "`{}` at {size:?}: `{text}` is {points:.1} points, under {least:.1}",
+                slide.title
+            );
+        }
+    });
+}
+
+/// Shows every slide in presentation mode, on a projector's 1920 × 1080 and a laptop's
+/// 1280 × 720, and calls `check` on each once it is shown.
+fn present_every_slide(
+    mut check: impl FnMut(&mut Harness<'static, RaylabApp>, &raylab::lecture::Slide, (f32, f32)),
+) {
     let dir = tempfile::tempdir().unwrap();
-    for (size, caption) in [
-        ((1920.0, 1080.0), 1080.0 / 26.0),
-        ((1280.0, 720.0), 720.0 / 26.0),
-    ] {
+    for size in [(1920.0, 1080.0), (1280.0, 720.0)] {
         let mut h = app_sized("default", dir.path(), size);
         h.step();
         h.key_press(egui::Key::F5);
@@ -450,21 +472,32 @@ fn every_text_in_presentation_mode_is_the_captions_size() {
             h.key_press(egui::Key::PageDown);
             wait_for_slide(&mut h, i);
             h.run_steps(4);
-            let seen = texts(&h);
-            assert!(seen.len() >= 3, "{}: {seen:?}", slide.title);
-            for (points, text) in seen {
-                // Numbers in plots may be half the caption's size; every word is its size.
-                let least = if numeric(&text) {
-                    caption / 2.0
-                } else {
-                    caption
-                };
-                assert!(
-                    points >= least - 0.01,
-                    "`{}` at {size:?}: `{text}` is {points:.1} points, under {least:.1}",
-                    slide.title
-                );
-            }
+            check(&mut h, slide, size);
         }
     }
+}
+
+/// The rows the last frame laid the text `text` out in, if it drew it.
+fn rows_of(h: &Harness<'static, RaylabApp>, text: &str) -> Option<usize> {
+    fn walk(shape: &egui::Shape, text: &str) -> Option<usize> {
+        match shape {
+            egui::Shape::Vec(shapes) => shapes.iter().find_map(|s| walk(s, text)),
+            egui::Shape::Text(t) if t.galley.job.text == text => Some(t.galley.rows.len()),
+            _ => None,
+        }
+    }
+    h.output().shapes.iter().find_map(|c| walk(&c.shape, text))
+}
+
+#[test]
+fn every_caption_fits_in_three_lines_in_a_hall() {
+    let mut long = Vec::new();
+    present_every_slide(|h, slide, size| {
+        let caption = h.state().caption().unwrap();
+        let rows = rows_of(h, &caption).expect("the caption is drawn");
+        if rows > 3 {
+            long.push(format!("`{}` at {size:?}: {rows} lines", slide.title));
+        }
+    });
+    assert!(long.is_empty(), "captions over three lines: {long:#?}");
 }

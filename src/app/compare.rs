@@ -53,8 +53,9 @@ pub(crate) struct Compare {
 }
 
 impl RaylabApp {
-    /// Splits the view between the controls' parameters (A) and `kind`'s other side (B).
-    pub(super) fn start_compare(&mut self, ctx: &egui::Context, kind: CompareKind) {
+    /// Splits the view between the controls' parameters (A) and `kind`'s other side (B),
+    /// the divider first at `divider` across the image.
+    pub(super) fn start_compare(&mut self, ctx: &egui::Context, kind: CompareKind, divider: f32) {
         self.settings.params = kind.side_a(&self.settings.params);
         let b = kind.side_b(&self.settings.params);
         match Side::new(
@@ -68,7 +69,7 @@ impl RaylabApp {
                 self.compare = Some(Compare {
                     kind,
                     side,
-                    divider: 0.5,
+                    divider,
                 })
             }
             Err(e) => self.toasts.error(format!("Cannot compare: {e}")),
@@ -87,7 +88,7 @@ impl RaylabApp {
     pub(super) fn compare_menu_ui(&mut self, ui: &mut egui::Ui) {
         for (label, c) in Comparison::PRESETS {
             if ui.button(label).clicked() {
-                self.start_compare(ui.ctx(), CompareKind::Lecture(c));
+                self.start_compare(ui.ctx(), CompareKind::Lecture(c), 0.5);
                 ui.close();
             }
         }
@@ -96,7 +97,7 @@ impl RaylabApp {
             .on_hover_text("B keeps the parameters as they are now; change A with the controls.");
         if frozen.clicked() {
             let kind = CompareKind::Frozen(self.settings.params.clone());
-            self.start_compare(ui.ctx(), kind);
+            self.start_compare(ui.ctx(), kind, 0.5);
             ui.close();
         }
         if ui

@@ -145,10 +145,11 @@ impl Job {
                 &observer,
             )?;
             if let Some(b) = &self.params_b {
-                // The A/B view's split, at the window's starting divider: the middle.
+                // The A/B view's split, at the window's starting divider.
                 let mut right = Film::new(w, h);
                 stats += render_pass(scene, camera, b, &mut right, b.spp, &observer)?;
-                film.split_with(&right, w / 2);
+                let divider = self.slide.map_or(0.5, |s| s.divider);
+                film.split_with(&right, (w as f32 * divider).round() as u32);
             }
             Ok::<_, raylab::render::Cancelled>((film, stats))
         })

@@ -26,6 +26,8 @@ pub enum Comparison {
     /// One ray per pixel to a point light against 256 averaged over the pixel and the
     /// area light: distribution ray tracing's blurs (a slide's, not a preset).
     Blurring,
+    /// No polariser against a vertical one in front of the lens.
+    Polariser,
 }
 
 impl Comparison {
@@ -56,6 +58,7 @@ impl Comparison {
             Comparison::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
             Comparison::Supersampling => ("A: 1 sample, centre", "B: 4 jittered"),
             Comparison::Blurring => ("A: 1 ray, point light", "B: 256 rays, area light"),
+            Comparison::Polariser => ("A: no polariser", "B: vertical polariser"),
         }
     }
 
@@ -79,6 +82,7 @@ impl Comparison {
                     p.light_size = 0.0;
                 }
             }
+            Comparison::Polariser => p.polarizer = None,
         }
         p
     }
@@ -104,6 +108,7 @@ impl Comparison {
                 p.pattern = Pattern::Sobol;
                 p.light_size = 1.0;
             }
+            Comparison::Polariser => p.polarizer = Some(90.0),
         }
         p
     }

@@ -73,6 +73,8 @@ pub struct Slide {
     pub params: &'static [(&'static str, &'static str)],
     /// What the two sides of its A/B view differ in, if it compares two things.
     pub compare: Option<Comparison>,
+    /// Where the A/B view's divider starts, across the image (0: all B, 1: all A).
+    pub divider: f32,
     /// The instrument it opens, if any.
     pub instrument: Option<Instrument>,
     /// The parameters its caption asks the lecturer to change: the window shows their
@@ -90,6 +92,7 @@ pub const fn slide(title: &'static str, scene: &'static str) -> Slide {
         scene,
         params: &[],
         compare: None,
+        divider: 0.5,
         instrument: None,
         controls: &[],
         caption: Caption::Fixed(""),
@@ -108,6 +111,11 @@ impl Slide {
             compare: Some(compare),
             ..self
         }
+    }
+
+    /// With the A/B view's divider first at `divider` across the image.
+    pub const fn divider(self, divider: f32) -> Slide {
+        Slide { divider, ..self }
     }
 
     /// Opening `instrument`.
@@ -451,7 +459,7 @@ mod tests {
         // The slide's own pixel is on the front sphere.
         let own = slide.inspected(&scene, &scene.camera, (scene.width, scene.height));
         assert_eq!(own, Some(Some(id("front sphere"))));
-        assert!(caption(own).contains("front sphere's front and back"));
+        assert!(caption(own).contains("off and through the front sphere"));
         let floor = caption(Some(Some(id("floor"))));
         assert!(
             floor.contains("on the floor") && !floor.contains("front sphere"),

@@ -21,13 +21,13 @@ pub const LECTURE: &[Slide] = &[
         .set(&[("spp", "32")])
         .open(Instrument::RayTree { x: 0.42, y: 0.5 })
         .follows(|s| {
-            let tree = "Every hit on glass spawns a reflected ray (weight R) and a refracted one (weight 1 − R), and each of those two more: a tree per pixel.";
+            let tree = "Each hit on glass spawns a reflected ray (R) and a refracted one (1 − R): a tree per pixel.";
             match inspected_object(s) {
                 Some(Some("front sphere")) => format!(
-                    "{tree} The inspector lists the marked pixel's tree and draws it: reflections off the front sphere's front and back, rays through it to the amber sphere and beyond. Click another pixel."
+                    "{tree} Drawn: the marked pixel's, off and through the front sphere. Click another pixel."
                 ),
                 Some(Some(object)) => format!(
-                    "{tree} The inspector lists the tree of the marked pixel, on the {object}, and draws it over the image. Click another pixel."
+                    "{tree} Drawn and listed: the tree of the marked pixel, on the {object}. Click another pixel."
                 ),
                 Some(None) => format!(
                     "{tree} The marked pixel's ray meets nothing: click a pixel on the glass."
@@ -39,7 +39,7 @@ pub const LECTURE: &[Slide] = &[
         .set(&[("spp", "32")])
         .asks(&["ior"])
         .says(
-            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears.",
+            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears. In the water tank, the air bubble's silver rim is the same: light in the water grazing it beyond 48.8°.",
         ),
     slide("Pruning the ray tree", "ray-tree")
         .set(&[("max_depth", "2"), ("spp", "64")])
@@ -62,7 +62,7 @@ pub const LECTURE: &[Slide] = &[
         .set(&[("spp", "32")])
         .open(Instrument::FresnelPlot { metal: Some("gold") })
         .says(
-            "The Fresnel plot: gold, per colour channel, reflects 97% of red and 32% of blue head-on, and more as the angle grows; glass 4% head-on, rising to 100% only at grazing (Compare with a metal: none plots it alone). Dielectrics' reflection is mostly Fresnel's rise; metals' is mostly there from the start.",
+            "Gold reflects 97% of red and 32% of blue head-on, more as the angle grows: it is there from the start. Glass (metal: none) reflects 4%, rising to 100% only at grazing.",
         ),
     slide("Fresnel reflection on the black glazed sphere", "glazed")
         .set(&[("spp", "32"), ("constant_reflectance", "0.1")])
@@ -74,7 +74,7 @@ pub const LECTURE: &[Slide] = &[
         .compare(Comparison::SchlickExact)
         .open(Instrument::FresnelPlot { metal: None })
         .says(
-            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: the exact (Fs² + Fp²)/2. The plot's Schlick − exact curve shows the error for n = 1.5: under 0.01 up to 47°, at most 0.036 (at 85°), on the rims, where both are bright: the images barely differ.",
+            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: exact (Fs² + Fp²)/2. For n = 1.5 they differ by under 0.01 up to 47°, 0.036 at most (85°), on the bright rims.",
         ),
     slide("The basic ray tracer", "default")
         .set(&[("spp", "1"), ("pattern", "regular")])
@@ -110,10 +110,12 @@ pub const LECTURE: &[Slide] = &[
                 p.spp
             )
         }),
+    // The divider through the sphere: each side shows half of it and of its shadow.
     slide("Blurring to improve images", "soft-shadows")
         .compare(Comparison::Blurring)
+        .divider(0.39)
         .says(
-            "Left (A): one ray through each pixel's centre, one shadow ray to a point light: jagged edges, hard shadows. Right (B): 256 rays per pixel, each through its own point of the pixel and to its own point of the area light, averaged: edges blur into smooth lines, shadows into penumbrae. Distribution ray tracing blurs on purpose, averaging rays spread over the pixel, the light, the lens and the shutter.",
+            "Left: one ray through each pixel's centre, one shadow ray to a point light: jagged edges, a hard shadow. Right: 256 rays per pixel, each to its own point of the pixel and of the area light, averaged: smooth edges, a penumbra. Distribution ray tracing blurs on purpose.",
         ),
     slide("Soft shadows", "soft-shadows")
         .set(&[("spp", "256")])
@@ -153,10 +155,12 @@ pub const LECTURE: &[Slide] = &[
             )
         }),
     // The scene's own polariser is vertical.
+    // The divider through the glazed sphere: its dark band shows against its glare.
     slide("F_s and F_p: polarisation at Brewster's angle", "polarization")
-        .asks(&["polarizer"])
+        .compare(Comparison::Polariser)
+        .divider(0.37)
         .says(
-            "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, so the reflection is s only, along the surface. A vertical polariser cuts it: the glare on the pond fades and the tiles show; a dark band crosses the sphere. Polariser > Horizontal brings it back.",
+            "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, the reflection s only. Left: no polariser, glare on the pond. Right: a vertical one cuts it: the tiles show, a dark band crosses the sphere.",
         ),
     slide("Dispersion", "dispersion")
         .asks(&["abbe"])
@@ -168,6 +172,6 @@ pub const LECTURE: &[Slide] = &[
         .compare(Comparison::WhittedPhotons)
         .asks(&["transport"])
         .says(
-            "Left, the lecture's tracer: light comes only along shadow rays and mirror directions, so shadows get a flat ambient. Right, path tracing with photons (the reference): the blue sky lights the shadows, the glass focuses it into its own shadow, and the lamp's light through the glass lands in a bright caustic at its right foot. Drag the divider right: the lecture's tracer leaves that shadow black. Light transport > transmissive shadows is the common fix: tinted, but not focused.",
+            "Left, the lecture's tracer: light only along shadow rays and mirror directions, a flat ambient in the shadows. Right, path tracing with photons: sky light in the shadows, the lamp's light through the glass in a caustic at its foot. Light transport > transmissive shadows: tinted, not focused.",
         ),
 ];
