@@ -8,9 +8,10 @@ mod window;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-use raylab::app::RaylabApp;
+use raylab::app::{AppOptions, RaylabApp};
 use raylab::optics::FresnelMode;
 use raylab::render::{Sidecar, sidecar_path};
+use std::path::Path;
 use std::time::{Duration, Instant};
 use window::{app, step_until};
 
@@ -470,4 +471,55 @@ fn a_drag_on_a_refined_image_shows_within_one_frame() {
         shown.generation, generation,
         "the next frame shows the new image"
     );
+}
+
+#[test]
+fn small_things_a_first_user_sees() {
+    let dir = tempfile::tempdir().unwrap();
+    // The scene picker lists a shipped scene once (built in), and a scene file the user
+    // changed as a file.
+    let scenes = dir.path().join("scenes");
+    std::fs::create_dir(&scenes).unwrap();
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    std::fs::copy(repo.join("glass.toml"), scenes.join("glass.toml")).unwrap();
+    let edited = std::fs::read_to_string(repo.join("tir.toml")).unwrap() + "\n# mine\n";
+    std::fs::write(scenes.join("tir.toml"), edited).unwrap();
+    let options = AppOptions {
+        scene: Some("default".into()),
+        snapshot_dir: dir.path().to_path_buf(),
+        scenes_dir: scenes.clone(),
+        threads: Some(1),
+        // As on a first run: nothing remembered.
+        persist: true,
+        ..Default::default()
+    };
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| RaylabApp::new(cc, options.clone()).expect("the engine starts"));
+    h.step();
+    assert!(
+        h.state()
+            .toasts()
+            .iter()
+            .any(|t| t.contains("F5 presents them")),
+        "the first run says where the lecture is: {:?}",
+        h.state().toasts()
+    );
+    h.get_by_role_and_label(Role::ComboBox, "Scene").click();
+    h.run_steps(3);
+    let shown = |h: &Harness<'static, RaylabApp>, file: &str| {
+        h.query_all_by_label_contains(file).next().is_some()
+    };
+    assert!(
+        !shown(&h, "glass.toml"),
+        "a shipped copy is listed as built in only"
+    );
+    assert!(shown(&h, "tir.toml"), "a changed scene file is listed");
+    h.key_press(egui::Key::Escape);
+    // The default scene's target reads as clean (its noise ends under 2 %).
+    step_until(&mut h, "the target reached", |a| {
+        a.latest_frame().is_some_and(|f| f.progress.done())
+    });
+    h.run_steps(2);
+    assert!(h.query_all_by_label_contains("(clean)").next().is_some());
 }

@@ -89,6 +89,15 @@ fn a_b_compare_renders_both_sides() {
             && a.compare_side_b()
                 .is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
     });
+    // The status bar says how far each side has come.
+    h.run_steps(2);
+    let target = h.state().compare_side_b().unwrap().0.spp;
+    assert!(
+        h.query_all_by_label_contains(&format!("B: {target} / {target} spp"))
+            .next()
+            .is_some(),
+        "side B's progress in the status bar"
+    );
     // The two sides differ only in the Fresnel model: the same light, other reflections.
     let a = h.state().latest_frame().unwrap().pixels.clone();
     let b = h

@@ -167,6 +167,7 @@ impl RaylabApp {
         mut options: AppOptions,
     ) -> Result<Self, EngineError> {
         let remembered = options.persist.then(|| persist::load(cc)).flatten();
+        let first_run = options.persist && remembered.is_none();
         if let Some(dir) = remembered.as_ref().and_then(|r| r.snapshot_dir.clone()) {
             options.snapshot_dir = dir;
         }
@@ -221,6 +222,15 @@ impl RaylabApp {
             settings.params.clone(),
             config,
         )?;
+        // Tooltips wait a little: they would cover the readouts under a control the
+        // pointer only passes over.
+        cc.egui_ctx
+            .global_style_mut(|style| style.interaction.tooltip_delay = 0.6);
+        let mut toasts = Toasts::default();
+        if first_run {
+            // The first run: where the lecture is, and how to present it.
+            toasts.info("The Lecture menu has the slides; F5 presents them; F1 lists every key.");
+        }
         let mut loader = Loader::new(&cc.egui_ctx);
         loader.watch(&scene);
         Ok(RaylabApp {
@@ -236,7 +246,7 @@ impl RaylabApp {
             lecture: Lecture::default(),
             sheet: None,
             dialog: None,
-            toasts: Toasts::default(),
+            toasts,
             error,
             hall: Hall::default(),
             ui_scale,
