@@ -318,9 +318,12 @@ fn presentation_mode_shows_progress_and_space_does_not_pause_it() {
     h.key_press(egui::Key::Space);
     h.run_steps(2);
     assert!(h.query_all_by_label_contains("paused").next().is_none());
-    // Out of presentation, Space pauses, and presentation mode says so.
+    // Out of presentation the window's own sizes are back, Space pauses, and
+    // presentation mode says so.
     h.key_press(egui::Key::Escape);
     h.run_steps(2);
+    let large: Vec<_> = texts(&h).into_iter().filter(|(p, _)| *p > 25.0).collect();
+    assert!(large.is_empty(), "the hall's sizes stayed: {large:?}");
     h.key_press(egui::Key::Space);
     h.run_steps(2);
     h.key_press(egui::Key::F5);
