@@ -9,6 +9,7 @@
 //! next pixel and stop, and every frame is tagged with the generation it belongs to, so
 //! no frame mixes samples of two.
 
+use super::pace::Pace;
 use super::{Film, Frame, PassObserver, Progress, render_pass, render_preview};
 use crate::camera::Camera;
 use crate::math::Color;
@@ -133,6 +134,7 @@ impl Engine {
             pass_time: Duration::ZERO,
             passes: 0,
             pass_rays: 0,
+            pace: Pace::default(),
             stats: Stats::default(),
             requested: Arc::clone(&requested),
             outbox: Outbox {
@@ -311,6 +313,8 @@ struct Controller {
     pass_time: Duration,
     passes: u32,
     pass_rays: u64,
+    // How fast the newest passes went: the time left.
+    pace: Pace,
     // Everything traced in this generation, the preview included.
     stats: Stats,
     requested: Arc<AtomicU64>,
@@ -405,6 +409,7 @@ impl Controller {
             }
             Command::Pause(p) => {
                 self.paused = p;
+                self.pace.pause();
                 self.send_frame();
                 false
             }
@@ -418,6 +423,7 @@ impl Controller {
             self.pass_time = Duration::ZERO;
             self.passes = 0;
             self.pass_rays = 0;
+            self.pace = Pace::default();
             self.stats = Stats::default();
             self.failure = None;
         }
@@ -516,6 +522,7 @@ impl Controller {
             self.pass_time += start.elapsed();
             self.passes += 1;
             self.pass_rays += stats.total_rays();
+            self.pace.pass(start, Instant::now(), n);
             self.stats += stats;
             if self.target_reached() {
                 self.finished = Some(self.started.elapsed());
@@ -528,12 +535,7 @@ impl Controller {
         let spp = self.film.spp();
         let target = self.target();
         let secs = self.pass_time.as_secs_f64();
-        let eta = match target {
-            Some(t) if spp > 0 && secs > 0.0 => Some(Duration::from_secs_f64(
-                secs / spp as f64 * t.saturating_sub(spp) as f64,
-            )),
-            _ => None,
-        };
+        let eta = target.and_then(|t| self.pace.time_left(t.saturating_sub(spp)));
         Progress {
             spp,
             target,

@@ -16,7 +16,7 @@ pub struct Progress {
     pub elapsed: Duration,
     /// Rays traced per second by the full-resolution passes.
     pub rays_per_second: f64,
-    /// Estimated time to reach the target.
+    /// Estimated time to reach the target, at the pace of the newest passes.
     pub eta: Option<Duration>,
     /// Estimated noise of the image as shown, relative to its brightness (see
     /// [`super::Film::noise`]).

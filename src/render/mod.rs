@@ -8,6 +8,7 @@ mod film;
 mod frame;
 mod kernel;
 pub mod output;
+mod pace;
 mod sheet;
 mod snapshot;
 mod text;
