@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Screenshots of presentation mode, as a hall sees it: the window under Xvfb at 1920x1080
-# (a projector) and at 1280x720 (a laptop), F5, then Page Down to five slides, each shot
+# (a projector) and at 1280x720 (a laptop), F5, then Page Down to six slides, each shot
 # once its image is clean. Writes screenshots/present-{1080,720}-{snell,ray-tree,schlick,
-# soft-shadows,polarization}.png.
+# sampling,soft-shadows,polarization}.png.
 # Needs: apt-get install xvfb xdotool imagemagick
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 # Slide numbers and names, in the lecture's order (raylab lecture lists them).
-slides=(2:snell 3:ray-tree 8:schlick 13:soft-shadows 17:polarization)
+slides=(2:snell 3:ray-tree 8:schlick 11:sampling 13:soft-shadows 17:polarization)
 display=${RAYLAB_DISPLAY:-96}
 for size in 1920x1080 1280x720; do
   w=${size%x*}; h=${size#*x}

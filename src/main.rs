@@ -245,8 +245,8 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Lecture { markdown: false }) => {
             for (i, s) in raylab::lecture::LECTURE.iter().enumerate() {
                 let (title, scene) = (s.title, s.scene);
-                match s.compare.map(|c| c.labels()) {
-                    Some((a, b)) => say!("{:2}. {title} (scene {scene}; {a} | {b})", i + 1),
+                match s.compare.map(|c| c.labels().join(" | ")) {
+                    Some(sides) => say!("{:2}. {title} (scene {scene}; {sides})", i + 1),
                     None => say!("{:2}. {title} (scene {scene})", i + 1),
                 }
             }

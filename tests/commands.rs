@@ -118,6 +118,43 @@ fn lecture_lists_the_slides_and_render_slide_makes_the_windows_split() {
     );
 }
 
+#[test]
+fn render_slide_makes_the_three_panes_of_regular_random_and_jittered() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 1 + raylab::lecture::LECTURE
+        .iter()
+        .position(|s| s.title == "Regular, random and jittered samples")
+        .unwrap();
+    let size = ["--size", "66x36", "--spp", "2", "-q"];
+    let run = |args: &[&str]| {
+        let o = raylab(&[args, &size[..]].concat(), dir.path());
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    };
+    run(&["render", "--slide", &n.to_string(), "-o", "slide.png"]);
+    let img = |f: &str| image::open(dir.path().join(f)).unwrap().to_rgb8();
+    let panes: Vec<_> = ["regular", "random", "jittered"]
+        .iter()
+        .map(|pattern| {
+            let file = format!("{pattern}.png");
+            let set = format!("pattern={pattern}");
+            run(&["render", "antialiasing", "--set", &set, "-o", &file]);
+            img(&file)
+        })
+        .collect();
+    let slide = img("slide.png");
+    // A third of the width each, left to right, each exactly as rendered on its own.
+    for y in 0..36 {
+        for x in 0..66 {
+            let pane = &panes[x as usize / 22];
+            assert_eq!(slide.get_pixel(x, y), pane.get_pixel(x, y), "({x}, {y})");
+        }
+    }
+    assert!(
+        panes[0] != panes[1] && panes[1] != panes[2],
+        "the panes differ"
+    );
+}
+
 fn fresnel_rows(args: &[&str]) -> Vec<Vec<String>> {
     csv_rows(
         args,

@@ -82,16 +82,23 @@ fn a_b_compare_renders_both_sides() {
         Some(FresnelMode::Constant),
         "side A"
     );
-    let (b, _) = h.state().compare_side_b().expect("the A/B view is on");
+    let (b, _) = h
+        .state()
+        .compare_sides()
+        .first()
+        .copied()
+        .expect("the A/B view is on");
     assert_eq!(b.fresnel, Some(FresnelMode::Exact), "side B");
     step_until(&mut h, "both sides to finish", |a| {
         a.latest_frame().is_some_and(|f| f.progress.done())
-            && a.compare_side_b()
+            && a.compare_sides()
+                .first()
+                .copied()
                 .is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
     });
     // The status bar says how far each side has come.
     h.run_steps(2);
-    let target = h.state().compare_side_b().unwrap().0.spp;
+    let target = h.state().compare_sides().first().copied().unwrap().0.spp;
     assert!(
         h.query_all_by_label_contains(&format!("B: {target} / {target} spp"))
             .next()
@@ -102,7 +109,9 @@ fn a_b_compare_renders_both_sides() {
     let a = h.state().latest_frame().unwrap().pixels.clone();
     let b = h
         .state()
-        .compare_side_b()
+        .compare_sides()
+        .first()
+        .copied()
         .unwrap()
         .1
         .unwrap()
@@ -114,7 +123,16 @@ fn a_b_compare_renders_both_sides() {
     h.get_by_role_and_label(Role::Slider, "Max depth")
         .set_value_accesskit(2.0);
     h.run_steps(3);
-    assert_eq!(h.state().compare_side_b().unwrap().0.max_depth, 2);
+    assert_eq!(
+        h.state()
+            .compare_sides()
+            .first()
+            .copied()
+            .unwrap()
+            .0
+            .max_depth,
+        2
+    );
     // So do the resolution and the scene.
     h.get_by_role_and_label(Role::ComboBox, "Resolution")
         .click();
@@ -124,17 +142,15 @@ fn a_b_compare_renders_both_sides() {
     step_until(&mut h, "both sides at 25%", |a| {
         let quarter = |f: &raylab::render::Frame| (f.width, f.height) == (240, 135);
         a.latest_frame().is_some_and(quarter)
-            && a.compare_side_b()
+            && a.compare_sides()
+                .first()
+                .copied()
                 .is_some_and(|(_, f)| f.is_some_and(quarter))
     });
     h.state_mut().open_scene("glass");
     step_until(&mut h, "the new scene", |a| a.scene().name == "glass");
-    step_until(
-        &mut h,
-        "side B finished on it",
-        RaylabApp::compare_side_b_settled,
-    );
-    let (b, frame) = h.state().compare_side_b().unwrap();
+    step_until(&mut h, "side B finished on it", RaylabApp::compare_settled);
+    let (b, frame) = h.state().compare_sides().first().copied().unwrap();
     let (b, frame) = (b.clone(), frame.unwrap().clone());
     assert_eq!(b.fresnel, Some(FresnelMode::Exact));
     assert_eq!(

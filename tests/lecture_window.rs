@@ -143,10 +143,20 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
         wait_for_slide(&mut h, i);
         h.run_steps(3);
         assert_eq!(
-            h.state().compare_side_b().is_some(),
-            sides.is_some(),
-            "{title}: the A/B view as the slide says"
+            h.state().compare_sides().len(),
+            sides.map_or(0, |c| c.labels().len() - 1),
+            "{title}: the A/B view's sides as the slide says"
         );
+        // Each side is labelled in the image, with its own samples per pixel.
+        let drawn = texts(&h);
+        for name in sides.map_or(&[][..], |c| c.labels()) {
+            assert!(
+                drawn
+                    .iter()
+                    .any(|(_, t)| t.starts_with(&format!("{name} ("))),
+                "{title}: `{name}` labelled"
+            );
+        }
         // The slides about reflectance against angle show the Fresnel plot; no other.
         let plotted = title.starts_with("Reflectance against angle")
             || title.starts_with("Fresnel's formulas");

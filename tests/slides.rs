@@ -5,8 +5,8 @@
 use raylab::render::{Film, render_pass};
 
 /// Slides whose subject is the noise of few samples, where a clean image would hide it:
-/// one sample through each pixel's centre, 1 against 4 samples, random against jittered
-/// at 4. And dispersion, which does not get there (about 10 % at its 64 samples, see
+/// one sample through each pixel's centre, 1 against 4 samples, regular, random and
+/// jittered at 4. And dispersion, which does not get there (about 10 % at its 64 samples, see
 /// docs/internals.md: a pixel sees the narrow slit through only part of each channel's 100 nm box,
 /// and the edge that makes in wavelength and position together converges slowly).
 const ABOUT_FEW_SAMPLES: &[&str] = &[
@@ -26,12 +26,9 @@ fn every_slide_reaches_noise_under_2_percent_at_its_target() {
             continue;
         }
         let scene = &setup.scene;
-        let sides = [
-            Some(setup.params.clone()),
-            setup.slide.side_b(&setup.params),
-        ];
+        let sides = std::iter::once(setup.params.clone()).chain(setup.slide.others(&setup.params));
         // One ray through each pixel's centre has nothing to estimate noise from.
-        for params in sides.into_iter().flatten().filter(|p| p.spp > 1) {
+        for params in sides.filter(|p| p.spp > 1) {
             let mut film = Film::new(scene.width / 2, scene.height / 2);
             render_pass(scene, &scene.camera, &params, &mut film, params.spp, &()).unwrap();
             let noise = film.noise(params.exposure).unwrap();

@@ -1,5 +1,5 @@
-//! The A/B view: side B renders the same scene with one setting changed (or frozen), in an
-//! engine of its own; a divider splits the image between the two sides.
+//! The A/B view: side B (and C) renders the same scene with one setting changed (or
+//! frozen), each in an engine of its own; dividers split the image between the sides.
 
 use super::RaylabApp;
 use super::side::Side;
@@ -19,11 +19,11 @@ pub(crate) enum CompareKind {
 }
 
 impl CompareKind {
-    /// The labels of side A and side B.
-    fn labels(&self) -> (&'static str, &'static str) {
+    /// The labels of the sides, A first.
+    fn labels(&self) -> &'static [&'static str] {
         match self {
             CompareKind::Lecture(c) => c.labels(),
-            CompareKind::Frozen(_) => ("A: the controls", "B: frozen"),
+            CompareKind::Frozen(_) => &["A: the controls", "B: frozen"],
         }
     }
 
@@ -35,41 +35,49 @@ impl CompareKind {
         }
     }
 
-    /// Side B's parameters, given side A's.
-    pub(super) fn side_b(&self, a: &Params) -> Params {
+    /// The parameters of the sides after A (B, and C), given side A's.
+    pub(super) fn others(&self, a: &Params) -> Vec<Params> {
         match self {
-            CompareKind::Lecture(c) => c.side_b(a),
-            CompareKind::Frozen(b) => b.clone(),
+            CompareKind::Lecture(c) => c.others(a),
+            CompareKind::Frozen(b) => vec![b.clone()],
         }
     }
 }
 
-/// Side B and where the divider is.
+/// The sides after A (B, and C) and where the dividers are.
 pub(crate) struct Compare {
     pub(crate) kind: CompareKind,
-    pub(crate) side: Side,
-    // The divider's position across the image, 0 (all B) to 1 (all A).
-    divider: f32,
+    pub(crate) sides: Vec<Side>,
+    // The dividers' positions across the image, left to right, 0 to 1: side A left of
+    // the first, each other side right of its own.
+    dividers: Vec<f32>,
 }
 
+// The names of the sides' textures, B first.
+const TEXTURES: [&str; 2] = ["raylab-image-b", "raylab-image-c"];
+
 impl RaylabApp {
-    /// Splits the view between the controls' parameters (A) and `kind`'s other side (B),
-    /// the divider first at `divider` across the image.
-    pub(super) fn start_compare(&mut self, ctx: &egui::Context, kind: CompareKind, divider: f32) {
+    /// Splits the view between the controls' parameters (A) and `kind`'s other sides (B,
+    /// and C), the dividers first at `dividers` across the image.
+    pub(super) fn start_compare(
+        &mut self,
+        ctx: &egui::Context,
+        kind: CompareKind,
+        dividers: Vec<f32>,
+    ) {
         self.settings.params = kind.side_a(&self.settings.params);
-        let b = kind.side_b(&self.settings.params);
-        match Side::new(
-            ctx,
-            "raylab-image-b",
-            self.told(),
-            b,
-            EngineConfig::with_ui(),
-        ) {
-            Ok(side) => {
+        let others = kind.others(&self.settings.params);
+        let started: Result<Vec<Side>, _> = others
+            .into_iter()
+            .zip(TEXTURES)
+            .map(|(p, name)| Side::new(ctx, name, self.told(), p, EngineConfig::with_ui()))
+            .collect();
+        match started {
+            Ok(sides) => {
                 self.compare = Some(Compare {
                     kind,
-                    side,
-                    divider,
+                    sides,
+                    dividers,
                 })
             }
             Err(e) => self.toasts.error(format!("Cannot compare: {e}")),
@@ -88,7 +96,7 @@ impl RaylabApp {
     pub(super) fn compare_menu_ui(&mut self, ui: &mut egui::Ui) {
         for (label, c) in Comparison::PRESETS {
             if ui.button(label).clicked() {
-                self.start_compare(ui.ctx(), CompareKind::Lecture(c), 0.5);
+                self.start_compare(ui.ctx(), CompareKind::Lecture(c), c.dividers(0.5));
                 ui.close();
             }
         }
@@ -97,7 +105,7 @@ impl RaylabApp {
             .on_hover_text("B keeps the parameters as they are now; change A with the controls.");
         if frozen.clicked() {
             let kind = CompareKind::Frozen(self.settings.params.clone());
-            self.start_compare(ui.ctx(), kind, 0.5);
+            self.start_compare(ui.ctx(), kind, vec![0.5]);
             ui.close();
         }
         if ui
@@ -109,43 +117,53 @@ impl RaylabApp {
         }
     }
 
-    /// Draws side B right of the divider, the divider, and the two sides' labels.
+    /// Draws each side after A right of its divider, the dividers, and the sides' labels.
     pub(super) fn compare_overlay_ui(&mut self, ui: &mut egui::Ui, image: egui::Rect) {
         let a_spp = self.main.frame().map_or(0, |f| f.progress.spp);
-        let Some(c) = &mut self.compare else { return };
-        let x = image.min.x + c.divider * image.width();
-        let clip = egui::Rect::from_min_max(egui::pos2(x, image.min.y), image.max)
-            .intersect(ui.clip_rect());
-        if let Some(t) = c.side.texture() {
-            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            ui.painter()
-                .with_clip_rect(clip)
-                .image(t.id(), image, uv, Color32::WHITE);
-        }
-        let handle = egui::Rect::from_center_size(
-            egui::pos2(x, image.center().y),
-            egui::vec2(14.0, image.height()),
-        );
-        let response = ui.interact(handle, egui::Id::unique("ab-divider"), egui::Sense::drag());
-        if response.dragged() {
-            c.divider =
-                ((x + response.drag_delta().x - image.min.x) / image.width()).clamp(0.0, 1.0);
-        }
-        let painter = ui.painter();
-        painter.line_segment(
-            [egui::pos2(x, image.min.y), egui::pos2(x, image.max.y)],
-            egui::Stroke::new(2.0, Color32::WHITE),
-        );
-        painter.circle_filled(egui::pos2(x, image.center().y), 7.0, Color32::WHITE);
-        let (a, b) = c.kind.labels();
-        let b_spp = c.side.frame().map_or(0, |f| f.progress.spp);
-        // In a hall the labels grow with the caption.
         // In a hall the labels are the caption's size.
         let size = if self.hall.presenting {
             super::present::caption_size(ui.ctx().content_rect().height())
         } else {
             15.0
         };
+        let Some(c) = &mut self.compare else { return };
+        let across = |d: f32| image.min.x + d * image.width();
+        let edges: Vec<f32> = c.dividers.iter().map(|&d| across(d)).collect();
+        let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+        for (i, side) in c.sides.iter().enumerate() {
+            let (x0, x1) = (edges[i], edges.get(i + 1).copied().unwrap_or(image.max.x));
+            let pane = egui::Rect::from_x_y_ranges(x0..=x1.max(x0), image.y_range());
+            if let Some(t) = side.texture() {
+                ui.painter()
+                    .with_clip_rect(pane.intersect(ui.clip_rect()))
+                    .image(t.id(), image, uv, Color32::WHITE);
+            }
+        }
+        for (i, &x) in edges.iter().enumerate() {
+            let handle = egui::Rect::from_center_size(
+                egui::pos2(x, image.center().y),
+                egui::vec2(14.0, image.height()),
+            );
+            let response = ui.interact(
+                handle,
+                egui::Id::unique(("ab-divider", i)),
+                egui::Sense::drag(),
+            );
+            if response.dragged() {
+                // A divider moves between its neighbours, so the sides keep their order.
+                let low = if i == 0 { 0.0 } else { c.dividers[i - 1] };
+                let high = c.dividers.get(i + 1).copied().unwrap_or(1.0);
+                c.dividers[i] =
+                    ((x + response.drag_delta().x - image.min.x) / image.width()).clamp(low, high);
+            }
+            let painter = ui.painter();
+            painter.line_segment(
+                [egui::pos2(x, image.min.y), egui::pos2(x, image.max.y)],
+                egui::Stroke::new(2.0, Color32::WHITE),
+            );
+            painter.circle_filled(egui::pos2(x, image.center().y), 7.0, Color32::WHITE);
+        }
+        let painter = ui.painter();
         // Labels on dark plates: legible over a white sky too.
         let label = |text: String, anchor: egui::Pos2, align: egui::Align2| {
             let galley =
@@ -154,15 +172,34 @@ impl RaylabApp {
             painter.rect_filled(rect.expand(5.0), 4.0, Color32::from_black_alpha(170));
             painter.galley(rect.min, galley, Color32::WHITE);
         };
-        label(
-            format!("{a} ({a_spp} spp)"),
-            image.min + egui::vec2(12.0, 12.0),
-            egui::Align2::LEFT_TOP,
+        let spp = std::iter::once(a_spp).chain(
+            c.sides
+                .iter()
+                .map(|s| s.frame().map_or(0, |f| f.progress.spp)),
         );
-        label(
-            format!("{b} ({b_spp} spp)"),
-            egui::pos2(image.max.x - 12.0, image.min.y + 12.0),
-            egui::Align2::RIGHT_TOP,
-        );
+        let last = c.sides.len();
+        for (i, (name, spp)) in c.kind.labels().iter().zip(spp).enumerate() {
+            let text = format!("{name} ({spp} spp)");
+            let top = image.min.y + 12.0;
+            // A at the image's left, the last side at its right, one between at the
+            // left of its pane.
+            match i {
+                0 => label(
+                    text,
+                    egui::pos2(image.min.x + 12.0, top),
+                    egui::Align2::LEFT_TOP,
+                ),
+                i if i == last => label(
+                    text,
+                    egui::pos2(image.max.x - 12.0, top),
+                    egui::Align2::RIGHT_TOP,
+                ),
+                i => label(
+                    text,
+                    egui::pos2(edges[i - 1] + 12.0, top),
+                    egui::Align2::LEFT_TOP,
+                ),
+            }
+        }
     }
 }

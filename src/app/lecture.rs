@@ -102,7 +102,7 @@ impl RaylabApp {
     /// Once `slide`'s scene is shown: its A/B view and the pixel its inspector shows.
     pub(super) fn show_slide(&mut self, slide: &Slide, ctx: &egui::Context) {
         if let Some(c) = slide.compare {
-            self.start_compare(ctx, CompareKind::Lecture(c), slide.divider);
+            self.start_compare(ctx, CompareKind::Lecture(c), slide.dividers());
         }
         // A slide about the ray tree opens the inspector on its pixel; the others leave
         // clicks on the image to the view.

@@ -311,16 +311,23 @@ impl RaylabApp {
         self.hall.help
     }
 
-    /// Side B's parameters and its newest frame, while the A/B view is on.
-    pub fn compare_side_b(&self) -> Option<(&Params, Option<&Frame>)> {
-        self.compare
-            .as_ref()
-            .map(|c| (c.side.engine().params(), c.side.frame()))
+    /// The parameters and newest frame of each side after A (B, and C), while the A/B
+    /// view is on; none while it is off.
+    pub fn compare_sides(&self) -> Vec<(&Params, Option<&Frame>)> {
+        self.compare_engines()
+            .map(|s| (s.engine().params(), s.frame()))
+            .collect()
     }
 
-    /// Whether side B's newest frame is finished and of its engine's newest generation.
-    pub fn compare_side_b_settled(&self) -> bool {
-        self.compare.as_ref().is_some_and(|c| c.side.settled())
+    /// Whether the A/B view is on and each side after A has its newest frame finished and
+    /// of its engine's newest generation.
+    pub fn compare_settled(&self) -> bool {
+        self.compare.is_some() && self.compare_engines().all(Side::settled)
+    }
+
+    /// The sides after A, while the A/B view is on.
+    fn compare_engines(&self) -> impl Iterator<Item = &Side> {
+        self.compare.iter().flat_map(|c| &c.sides)
     }
 
     /// The caption of the lecture slide shown, if any, as it reads now.
@@ -367,7 +374,9 @@ impl RaylabApp {
         let params = &self.settings.params;
         self.main.sync(&told, params);
         if let Some(c) = &mut self.compare {
-            c.side.sync(&told, &c.kind.side_b(params));
+            for (side, p) in c.sides.iter_mut().zip(c.kind.others(params)) {
+                side.sync(&told, &p);
+            }
         }
     }
 
@@ -389,7 +398,7 @@ impl RaylabApp {
             return Some((0.0, top));
         }
         std::iter::once(self.main.cost_range())
-            .chain(self.compare.as_ref().map(|c| c.side.cost_range()))
+            .chain(self.compare_engines().map(Side::cost_range))
             .flatten()
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)))
     }
@@ -439,8 +448,8 @@ impl eframe::App for RaylabApp {
         {
             self.error = Some(format!("The render stopped: {failure}"));
         }
-        if let Some(c) = &mut self.compare {
-            c.side.receive();
+        for side in self.compare.iter_mut().flat_map(|c| &mut c.sides) {
+            side.receive();
         }
         // The heat map's scale from the frames just taken, for both sides alike.
         let cost = self
@@ -451,8 +460,8 @@ impl eframe::App for RaylabApp {
         let exposure = self.settings.params.exposure;
         let sharp = self.view.sharp();
         self.main.upload(ctx, exposure, cost, sharp);
-        if let Some(c) = &mut self.compare {
-            c.side.upload(ctx, exposure, cost, sharp);
+        for side in self.compare.iter_mut().flat_map(|c| &mut c.sides) {
+            side.upload(ctx, exposure, cost, sharp);
         }
         self.refresh_inspection();
         // Nothing here repaints by itself: an idle window sleeps until the engines, the

@@ -148,14 +148,15 @@ impl RaylabApp {
             };
             ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(text).desired_width(220.0))
                 .on_hover_text("Samples per pixel done, of the target.");
-            // Side B refines in an engine of its own, at its own pace.
-            if let Some(b) = self.compare.as_ref().and_then(|c| c.side.frame()) {
-                let p = &b.progress;
+            // Sides B and C refine in engines of their own, each at its own pace.
+            let others = self.compare.iter().flat_map(|c| &c.sides).map(|s| s.frame());
+            for (letter, frame) in ['B', 'C'].into_iter().zip(others) {
+                let Some(p) = frame.map(|f| &f.progress) else { continue };
                 let text = match p.target {
-                    Some(t) => format!("B: {} / {t} spp", p.spp),
-                    None => format!("B: {} spp", p.spp),
+                    Some(t) => format!("{letter}: {} / {t} spp", p.spp),
+                    None => format!("{letter}: {} spp", p.spp),
                 };
-                ui.label(text).on_hover_text("Side B's samples per pixel, of its target.");
+                ui.label(text).on_hover_text(format!("Side {letter}'s samples per pixel, of its target."));
             }
             ui.separator();
             ui.label(format!("{:.2} M rays/s", p.rays_per_second / 1e6));

@@ -44,8 +44,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "SIDECAR.json")]
     params: Option<PathBuf>,
     /// Render slide N of the lecture (`raylab lecture` lists them) as the window shows it:
-    /// its scene and parameters; a slide that compares two things as its split image, side
-    /// A left and B right (no sidecar: no one set of parameters makes it).
+    /// its scene and parameters; a slide that compares things as its split image, side
+    /// A left, B (and C) right of it (no sidecar: no one set of parameters makes it).
     #[arg(long, value_name = "N", conflicts_with_all = ["scene", "params"])]
     slide: Option<usize>,
     /// With --slide: the slide's caption under the image, in a strip of its own (PNG only).
@@ -62,8 +62,8 @@ struct Job {
     scene: Scene,
     camera: raylab::camera::Camera,
     params: Params,
-    // Side B's parameters, for a slide that compares two things.
-    params_b: Option<Params>,
+    // The parameters of the sides after A (B, and C), for a slide that compares things.
+    others: Vec<Params>,
     slide: Option<&'static Slide>,
     width: u32,
     height: u32,
@@ -113,7 +113,7 @@ impl Job {
         }
         params.set_all(&args.set).context("--set")?;
         Ok(Job {
-            params_b: slide.and_then(|s| s.side_b(&params)),
+            others: slide.map_or_else(Vec::new, |s| s.others(&params)),
             samples: samples.unwrap_or(params.spp),
             scene,
             camera,
@@ -124,8 +124,8 @@ impl Job {
         })
     }
 
-    /// Renders it on `threads` workers (all cores if `None`), a slide that compares two
-    /// things as its split image: side A left of the middle, B right.
+    /// Renders it on `threads` workers (all cores if `None`), a slide that compares things
+    /// as its split image: side A left of the first divider, B (and C) after it.
     fn render(&self, threads: Option<u32>, bar: &ProgressBar) -> Result<(Film, Stats)> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.unwrap_or(0) as usize)
@@ -144,12 +144,15 @@ impl Job {
                 self.samples,
                 &observer,
             )?;
-            if let Some(b) = &self.params_b {
-                // The A/B view's split, at the window's starting divider.
-                let mut right = Film::new(w, h);
-                stats += render_pass(scene, camera, b, &mut right, b.spp, &observer)?;
-                let divider = self.slide.map_or(0.5, |s| s.divider);
-                film.split_with(&right, (w as f32 * divider).round() as u32);
+            // The A/B view's panes, at the window's starting dividers.
+            let dividers = self.slide.map_or_else(Vec::new, |s| s.dividers());
+            let column = |d: &f32| (w as f32 * d).round() as u32;
+            let starts = dividers.iter().map(column);
+            let ends = dividers.iter().skip(1).map(column).chain([w]);
+            for (side, (x0, x1)) in self.others.iter().zip(starts.zip(ends)) {
+                let mut pane = Film::new(w, h);
+                stats += render_pass(scene, camera, side, &mut pane, side.spp, &observer)?;
+                film.paste_columns(&pane, x0, x1);
             }
             Ok::<_, raylab::render::Cancelled>((film, stats))
         })
@@ -166,10 +169,10 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     };
     check_output(&output, args.caption)?;
     let json = sidecar_path(&output);
-    if job.params_b.is_none() {
+    if job.others.is_empty() {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
-    let rows = job.height as u64 * (1 + job.params_b.is_some() as u64);
+    let rows = job.height as u64 * (1 + job.others.len() as u64);
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();
     let (film, stats) = job.render(args.threads, &bar)?;
@@ -184,7 +187,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     };
     let params = &job.params;
     // No one set of parameters makes an A/B split: it gets no sidecar.
-    let sidecar = job.params_b.is_none().then(|| {
+    let sidecar = job.others.is_empty().then(|| {
         let rendered = Rendered {
             scene: &job.scene,
             camera: &job.camera,

@@ -1,15 +1,16 @@
-//! What the two sides of an A/B view differ in: one setting of the lecture, changed.
+//! What the sides of an A/B view differ in: one setting of the lecture, changed (two
+//! sides, or three for regular, random and jittered samples).
 
 use crate::optics::FresnelMode;
 use crate::params::{Params, Pattern, Transport, TreeMode};
 
-/// Two images of one scene that differ in one thing the lecture compares.
+/// Two (or three) images of one scene that differ in one thing the lecture compares.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Comparison {
     /// Schlick's approximation against the exact Fresnel equations.
     SchlickExact,
-    /// Random against jittered samples, at the same samples per pixel.
-    RandomJittered,
+    /// Regular, random and jittered samples, at the same samples per pixel: three sides.
+    RegularRandomJittered,
     /// Constant reflectance against Fresnel.
     ConstantFresnel,
     /// The split ray tree against the stochastic one.
@@ -35,7 +36,10 @@ impl Comparison {
     /// change one setting and keep the rest.
     pub const PRESETS: [(&'static str, Comparison); 7] = [
         ("Schlick | exact", Comparison::SchlickExact),
-        ("random | jittered", Comparison::RandomJittered),
+        (
+            "regular | random | jittered",
+            Comparison::RegularRandomJittered,
+        ),
         ("constant | Fresnel", Comparison::ConstantFresnel),
         ("split | stochastic tree", Comparison::SplitStochastic),
         (
@@ -46,19 +50,28 @@ impl Comparison {
         ("whitted | path + photons", Comparison::WhittedPhotons),
     ];
 
-    /// The labels of side A and side B.
-    pub fn labels(self) -> (&'static str, &'static str) {
+    /// The labels of its sides, A first, left to right.
+    pub fn labels(self) -> &'static [&'static str] {
         match self {
-            Comparison::SchlickExact => ("A: Schlick", "B: exact Fresnel"),
-            Comparison::RandomJittered => ("A: random", "B: jittered"),
-            Comparison::ConstantFresnel => ("A: constant k", "B: exact Fresnel"),
-            Comparison::SplitStochastic => ("A: split tree", "B: stochastic tree"),
-            Comparison::WhittedTransmissive => ("A: Whitted", "B: transmissive shadows"),
-            Comparison::WhittedPath => ("A: Whitted", "B: path tracing"),
-            Comparison::WhittedPhotons => ("A: Whitted", "B: path tracing + photons"),
-            Comparison::Supersampling => ("A: 1 sample, centre", "B: 4 jittered"),
-            Comparison::Blurring => ("A: 1 ray, point light", "B: 256 rays, area light"),
-            Comparison::Polariser => ("A: no polariser", "B: vertical polariser"),
+            Comparison::SchlickExact => &["A: Schlick", "B: exact Fresnel"],
+            Comparison::RegularRandomJittered => &["A: regular", "B: random", "C: jittered"],
+            Comparison::ConstantFresnel => &["A: constant k", "B: exact Fresnel"],
+            Comparison::SplitStochastic => &["A: split tree", "B: stochastic tree"],
+            Comparison::WhittedTransmissive => &["A: Whitted", "B: transmissive shadows"],
+            Comparison::WhittedPath => &["A: Whitted", "B: path tracing"],
+            Comparison::WhittedPhotons => &["A: Whitted", "B: path tracing + photons"],
+            Comparison::Supersampling => &["A: 1 sample, centre", "B: 4 jittered"],
+            Comparison::Blurring => &["A: 1 ray, point light", "B: 256 rays, area light"],
+            Comparison::Polariser => &["A: no polariser", "B: vertical polariser"],
+        }
+    }
+
+    /// Where the dividers between its sides start, across the image (0 to 1, left to
+    /// right): at `divider` between two sides, evenly spaced between three.
+    pub fn dividers(self, divider: f32) -> Vec<f32> {
+        match self.labels().len() {
+            2 => vec![divider],
+            n => (1..n).map(|i| i as f32 / n as f32).collect(),
         }
     }
 
@@ -67,7 +80,7 @@ impl Comparison {
         let mut p = p.clone();
         match self {
             Comparison::SchlickExact => p.fresnel = Some(FresnelMode::Schlick),
-            Comparison::RandomJittered => p.pattern = Pattern::Random,
+            Comparison::RegularRandomJittered => p.pattern = Pattern::Regular,
             Comparison::ConstantFresnel => p.fresnel = Some(FresnelMode::Constant),
             Comparison::SplitStochastic => p.tree = TreeMode::Split,
             Comparison::WhittedTransmissive
@@ -87,14 +100,27 @@ impl Comparison {
         p
     }
 
-    /// Side B's parameters, given side A's: A's with the compared setting changed.
-    pub fn side_b(self, a: &Params) -> Params {
+    /// The sides after A, left to right, given A's parameters: B (and C).
+    pub fn others(self, a: &Params) -> Vec<Params> {
+        let mut sides = vec![self.side_b(a)];
+        if self == Comparison::RegularRandomJittered {
+            sides.push(Params {
+                pattern: Pattern::Jittered,
+                ..a.clone()
+            });
+        }
+        sides
+    }
+
+    /// Side B's parameters, given side A's: A's with the compared setting changed (the
+    /// middle one of three).
+    fn side_b(self, a: &Params) -> Params {
         let mut p = a.clone();
         match self {
             Comparison::SchlickExact | Comparison::ConstantFresnel => {
                 p.fresnel = Some(FresnelMode::Exact)
             }
-            Comparison::RandomJittered => p.pattern = Pattern::Jittered,
+            Comparison::RegularRandomJittered => p.pattern = Pattern::Random,
             Comparison::SplitStochastic => p.tree = TreeMode::Stochastic,
             Comparison::WhittedTransmissive => p.transport = Transport::TransmissiveShadows,
             Comparison::WhittedPath => p.transport = Transport::Path,
@@ -127,11 +153,31 @@ mod tests {
         };
         for (label, kind) in Comparison::PRESETS {
             let a = kind.side_a(&p);
-            let b = kind.side_b(&a);
-            assert_ne!(a, b, "{label}: the sides differ");
-            assert_eq!((a.max_depth, a.spp), (3, 7), "{label}: A keeps the rest");
-            assert_eq!((b.max_depth, b.spp), (3, 7), "{label}: B keeps the rest");
+            let sides: Vec<Params> = std::iter::once(a.clone()).chain(kind.others(&a)).collect();
+            assert_eq!(sides.len(), kind.labels().len(), "{label}: a label a side");
+            assert_eq!(kind.dividers(0.5).len(), sides.len() - 1, "{label}");
+            for (i, s) in sides.iter().enumerate() {
+                assert_eq!(
+                    (s.max_depth, s.spp),
+                    (3, 7),
+                    "{label}: side {i} keeps the rest"
+                );
+                for t in &sides[..i] {
+                    assert_ne!(s, t, "{label}: the sides differ");
+                }
+            }
         }
+        let three = Comparison::RegularRandomJittered;
+        let a = three.side_a(&p);
+        let patterns: Vec<Pattern> = std::iter::once(&a)
+            .chain(&three.others(&a))
+            .map(|s| s.pattern)
+            .collect();
+        assert_eq!(
+            patterns,
+            [Pattern::Regular, Pattern::Random, Pattern::Jittered]
+        );
+        assert_eq!(three.dividers(0.2), [1.0 / 3.0, 2.0 / 3.0]);
         for (k, b) in [
             (
                 Comparison::WhittedTransmissive,
@@ -142,7 +188,7 @@ mod tests {
         ] {
             let a = k.side_a(&p);
             assert_eq!(a.transport, Transport::Whitted);
-            assert_eq!(k.side_b(&a).transport, b);
+            assert_eq!(k.others(&a)[0].transport, b);
         }
     }
 }

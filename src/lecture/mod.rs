@@ -71,9 +71,10 @@ pub struct Slide {
     /// `spp` is its target: enough for the status bar's noise under 2 % (tests/slides.rs),
     /// except where the slide is about the noise of few samples.
     pub params: &'static [(&'static str, &'static str)],
-    /// What the two sides of its A/B view differ in, if it compares two things.
+    /// What the sides of its A/B view differ in, if it compares things.
     pub compare: Option<Comparison>,
-    /// Where the A/B view's divider starts, across the image (0: all B, 1: all A).
+    /// Where the A/B view's divider starts between two sides, across the image (0: all
+    /// B, 1: all A); three sides start evenly spaced ([`Comparison::dividers`]).
     pub divider: f32,
     /// The instrument it opens, if any.
     pub instrument: Option<Instrument>,
@@ -105,7 +106,7 @@ impl Slide {
         Slide { params, ..self }
     }
 
-    /// Comparing two images that differ as `compare` says.
+    /// Comparing images that differ as `compare` says.
     pub const fn compare(self, compare: Comparison) -> Slide {
         Slide {
             compare: Some(compare),
@@ -206,9 +207,17 @@ impl Slide {
         Ok(p)
     }
 
-    /// Side B's parameters, given side A's, where the slide compares two things.
-    pub fn side_b(&self, a: &Params) -> Option<Params> {
-        self.compare.map(|c| c.side_b(a))
+    /// The parameters of the sides after A (B, and C), given side A's: none where the
+    /// slide compares nothing.
+    pub fn others(&self, a: &Params) -> Vec<Params> {
+        self.compare.map_or_else(Vec::new, |c| c.others(a))
+    }
+
+    /// Where its A/B view's dividers start, across the image: none where it compares
+    /// nothing.
+    pub fn dividers(&self) -> Vec<f32> {
+        self.compare
+            .map_or_else(Vec::new, |c| c.dividers(self.divider))
     }
 }
 
@@ -274,8 +283,7 @@ pub fn markdown() -> Result<String, SlideError> {
             facts.push(set.join(" "));
         }
         if let Some(c) = s.compare {
-            let (a, b) = c.labels();
-            facts.push(format!("A/B view, {a} | {b}"));
+            facts.push(format!("A/B view, {}", c.labels().join(" | ")));
         }
         match s.instrument {
             Some(Instrument::FresnelPlot { metal: None }) => {
@@ -342,7 +350,7 @@ mod tests {
             if let Some(Instrument::RayTree { x, y }) = s.instrument {
                 assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y), "{t}");
             }
-            if let Some(b) = s.side_b(&p) {
+            for b in s.others(&p) {
                 assert_ne!(p, b, "slide `{t}`: its sides differ");
             }
             let shown = Shown {

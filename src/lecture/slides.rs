@@ -2,7 +2,6 @@
 
 use super::captions::{inspected_object, sharp_sphere};
 use super::{Comparison, Instrument, Slide, slide};
-use crate::params::Pattern;
 
 /// The lecture, slide by slide.
 pub const LECTURE: &[Slide] = &[
@@ -93,21 +92,14 @@ pub const LECTURE: &[Slide] = &[
         ),
     slide("Regular, random and jittered samples", "antialiasing")
         .set(&[("spp", "4")])
-        .compare(Comparison::RandomJittered)
-        .asks(&["pattern"])
+        .compare(Comparison::RegularRandomJittered)
+        .asks(&["spp"])
         .follows(|s| {
-            let p = s.params;
-            let left = match p.pattern {
-                Pattern::Regular => {
-                    "regular, each cell's centre, the same in every pixel: the edges alias again"
-                }
-                Pattern::Random => "random, independent in each pixel: clumps and gaps, noisier edges",
-                Pattern::Jittered => "jittered too: the same image on both sides",
-                Pattern::Sobol => "Sobol points, evenly spread at every count: as even as jittered",
-            };
+            let n = s.params.spp;
+            let (nx, ny) = crate::math::rng::grid(n);
             format!(
-                "{} samples per pixel. Left: {left}. Right: jittered, one in each cell of a 2 × 2 grid: the same cost, less noise. Set the Pattern to regular and the left side aliases again.",
-                p.spp
+                "{n} sample{} per pixel each. Left: regular, each cell's centre, alike in every pixel: the far checks alias. Middle: random: clumps and gaps, noisy edges. Right: jittered, one anywhere in each cell of a {nx} × {ny} grid: the least noise. Raise Samples per pixel: regular still aliases.",
+                if n == 1 { "" } else { "s" }
             )
         }),
     // The divider through the sphere: each side shows half of it and of its shadow.

@@ -246,16 +246,17 @@ impl Film {
         if self.spp == 0 { &[] } else { &self.pixels }
     }
 
-    /// The A/B view as one image: this film left of column `x0`, `other` (of the same
-    /// size) from there on.
-    pub fn split_with(&mut self, other: &Film, x0: u32) {
+    /// One pane of the A/B view: columns `x0` to `x1` (not included) of `other`, a film
+    /// of the same size, in place of this film's.
+    pub fn paste_columns(&mut self, other: &Film, x0: u32, x1: u32) {
         if (other.width, other.height) != (self.width, self.height) {
             return;
         }
         let w = self.width as usize;
+        let x1 = (x1 as usize).min(w);
+        let x0 = (x0 as usize).min(x1);
         for (row, theirs) in self.pixels.chunks_mut(w).zip(other.pixels.chunks(w)) {
-            let x0 = (x0 as usize).min(w);
-            row[x0..].copy_from_slice(&theirs[x0..]);
+            row[x0..x1].copy_from_slice(&theirs[x0..x1]);
         }
     }
 
