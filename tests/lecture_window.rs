@@ -11,7 +11,7 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raylab::app::RaylabApp;
-use raylab::lecture::LECTURE;
+use raylab::lecture::{Comparison, LECTURE};
 use raylab::params::{Kind, TABLE, spec};
 use window::{app, app_sized, choose_from_menu, step_until};
 
@@ -284,6 +284,12 @@ fn every_slide_can_be_taught_without_leaving_presentation_mode() {
                 move_control(&mut h, name);
                 let after = h.state().engine().params().clone();
                 assert_ne!(before, after, "`{title}` at {size:?}: moving `{name}`");
+                // The three panes compare patterns at equal samples: all follow.
+                if slide.compare == Some(Comparison::RegularRandomJittered) {
+                    for (side, _) in h.state().compare_sides() {
+                        assert_eq!(side.spp, after.spp, "`{title}`: every pane follows");
+                    }
+                }
             }
             // `]` steps the first control.
             if let Some(first) = slide.controls.first() {

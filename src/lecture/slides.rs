@@ -152,7 +152,7 @@ pub const LECTURE: &[Slide] = &[
         .compare(Comparison::Polariser)
         .divider(0.37)
         .says(
-            "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0, the reflection s only. Left: no polariser, glare on the pond. Right: a vertical one cuts it: the tiles show, a dark band crosses the sphere.",
+            "Reflection polarises: R_s > R_p, and at Brewster's angle (53° on water, 56° on glaze) R_p = 0: the reflected light is all s-polarised. Left: no polariser, glare on the pond. Right: a vertical one cuts it: the tiles show, a dark band crosses the sphere.",
         ),
     slide("Dispersion", "dispersion")
         .asks(&["abbe"])

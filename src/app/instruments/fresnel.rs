@@ -153,7 +153,7 @@ fn reflectance_plot(
         .include_x(90.0)
         .include_y(-0.1)
         .include_y(1.0)
-        .x_axis_label("angle of incidence θi (degrees)")
+        .x_axis_label("angle of incidence θi (°)")
         .y_axis_label("reflectance")
         .allow_drag(false)
         .allow_scroll(false)
