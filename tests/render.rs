@@ -312,36 +312,61 @@ fn the_cost_of_a_pixel_is_the_rays_its_samples_traced() {
     );
 }
 
-#[test]
-fn a_textured_emitter_shows_its_checker_squares_at_their_radiance() {
-    // One emitting quad filling the view, 2 × 2 squares: seen directly, each pixel is the
-    // radiance of its square (× strength), exactly.
-    let text = r#"
-        [image]
-        width = 8
-        height = 8
-        [camera]
-        position = [0, 0, 5]
-        look_at = [0, 0, 0]
-        fov = 20
-        [material.board]
-        type = "emissive"
-        color = [1, 0.5, 0.25]
-        checker = { color = [0, 2, 0], scale = 2 }
-        strength = 2
-        [[quad]]
-        corner = [-2, -2, 0]
-        edge_u = [4, 0, 0]
-        edge_v = [0, 4, 0]
-        material = "board"
-    "#;
-    let scene = Scene::from_toml_str(text, "board.toml", Path::new(".")).unwrap();
+/// The pixels, at 4 spp, of an image of `size` that sees one emitting quad (its lower left
+/// corner and its width and height, in the plane z = 0) from 5 units in front with a
+/// field of view of `fov` degrees; `board` is the emitter's material, in scene-file lines.
+fn board_pixels(size: (u32, u32), fov: f32, board: &str, quad: ([f32; 2], [f32; 2])) -> Vec<Color> {
+    let ([x, y], [w, h]) = quad;
+    let text = format!(
+        "[image]\nwidth = {}\nheight = {}\n\
+         [camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = {fov}\n\
+         [material.board]\ntype = \"emissive\"\n{board}\n\
+         [[quad]]\ncorner = [{x}, {y}, 0]\nedge_u = [{w}, 0, 0]\nedge_v = [0, {h}, 0]\n\
+         material = \"board\"\n",
+        size.0, size.1
+    );
+    let scene = Scene::from_toml_str(&text, "board.toml", Path::new(".")).unwrap();
     let params = Params {
         spp: 4,
         ..scene.params.clone()
     };
-    let (film, _) = render(&scene, &params, 8, 8, &()).unwrap();
-    let px: Vec<Color> = film.pixels().collect();
+    let (film, _) = render(&scene, &params, size.0, size.1, &()).unwrap();
+    film.pixels().collect()
+}
+
+#[test]
+fn a_checker_scaled_apart_along_u_and_v_gives_a_wide_quad_square_cells() {
+    // A 4 × 2 emitting quad filling an 8 × 4 image, 4 cells along u and 2 along v: each
+    // cell 1 × 1 in the world, 2 × 2 pixels, alternating along both rows and columns.
+    let px = board_pixels(
+        (8, 4),
+        22.619865,
+        "color = [1, 1, 1]\nchecker = { color = [0, 0, 0], scale = [4, 2] }",
+        ([-2.0, -1.0], [4.0, 2.0]),
+    );
+    // The centre of each 2 × 2 block of pixels: white where floor(u 4) + floor(v 2) is
+    // even (the image's top row is the quad's upper half, v cell 1).
+    for v_cell in 0..2usize {
+        for u_cell in 0..4usize {
+            let y = 2 * (1 - v_cell) + 1;
+            let c = px[y * 8 + u_cell * 2 + 1];
+            let white = (u_cell + v_cell) % 2 == 0;
+            let want = if white { Color::ONE } else { Color::ZERO };
+            assert_eq!(c, want, "cell ({u_cell}, {v_cell})");
+        }
+    }
+}
+
+#[test]
+fn a_textured_emitter_shows_its_checker_squares_at_their_radiance() {
+    // One emitting quad filling the view, 2 × 2 squares: seen directly, each pixel is the
+    // radiance of its square (× strength), exactly.
+    let px = board_pixels(
+        (8, 8),
+        20.0,
+        "color = [1, 0.5, 0.25]\nchecker = { color = [0, 2, 0], scale = 2 }\nstrength = 2",
+        ([-2.0, -2.0], [4.0, 4.0]),
+    );
     let (a, b) = (Color::new(2.0, 1.0, 0.5), Color::new(0.0, 4.0, 0.0));
     // The view spans the quad's middle: the four corners of the image lie in four squares.
     let corners = [px[0], px[7], px[56], px[63]];

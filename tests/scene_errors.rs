@@ -263,3 +263,25 @@ fn a_conductor_is_a_named_metal_or_its_own_index_and_nothing_in_between() {
         assert_at(&e, "t.toml:4:1", words);
     }
 }
+
+#[test]
+fn a_checkers_scale_is_a_positive_number_or_two() {
+    let with = |scale: &str| {
+        err(&format!(
+            "{CAMERA}[material.m]\ntype = \"diffuse\"\ncolor = [1, 1, 1]\n\
+             checker = {{ color = [0, 0, 0], scale = {scale} }}\n"
+        ))
+    };
+    // Values inside a material's table are located at its header, as every material
+    // value's error is today.
+    let at = "t.toml:4:1";
+    assert_at(&with("[16, 0]"), at, "must be greater than 0, got 0");
+    assert_at(&with("[16]"), at, "[along u, along v]: two numbers");
+    assert_at(&with("[1, 2, 3]"), at, "[along u, along v]: two numbers");
+    assert_at(&with("-2"), at, "must be greater than 0, got -2");
+    assert_at(
+        &with("\"fine\""),
+        at,
+        "expected cells per unit: a number, or [along u, along v]",
+    );
+}

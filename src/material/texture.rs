@@ -8,15 +8,16 @@ use glam::Vec2;
 pub enum Texture {
     /// One colour everywhere.
     Solid(Color),
-    /// Squares of two colours, `scale` squares per unit of the surface coordinates
-    /// (world units on planes; the whole surface is 0..1 on spheres, quads and meshes).
+    /// Cells of two colours, `scale.x` per unit of u and `scale.y` per unit of v (world
+    /// units on planes; the whole surface is 0..1 on spheres, quads and meshes, so a
+    /// 16 × 9 quad has square cells at a scale of 16 × 9 times any factor).
     Checker {
-        /// Colour of the squares where floor(u s) + floor(v s) is even.
+        /// Colour of the cells where floor(u s_u) + floor(v s_v) is even.
         even: Color,
         /// Colour of the others.
         odd: Color,
-        /// Squares per unit.
-        scale: f32,
+        /// Cells per unit along u and along v.
+        scale: Vec2,
     },
 }
 
@@ -27,7 +28,7 @@ impl Texture {
         match self {
             Texture::Solid(c) => *c,
             Texture::Checker { even, odd, scale } => {
-                let k = floor_i64(uv.x * scale) + floor_i64(uv.y * scale);
+                let k = floor_i64(uv.x * scale.x) + floor_i64(uv.y * scale.y);
                 if k.rem_euclid(2) == 0 { *even } else { *odd }
             }
         }
@@ -52,13 +53,29 @@ mod tests {
         let t = Texture::Checker {
             even: Color::ONE,
             odd: Color::ZERO,
-            scale: 2.0,
+            scale: Vec2::splat(2.0),
         };
         assert_eq!(t.eval(Vec2::new(0.1, 0.1)), Color::ONE);
         assert_eq!(t.eval(Vec2::new(0.6, 0.1)), Color::ZERO);
         assert_eq!(t.eval(Vec2::new(0.6, 0.6)), Color::ONE);
         // Across zero the pattern continues instead of mirroring.
         assert_eq!(t.eval(Vec2::new(-0.1, 0.1)), Color::ZERO);
+    }
+
+    #[test]
+    fn a_checker_has_its_own_count_along_u_and_along_v() {
+        // 4 cells along u, 2 along v: a cell is 0.25 wide and 0.5 tall.
+        let t = Texture::Checker {
+            even: Color::ONE,
+            odd: Color::ZERO,
+            scale: Vec2::new(4.0, 2.0),
+        };
+        let at = |u, v| t.eval(Vec2::new(u, v));
+        assert_eq!(at(0.1, 0.1), Color::ONE);
+        assert_eq!(at(0.3, 0.1), Color::ZERO, "the next cell along u");
+        assert_eq!(at(0.1, 0.4), Color::ONE, "still the first cell along v");
+        assert_eq!(at(0.1, 0.6), Color::ZERO, "the next cell along v");
+        assert_eq!(at(0.3, 0.6), Color::ONE);
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
 
-use super::values::{Abbe, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit};
+use super::values::{
+    Abbe, CheckerScale, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit,
+};
 use crate::material::{
     Conductor, Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture,
 };
@@ -98,14 +100,14 @@ impl TryFrom<ConductorKeys> for ConductorDef {
 #[serde(deny_unknown_fields)]
 pub(super) struct EmissiveCheckerDef {
     color: Rgb,
-    scale: Positive,
+    scale: CheckerScale,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct CheckerDef {
     color: Reflectance,
-    scale: Positive,
+    scale: CheckerScale,
 }
 
 /// Materials by name, in the order they were added.

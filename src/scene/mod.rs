@@ -299,7 +299,7 @@ impl Scene {
             albedo: crate::material::Texture::Checker {
                 even: Color::new(0.8, 0.8, 0.78),
                 odd: Color::new(0.15, 0.15, 0.17),
-                scale: 2.0 / r,
+                scale: glam::Vec2::splat(2.0 / r),
             },
             specular: Color::ZERO,
             exponent: 1.0,

@@ -213,3 +213,44 @@ impl TryFrom<i64> for Pixels {
         }
     }
 }
+
+/// A checker's cells per unit: one number for both directions, or [along u, along v], each
+/// finite and > 0.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CheckerScale(pub(super) glam::Vec2);
+
+impl<'de> Deserialize<'de> for CheckerScale {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = CheckerScale;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("cells per unit: a number, or [along u, along v]")
+            }
+            fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<CheckerScale, E> {
+                let Positive(s) = Positive::try_from(v).map_err(E::custom)?;
+                Ok(CheckerScale(glam::Vec2::splat(s)))
+            }
+            fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<CheckerScale, E> {
+                self.visit_f64(v as f64)
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<CheckerScale, E> {
+                self.visit_f64(v as f64)
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<CheckerScale, A::Error> {
+                use serde::de::Error;
+                let two = "[along u, along v]: two numbers";
+                let u: Positive = seq.next_element()?.ok_or_else(|| A::Error::custom(two))?;
+                let v: Positive = seq.next_element()?.ok_or_else(|| A::Error::custom(two))?;
+                if seq.next_element::<serde::de::IgnoredAny>()?.is_some() {
+                    return Err(A::Error::custom(two));
+                }
+                Ok(CheckerScale(glam::Vec2::new(u.0, v.0)))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
