@@ -414,6 +414,43 @@ fn captions_follow_the_inspected_pixel_and_the_focus() {
     assert!(caption.contains("the red sphere is sharp"), "{caption}");
 }
 
+#[test]
+fn an_ab_slides_progress_is_its_slowest_sides() {
+    // Blurring: side A is one ray a pixel, done at once; side B takes 256.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app_sized("default", dir.path(), (1920.0, 1080.0));
+    h.step();
+    let i = LECTURE
+        .iter()
+        .position(|s| s.compare == Some(Comparison::Blurring))
+        .unwrap();
+    h.key_press(egui::Key::F5);
+    for _ in 0..=i {
+        h.key_press(egui::Key::PageDown);
+    }
+    wait_for_slide(&mut h, i);
+    step_until(&mut h, "side A finished, B refining", |a| {
+        let b_refining = a
+            .compare_sides()
+            .first()
+            .is_some_and(|(_, f)| f.is_some_and(|f| !f.is_preview() && !f.progress.done()));
+        a.latest_frame().is_some_and(|f| f.progress.done()) && b_refining
+    });
+    h.run_steps(2);
+    let fraction = h.state().progress_fraction();
+    assert!(fraction < 1.0, "the bar waits for side B: {fraction}");
+    assert!(
+        h.query_all_by_label_contains("A 1 / 1 · B ")
+            .next()
+            .is_some(),
+        "each side's samples in the strip"
+    );
+    assert!(
+        h.query_all_by_label_contains("/ 256 spp").next().is_some(),
+        "side B's target"
+    );
+}
+
 /// Every piece of text the last frame drew where it can be seen: its size (points) and
 /// its words.
 fn texts(h: &Harness<'static, RaylabApp>) -> Vec<(f32, String)> {

@@ -330,6 +330,26 @@ impl RaylabApp {
         self.compare.iter().flat_map(|c| &c.sides)
     }
 
+    /// Every side shown with its letter: the main view (A), then B and C of an A/B view.
+    fn all_sides(&self) -> impl Iterator<Item = (char, &Side)> {
+        ['A', 'B', 'C']
+            .into_iter()
+            .zip(std::iter::once(&self.main).chain(self.compare_engines()))
+    }
+
+    /// How far the view has refined, 0 to 1: the least done of its sides (an A/B view is
+    /// finished when every side is), 1 for a side without a target.
+    pub fn progress_fraction(&self) -> f32 {
+        self.all_sides()
+            .map(|(_, side)| {
+                side.frame().map_or(0.0, |f| match f.progress.target {
+                    Some(t) => (f.progress.spp as f32 / t.max(1) as f32).min(1.0),
+                    None => 1.0,
+                })
+            })
+            .fold(1.0, f32::min)
+    }
+
     /// The caption of the lecture slide shown, if any, as it reads now.
     pub fn caption(&self) -> Option<String> {
         let inspected = self.instruments.inspection.as_ref().map(|i| {

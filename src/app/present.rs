@@ -271,16 +271,29 @@ impl RaylabApp {
     }
 
     /// How far the image has refined, as presentation mode says it: samples per pixel of
-    /// the target, and "paused" while paused.
+    /// the target (each side's in an A/B view: "A 1 / 1 · B 37 / 256 spp"), and "paused"
+    /// while paused.
     fn progress_text(&self) -> String {
-        let Some(f) = self.main.frame() else {
+        let comparing = self.compare.is_some();
+        let sides: Vec<String> = self
+            .all_sides()
+            .filter_map(|(letter, side)| {
+                let p = &side.frame()?.progress;
+                let done = match p.target {
+                    Some(t) => format!("{} / {t}", p.spp),
+                    None => p.spp.to_string(),
+                };
+                Some(if comparing {
+                    format!("{letter} {done}")
+                } else {
+                    done
+                })
+            })
+            .collect();
+        if sides.is_empty() {
             return "starting".into();
-        };
-        let p = &f.progress;
-        let spp = match p.target {
-            Some(t) => format!("{} / {t} spp", p.spp),
-            None => format!("{} spp", p.spp),
-        };
+        }
+        let spp = format!("{} spp", sides.join(" · "));
         if self.main.paused() {
             format!("paused, {spp}")
         } else {
@@ -288,12 +301,10 @@ impl RaylabApp {
         }
     }
 
-    /// A thin bar across the strip: the fraction of the target done.
+    /// A thin bar across the strip: the fraction of the target done, of the side least
+    /// done.
     fn progress_bar_ui(&self, ui: &mut egui::Ui, size: f32) {
-        let fraction = self.main.frame().map_or(0.0, |f| match f.progress.target {
-            Some(t) => (f.progress.spp as f32 / t.max(1) as f32).min(1.0),
-            None => 1.0,
-        });
+        let fraction = self.progress_fraction();
         let (rect, _) = ui.allocate_exact_size(
             egui::vec2(ui.available_width(), (size / 8.0).max(3.0)),
             egui::Sense::hover(),

@@ -162,9 +162,17 @@ impl RaylabApp {
             ui.label(format!("{:.2} M rays/s", p.rays_per_second / 1e6));
             ui.separator();
             ui.label(format!("{:.1} s", p.elapsed.as_secs_f32())).on_hover_text("Time since the image started.");
-            if let Some(eta) = p.eta.filter(|_| !p.done()) {
+            // The view is clean when its slowest side is: the longest time left.
+            let eta = self
+                .all_sides()
+                .filter_map(|(_, side)| side.frame())
+                .filter(|f| !f.progress.done())
+                .filter_map(|f| f.progress.eta)
+                .max();
+            if let Some(eta) = eta {
                 ui.separator();
-                ui.label(format!("{:.1} s left", eta.as_secs_f32()));
+                ui.label(format!("{:.1} s left", eta.as_secs_f32()))
+                    .on_hover_text("Until every side shown reaches its target, at the pace of the last passes.");
             }
             if let Some(noise) = p.noise {
                 ui.separator();
