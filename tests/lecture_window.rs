@@ -557,3 +557,45 @@ fn every_caption_fits_in_three_lines_in_a_hall() {
     });
     assert!(long.is_empty(), "captions over three lines: {long:#?}");
 }
+
+/// Where the last frame drew the text starting with `start`, if it drew it.
+fn text_rect(h: &Harness<'static, RaylabApp>, start: &str) -> Option<egui::Rect> {
+    fn walk(shape: &egui::Shape, start: &str) -> Option<egui::Rect> {
+        match shape {
+            egui::Shape::Vec(shapes) => shapes.iter().find_map(|s| walk(s, start)),
+            egui::Shape::Text(t) if t.galley.job.text.starts_with(start) => {
+                Some(t.galley.rect.translate(t.pos.to_vec2()))
+            }
+            _ => None,
+        }
+    }
+    h.output().shapes.iter().find_map(|c| walk(&c.shape, start))
+}
+
+#[test]
+fn messages_keep_clear_of_a_slides_caption() {
+    let dir = tempfile::tempdir().unwrap();
+    for presenting in [false, true] {
+        let mut h = app_sized("default", dir.path(), (1280.0, 720.0));
+        h.step();
+        let slide = &LECTURE[1];
+        choose_from_menu(&mut h, "Lecture", &format!("2. {}", slide.title));
+        wait_for_slide(&mut h, 1);
+        if presenting {
+            h.key_press(egui::Key::F5);
+            h.run_steps(3);
+        }
+        // A message: nothing to undo on a slide just opened.
+        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+        h.run_steps(3);
+        let message = text_rect(&h, "Nothing to undo").expect("the message is shown");
+        let caption = h.state().caption().unwrap();
+        let first_words: String = caption.chars().take(12).collect();
+        let caption = text_rect(&h, &first_words).expect("the caption is shown");
+        // The caption's text spans its block: clear of it means above or below it.
+        assert!(
+            message.max.y < caption.min.y || message.min.y > caption.max.y,
+            "presenting {presenting}: the message {message:?} covers the caption {caption:?}"
+        );
+    }
+}

@@ -507,7 +507,8 @@ impl eframe::App for RaylabApp {
             self.hall_style_ui(&ctx);
             self.instruments_dock_ui(ui);
             self.presentation_ui(ui);
-            self.toasts.ui(&ctx, self.hall.presenting);
+            // Clear of the caption strip along the bottom.
+            self.toasts.ui(&ctx, Some(0.0));
             self.help_ui(&ctx);
             if self.settings != before {
                 self.sync_engines();
@@ -515,7 +516,7 @@ impl eframe::App for RaylabApp {
             }
             return;
         }
-        Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
+        let toolbar = Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
         Panel::bottom("status").show(ui, |ui| self.status_ui(ui));
         Panel::left("controls")
             .resizable(true)
@@ -529,7 +530,13 @@ impl eframe::App for RaylabApp {
         self.instruments_dock_ui(ui);
         CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
         self.dialog_ui(&ctx);
-        self.toasts.ui(&ctx, self.hall.presenting);
+        // A slide's caption runs along the image's bottom: messages go under the toolbar.
+        let top = self
+            .lecture
+            .shown()
+            .is_some()
+            .then_some(toolbar.response.rect.max.y);
+        self.toasts.ui(&ctx, top);
         self.help_ui(&ctx);
         // What the controls changed reaches the engines now, not in the next frame: the
         // first preview (a millisecond's work) is there for the next frame to show.

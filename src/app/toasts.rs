@@ -37,23 +37,20 @@ impl Toasts {
         self.0.iter().map(|t| t.text.clone()).collect()
     }
 
-    /// Drops the expired ones and draws the rest: at the bottom right, or in presentation
-    /// mode (`top`) at the top right, clear of the caption strip.
-    pub(crate) fn ui(&mut self, ctx: &egui::Context, top: bool) {
+    /// Drops the expired ones and draws the rest: at the bottom right, or, where a caption
+    /// runs along the bottom, at the top right from `top` down (clear of the caption).
+    pub(crate) fn ui(&mut self, ctx: &egui::Context, top: Option<f32>) {
         let now = Instant::now();
         self.0.retain(|t| t.until > now);
         if self.0.is_empty() {
             return;
         }
+        let (align, offset) = match top {
+            Some(y) => (egui::Align2::RIGHT_TOP, [-12.0, y + 12.0]),
+            None => (egui::Align2::RIGHT_BOTTOM, [-12.0, -36.0]),
+        };
         egui::Area::new(egui::Id::unique("raylab-toasts"))
-            .anchor(
-                if top {
-                    egui::Align2::RIGHT_TOP
-                } else {
-                    egui::Align2::RIGHT_BOTTOM
-                },
-                if top { [-12.0, 12.0] } else { [-12.0, -36.0] },
-            )
+            .anchor(align, offset)
             .order(egui::Order::Foreground)
             .interactable(false)
             .show(ctx, |ui| {
