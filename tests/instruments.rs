@@ -66,6 +66,11 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
         .expect("the critical angle for n = 2");
 }
 
+/// Side B's parameters and newest frame, while the A/B view is on.
+fn side_b(app: &RaylabApp) -> Option<(&raylab::params::Params, Option<&raylab::render::Frame>)> {
+    app.compare_sides().first().copied()
+}
+
 #[test]
 fn a_b_compare_renders_both_sides() {
     let dir = tempfile::tempdir().unwrap();
@@ -82,23 +87,15 @@ fn a_b_compare_renders_both_sides() {
         Some(FresnelMode::Constant),
         "side A"
     );
-    let (b, _) = h
-        .state()
-        .compare_sides()
-        .first()
-        .copied()
-        .expect("the A/B view is on");
+    let (b, _) = side_b(h.state()).expect("the A/B view is on");
     assert_eq!(b.fresnel, Some(FresnelMode::Exact), "side B");
     step_until(&mut h, "both sides to finish", |a| {
         a.latest_frame().is_some_and(|f| f.progress.done())
-            && a.compare_sides()
-                .first()
-                .copied()
-                .is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
+            && side_b(a).is_some_and(|(_, f)| f.is_some_and(|f| f.progress.done()))
     });
     // The status bar says how far each side has come.
     h.run_steps(2);
-    let target = h.state().compare_sides().first().copied().unwrap().0.spp;
+    let target = side_b(h.state()).unwrap().0.spp;
     assert!(
         h.query_all_by_label_contains(&format!("B: {target} / {target} spp"))
             .next()
@@ -107,32 +104,14 @@ fn a_b_compare_renders_both_sides() {
     );
     // The two sides differ only in the Fresnel model: the same light, other reflections.
     let a = h.state().latest_frame().unwrap().pixels.clone();
-    let b = h
-        .state()
-        .compare_sides()
-        .first()
-        .copied()
-        .unwrap()
-        .1
-        .unwrap()
-        .pixels
-        .clone();
+    let b = side_b(h.state()).unwrap().1.unwrap().pixels.clone();
     assert_eq!(a.len(), b.len());
     assert!(a.iter().zip(b.iter()).any(|(x, y)| x != y));
     // Other controls move both sides.
     h.get_by_role_and_label(Role::Slider, "Max depth")
         .set_value_accesskit(2.0);
     h.run_steps(3);
-    assert_eq!(
-        h.state()
-            .compare_sides()
-            .first()
-            .copied()
-            .unwrap()
-            .0
-            .max_depth,
-        2
-    );
+    assert_eq!(side_b(h.state()).unwrap().0.max_depth, 2);
     // So do the resolution and the scene.
     h.get_by_role_and_label(Role::ComboBox, "Resolution")
         .click();
@@ -142,15 +121,12 @@ fn a_b_compare_renders_both_sides() {
     step_until(&mut h, "both sides at 25%", |a| {
         let quarter = |f: &raylab::render::Frame| (f.width, f.height) == (240, 135);
         a.latest_frame().is_some_and(quarter)
-            && a.compare_sides()
-                .first()
-                .copied()
-                .is_some_and(|(_, f)| f.is_some_and(quarter))
+            && side_b(a).is_some_and(|(_, f)| f.is_some_and(quarter))
     });
     h.state_mut().open_scene("glass");
     step_until(&mut h, "the new scene", |a| a.scene().name == "glass");
     step_until(&mut h, "side B finished on it", RaylabApp::compare_settled);
-    let (b, frame) = h.state().compare_sides().first().copied().unwrap();
+    let (b, frame) = side_b(h.state()).unwrap();
     let (b, frame) = (b.clone(), frame.unwrap().clone());
     assert_eq!(b.fresnel, Some(FresnelMode::Exact));
     assert_eq!(

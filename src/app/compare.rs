@@ -178,28 +178,16 @@ impl RaylabApp {
                 .map(|s| s.frame().map_or(0, |f| f.progress.spp)),
         );
         let last = c.sides.len();
+        let top = image.min.y + 12.0;
         for (i, (name, spp)) in c.kind.labels().iter().zip(spp).enumerate() {
-            let text = format!("{name} ({spp} spp)");
-            let top = image.min.y + 12.0;
             // A at the image's left, the last side at its right, one between at the
             // left of its pane.
-            match i {
-                0 => label(
-                    text,
-                    egui::pos2(image.min.x + 12.0, top),
-                    egui::Align2::LEFT_TOP,
-                ),
-                i if i == last => label(
-                    text,
-                    egui::pos2(image.max.x - 12.0, top),
-                    egui::Align2::RIGHT_TOP,
-                ),
-                i => label(
-                    text,
-                    egui::pos2(edges[i - 1] + 12.0, top),
-                    egui::Align2::LEFT_TOP,
-                ),
-            }
+            let (x, align) = match i {
+                0 => (image.min.x + 12.0, egui::Align2::LEFT_TOP),
+                i if i == last => (image.max.x - 12.0, egui::Align2::RIGHT_TOP),
+                i => (edges[i - 1] + 12.0, egui::Align2::LEFT_TOP),
+            };
+            label(format!("{name} ({spp} spp)"), egui::pos2(x, top), align);
         }
     }
 }

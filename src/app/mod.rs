@@ -341,12 +341,7 @@ impl RaylabApp {
     /// finished when every side is), 1 for a side without a target.
     pub fn progress_fraction(&self) -> f32 {
         self.all_sides()
-            .map(|(_, side)| {
-                side.frame().map_or(0.0, |f| match f.progress.target {
-                    Some(t) => (f.progress.spp as f32 / t.max(1) as f32).min(1.0),
-                    None => 1.0,
-                })
-            })
+            .map(|(_, side)| side.frame().map_or(0.0, |f| f.progress.fraction()))
             .fold(1.0, f32::min)
     }
 

@@ -278,11 +278,7 @@ impl RaylabApp {
         let sides: Vec<String> = self
             .all_sides()
             .filter_map(|(letter, side)| {
-                let p = &side.frame()?.progress;
-                let done = match p.target {
-                    Some(t) => format!("{} / {t}", p.spp),
-                    None => p.spp.to_string(),
-                };
+                let done = side.frame()?.progress.of_target();
                 Some(if comparing {
                     format!("{letter} {done}")
                 } else {

@@ -142,21 +142,15 @@ impl RaylabApp {
                 return;
             };
             let p = &f.progress;
-            let (fraction, text) = match p.target {
-                Some(t) => (p.spp as f32 / t.max(1) as f32, format!("{} / {} spp", p.spp, t)),
-                None => (1.0, format!("{} spp (no limit)", p.spp)),
-            };
-            ui.add(egui::ProgressBar::new(fraction.min(1.0)).text(text).desired_width(220.0))
+            let limit = if p.target.is_none() { " (no limit)" } else { "" };
+            let text = format!("{} spp{limit}", p.of_target());
+            ui.add(egui::ProgressBar::new(p.fraction()).text(text).desired_width(220.0))
                 .on_hover_text("Samples per pixel done, of the target.");
             // Sides B and C refine in engines of their own, each at its own pace.
-            let others = self.compare.iter().flat_map(|c| &c.sides).map(|s| s.frame());
-            for (letter, frame) in ['B', 'C'].into_iter().zip(others) {
-                let Some(p) = frame.map(|f| &f.progress) else { continue };
-                let text = match p.target {
-                    Some(t) => format!("{letter}: {} / {t} spp", p.spp),
-                    None => format!("{letter}: {} spp", p.spp),
-                };
-                ui.label(text).on_hover_text(format!("Side {letter}'s samples per pixel, of its target."));
+            for (letter, side) in self.all_sides().skip(1) {
+                let Some(f) = side.frame() else { continue };
+                ui.label(format!("{letter}: {} spp", f.progress.of_target()))
+                    .on_hover_text(format!("Side {letter}'s samples per pixel, of its target."));
             }
             ui.separator();
             ui.label(format!("{:.2} M rays/s", p.rays_per_second / 1e6));

@@ -35,6 +35,20 @@ impl Progress {
     pub fn done(&self) -> bool {
         self.target.is_some_and(|t| self.spp >= t)
     }
+
+    /// The fraction of the target done, 0 to 1 (1 without a target: nothing to wait for).
+    pub fn fraction(&self) -> f32 {
+        self.target
+            .map_or(1.0, |t| (self.spp as f32 / t.max(1) as f32).min(1.0))
+    }
+
+    /// Samples per pixel done, of the target: "37 / 256", or "37" without one.
+    pub fn of_target(&self) -> String {
+        match self.target {
+            Some(t) => format!("{} / {t}", self.spp),
+            None => self.spp.to_string(),
+        }
+    }
 }
 
 /// One image of a generation: a coarse preview, or the film after a pass.
@@ -72,5 +86,29 @@ impl Frame {
             self.width.div_ceil(self.block),
             self.height.div_ceil(self.block),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn progress_says_how_far_of_its_target() {
+        let at = |spp, target| Progress {
+            spp,
+            target,
+            ..Progress::default()
+        };
+        assert_eq!(at(37, Some(256)).of_target(), "37 / 256");
+        assert_eq!(at(37, None).of_target(), "37");
+        assert_eq!(at(64, Some(256)).fraction(), 0.25);
+        assert_eq!(at(300, Some(256)).fraction(), 1.0, "past the target: full");
+        assert_eq!(at(0, Some(0)).fraction(), 0.0, "a target of 0 divides by 1");
+        assert_eq!(
+            at(5, None).fraction(),
+            1.0,
+            "no target: nothing to wait for"
+        );
     }
 }
