@@ -317,7 +317,7 @@ impl PreparedLight {
         }
         let s = self.light.scale;
         let t = match &self.light.shape {
-            LightShape::Rect { .. } => self.quad.as_ref()?.intersect_t(ray, t_max)?.0,
+            LightShape::Rect { .. } => self.quad.as_ref()?.intersect_t(ray, t_max)?,
             LightShape::Disk {
                 center,
                 normal,

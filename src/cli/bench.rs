@@ -46,6 +46,13 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
         std::thread::available_parallelism().map_or(1, |n| n.get())
     );
 
+    let traversal = raylab::tracer::Traversal::best()
+        .for_tracer(&raylab::tracer::Tracer::new(&scene, &params, width, height));
+    say!(
+        "ray trees walked {traversal} (RAYLAB_LANES=1, 4, 8 or 16 narrows the lanes; 0 walks \
+         them recursively)"
+    );
+
     // Latency: change a parameter at a random moment of a pass, time the first frame of the
     // new generation (the coarse preview).
     let mut engine = Engine::new(

@@ -5,6 +5,7 @@
 
 use super::{Plane, Quad, Shape, Sphere};
 use crate::math::Ray;
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Width};
 use crate::math::rng::mix64;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
 use std::collections::HashMap;
@@ -123,9 +124,11 @@ pub struct Accel {
 /// The spheres and quads tested directly (when there are at most DIRECT_MAX), and the planes.
 #[derive(Clone, Debug, Default)]
 struct Direct {
-    spheres: Vec<(u32, Sphere)>,
-    quads: Vec<(u32, Quad)>,
-    planes: Vec<(u32, Plane)>,
+    planes: Vec<Plane>,
+    spheres: Vec<Sphere>,
+    quads: Vec<Quad>,
+    // The object of each, planes first, then spheres, then quads.
+    objects: Vec<u32>,
 }
 
 impl Direct {
@@ -133,25 +136,67 @@ impl Direct {
     /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
     #[inline(always)]
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        // The nearest distance so far as a plain number, the limit of every next test,
-        // rather than unwrapped from an Option at each: the loops run for every ray.
+        // One ray: each shape's formula as the lanes have it, but a branch per hit rather
+        // than selects (2 % fewer instructions than `nearest` at one lane, measured).
+        let (o, d) = (ray.origin, ray.dir);
         let (mut t_best, mut best) = (t_max, None);
-        for (o, p) in &self.planes {
-            if let Some(t) = p.intersect_t(ray, t_best) {
-                (t_best, best) = (t, Some(*o));
+        let mut place = 0;
+        let mut keep = |t: f32, t_best: &mut f32| {
+            if t < f32::INFINITY {
+                *t_best = t;
+                best = Some(place);
             }
+            place += 1;
+        };
+        for p in &self.planes {
+            keep(p.nearest(o, d, t_best), &mut t_best);
         }
-        for (o, s) in &self.spheres {
-            if let Some(t) = s.intersect_t(ray, t_best) {
-                (t_best, best) = (t, Some(*o));
-            }
+        for s in &self.spheres {
+            keep(s.nearest(o, d, ray.time, t_best), &mut t_best);
         }
-        for (o, q) in &self.quads {
-            if let Some((t, _)) = q.intersect_t(ray, t_best) {
-                (t_best, best) = (t, Some(*o));
-            }
+        for q in &self.quads {
+            keep(q.nearest(o, d, t_best), &mut t_best);
         }
-        best.map(|object| (PrimRef { object, index: 0 }, t_best))
+        best.map(|k| {
+            let object = self.objects[k];
+            (PrimRef { object, index: 0 }, t_best)
+        })
+    }
+
+    /// The nearest of them along each lane's ray in (0, t_max): its distance and its place
+    /// in `objects` (as a number, exact below 2²⁴), or (t_max, −1) where none is hit. The
+    /// nearest distance so far is the limit of every next test.
+    #[inline(always)]
+    fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> (R, R) {
+        let (mut t_best, mut best) = (t_max, R::splat(-1.0));
+        let mut place = 0.0;
+        let mut keep = |t: R| {
+            let hit = t.less(R::splat(f32::INFINITY));
+            t_best = R::select(hit, t, t_best);
+            best = R::select(hit, R::splat(place), best);
+            place += 1.0;
+            t_best
+        };
+        let mut limit = t_max;
+        for p in &self.planes {
+            limit = keep(p.nearest(o, d, limit));
+        }
+        for s in &self.spheres {
+            limit = keep(s.nearest(o, d, time, limit));
+        }
+        for q in &self.quads {
+            limit = keep(q.nearest(o, d, limit));
+        }
+        (t_best, best)
+    }
+
+    /// The hit of [`Direct::nearest`]'s answer for one ray.
+    #[inline(always)]
+    fn found(&self, t: f32, place: f32) -> Option<(PrimRef, f32)> {
+        (place >= 0.0).then(|| {
+            let object = self.objects[place as usize];
+            (PrimRef { object, index: 0 }, t)
+        })
     }
 
     /// Whether any of them blocks `ray` in (0, t_max).
@@ -159,15 +204,37 @@ impl Direct {
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.planes
             .iter()
-            .any(|(_, p)| p.intersect_t(ray, t_max).is_some())
+            .any(|p| p.intersect_t(ray, t_max).is_some())
             || self
                 .spheres
                 .iter()
-                .any(|(_, s)| s.intersect_t(ray, t_max).is_some())
+                .any(|s| s.intersect_t(ray, t_max).is_some())
             || self
                 .quads
                 .iter()
-                .any(|(_, q)| q.intersect_t(ray, t_max).is_some())
+                .any(|q| q.intersect_t(ray, t_max).is_some())
+    }
+}
+
+/// The nearest hit of every ray of a wave against the directly tested shapes, `N` rays at a
+/// time, into `out`.
+struct DirectWave<'a> {
+    direct: &'a Direct,
+    rays: &'a RayColumns,
+    out: &'a mut [Option<(PrimRef, f32)>],
+}
+
+impl LaneKernel for DirectWave<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const N: usize>(self) {
+        for (group, out) in self.out.chunks_mut(N).enumerate() {
+            let (o, d, time) = self.rays.lanes::<N>(group * N);
+            let (t, place) = self.direct.nearest(o, d, time, Lanes::splat(f32::INFINITY));
+            for (i, out) in out.iter_mut().enumerate() {
+                *out = self.direct.found(t.0[i], place.0[i]);
+            }
+        }
     }
 }
 
@@ -183,9 +250,9 @@ impl Accel {
         for (object, shape) in shapes.iter().enumerate() {
             let object = object as u32;
             match shape {
-                Shape::Plane(p) => direct.planes.push((object, p.clone())),
-                Shape::Sphere(s) if direct_ok => direct.spheres.push((object, s.clone())),
-                Shape::Quad(q) if direct_ok => direct.quads.push((object, q.clone())),
+                Shape::Plane(p) => direct.planes.push(p.clone()),
+                Shape::Sphere(s) if direct_ok => direct.spheres.push(s.clone()),
+                Shape::Quad(q) if direct_ok => direct.quads.push(q.clone()),
                 _ => {
                     for index in 0..shape.primitive_count() as u32 {
                         prims.push(PrimRef { object, index });
@@ -193,6 +260,18 @@ impl Accel {
                     }
                 }
             }
+        }
+        // The directly tested objects in the order `Direct::nearest` tests them.
+        let kind_order = |s: &Shape| match s {
+            Shape::Plane(_) => Some(0),
+            Shape::Sphere(_) if direct_ok => Some(1),
+            Shape::Quad(_) if direct_ok => Some(2),
+            _ => None,
+        };
+        for kind in 0..3 {
+            direct.objects.extend(
+                (0..shapes.len() as u32).filter(|&o| kind_order(&shapes[o as usize]) == Some(kind)),
+            );
         }
         break_ties(&mut bounds);
         let bvh = (!prims.is_empty()).then(|| {
@@ -220,7 +299,42 @@ impl Accel {
     /// The nearest primitive hit by `ray` in (0, t_max), and its distance.
     #[inline]
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        let mut best = self.direct.intersect(ray, t_max);
+        let best = self.direct.intersect(ray, t_max);
+        self.beyond_direct(shapes, ray, t_max, best)
+    }
+
+    /// [`Accel::intersect`] for every ray of `rays` (each from 0 to ∞), into `out`: the
+    /// directly tested shapes `width` rays at a time, the BVH one ray after another.
+    pub fn intersect_wave(
+        &self,
+        shapes: &[Shape],
+        rays: &RayColumns,
+        width: Width,
+        out: &mut Vec<Option<(PrimRef, f32)>>,
+    ) {
+        out.clear();
+        out.resize(rays.len(), None);
+        width.dispatch(DirectWave {
+            direct: &self.direct,
+            rays,
+            out,
+        });
+        if self.bvh.is_some() {
+            for (i, best) in out.iter_mut().enumerate() {
+                *best = self.beyond_direct(shapes, &rays.get(i), f32::INFINITY, *best);
+            }
+        }
+    }
+
+    /// The nearest hit of `ray` in (0, t_max) given `best`, the directly tested shapes'.
+    #[inline(always)]
+    fn beyond_direct(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_max: f32,
+        mut best: Option<(PrimRef, f32)>,
+    ) -> Option<(PrimRef, f32)> {
         let t_best = best.map_or(t_max, |(_, t)| t);
         let Some(bvh) = &self.bvh else {
             return best;
@@ -284,7 +398,63 @@ impl Accel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::Vec3;
+    use crate::math::rng::{mix64, to_unit_f32};
     use glam::Vec3A;
+
+    #[test]
+    fn every_width_finds_each_rays_nearest_hit_as_the_scalar_search_does_bit_for_bit() {
+        let mut shapes = vec![
+            Shape::Plane(Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::Y)),
+            Shape::Quad(Quad::new(
+                Vec3::new(-2.0, -1.0, -3.0),
+                Vec3::new(4.0, 0.0, 0.0),
+                Vec3::new(0.0, 3.0, 0.5),
+            )),
+            Shape::Sphere(Sphere {
+                velocity: Vec3::new(0.5, 0.0, 0.0),
+                ..Sphere::new(Vec3::new(0.3, 0.2, -1.0), 0.7)
+            }),
+        ];
+        for k in 0..5 {
+            let c = Vec3::new(k as f32 - 2.0, 0.5 * k as f32, -2.0 - k as f32);
+            shapes.push(Shape::Sphere(Sphere::new(c, 0.4 + 0.1 * k as f32)));
+        }
+        let accel = Accel::build(&shapes);
+        // Rays from all over, inside spheres too, some along the plane (parallel to it).
+        let mut state = 7u64;
+        let mut u = || {
+            state = mix64(state);
+            to_unit_f32(state)
+        };
+        let mut rays = RayColumns::default();
+        let mut scalar = Vec::new();
+        for i in 0..1003 {
+            let o = Vec3::new(4.0 * u() - 2.0, 3.0 * u() - 1.0, 4.0 * u() - 3.0);
+            let d = if i % 50 == 0 {
+                Vec3::X
+            } else {
+                Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize_or(Vec3::Z)
+            };
+            let ray = Ray {
+                origin: o,
+                dir: d,
+                time: u(),
+            };
+            rays.push(&ray);
+            scalar.push(accel.intersect(&shapes, &ray, f32::INFINITY));
+        }
+        let found = scalar.iter().filter(|h| h.is_some()).count();
+        assert!(found > 300 && found < 1000, "{found} hits");
+        for width in Width::ALL {
+            let mut out = Vec::new();
+            accel.intersect_wave(&shapes, &rays, width, &mut out);
+            let bits = |h: &Option<(PrimRef, f32)>| h.map(|(p, t)| (p, t.to_bits()));
+            let a: Vec<_> = out.iter().map(bits).collect();
+            let b: Vec<_> = scalar.iter().map(bits).collect();
+            assert_eq!(a, b, "{width:?}");
+        }
+    }
 
     #[test]
     fn many_identical_boxes_are_made_distinct_and_still_bound_their_primitive() {

@@ -96,7 +96,7 @@ impl Shape {
     pub fn intersect_t(&self, index: u32, ray: &Ray, t_max: f32) -> Option<f32> {
         match self {
             Shape::Sphere(s) => s.intersect_t(ray, t_max),
-            Shape::Quad(q) => q.intersect_t(ray, t_max).map(|(t, _)| t),
+            Shape::Quad(q) => q.intersect_t(ray, t_max),
             Shape::Plane(p) => p.intersect_t(ray, t_max),
             Shape::Mesh(m) => m.intersect_t(index as usize, ray, t_max).map(|(t, _)| t),
         }

@@ -1,6 +1,7 @@
 //! Spheres, parallelograms and planes.
 
 use super::SurfaceHit;
+use crate::math::lanes::{Real, Vector};
 use crate::math::{Ray, Vec3, orthonormal_basis};
 use glam::Vec2;
 use obvhs::aabb::Aabb;
@@ -41,36 +42,44 @@ impl Sphere {
     }
 
     /// Nearest root of |o + t d - c|² = r² in (0, t_max).
+    #[inline]
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let t = self.nearest(ray.origin, ray.dir, ray.time, t_max);
+        found(t)
+    }
+
+    /// [`Sphere::intersect_t`] for one ray or one per lane (origin `o`, unit direction `d`,
+    /// frame time `time`): the distance, or +∞ where there is none in (0, t_max).
     ///
     /// Computed as in "Precision Improvements for Ray/Sphere Intersection" (Haines et al.,
     /// Ray Tracing Gems ch. 7): the discriminant as r² - |f - (f·d)d|² with f = o - c, and
     /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
-    #[inline]
-    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
-        let f = ray.origin - self.center_at(ray.time);
-        let b = -f.dot(ray.dir);
-        let l = f + b * ray.dir;
-        let r2 = self.radius * self.radius;
+    #[inline(always)]
+    pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> R {
+        let center = R::V3::splat(self.center) + R::V3::splat(self.velocity).scale(time);
+        let f = o - center;
+        let b = -f.dot(d);
+        let l = f + d.scale(b);
+        let r2 = R::splat(self.radius * self.radius);
         let disc = r2 - l.length_squared();
-        if disc < 0.0 {
-            return None;
+        let (zero, miss) = (R::splat(0.0), R::splat(f32::INFINITY));
+        let real = !disc.less(zero);
+        if !R::any(real) {
+            return miss;
         }
         let c = f.length_squared() - r2;
         let q = b + disc.sqrt().copysign(b);
-        if q == 0.0 {
-            return None;
+        let real = real & !q.equal(zero);
+        // The roots c/q and q, in order.
+        let a = c / q;
+        let ordered = a.less(q);
+        let (t0, t1) = (R::select(ordered, a, q), R::select(ordered, q, a));
+        let near = real & zero.less(t0) & t0.less(t_max);
+        if R::all(near) {
+            return t0;
         }
-        let (t0, t1) = {
-            let (a, b) = (c / q, q);
-            if a < b { (a, b) } else { (b, a) }
-        };
-        if t0 > 0.0 && t0 < t_max {
-            Some(t0)
-        } else if t1 > 0.0 && t1 < t_max {
-            Some(t1)
-        } else {
-            None
-        }
+        let far = real & zero.less(t1) & t1.less(t_max);
+        R::select(near, t0, R::select(far, t1, miss))
     }
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
@@ -143,21 +152,28 @@ impl Quad {
         Aabb::from_points(&pts)
     }
 
-    /// Hit distance and surface coordinates (a, b), if hit in (0, t_max).
+    /// Hit distance, if hit in (0, t_max).
     #[inline]
-    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
-        let denom = self.normal.dot(ray.dir);
-        if denom.abs() < 1e-12 {
-            return None;
-        }
-        let t = self.normal.dot(self.corner - ray.origin) / denom;
-        if !(t > 0.0 && t < t_max) {
-            return None;
-        }
-        let rel = ray.at(t) - self.corner;
-        let a = self.w.dot(rel.cross(self.edge_v));
-        let b = self.w.dot(self.edge_u.cross(rel));
-        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some((t, Vec2::new(a, b)))
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        found(self.nearest(ray.origin, ray.dir, t_max))
+    }
+
+    /// [`Quad::intersect_t`] for one ray or one per lane: the distance t to the plane
+    /// n·(p − corner) = 0, where the point's coordinates a = w·(rel × edge_v) and
+    /// b = w·(edge_u × rel) (rel = p − corner) are both in [0, 1]; +∞ where it misses.
+    #[inline(always)]
+    pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, t_max: R) -> R {
+        let n = R::V3::splat(self.normal);
+        let Some(t) = plane_distance(n, R::V3::splat(self.corner), o, d, t_max) else {
+            return R::splat(f32::INFINITY);
+        };
+        let rel = (o + d.scale(t)) - R::V3::splat(self.corner);
+        let w = R::V3::splat(self.w);
+        let a = w.dot(rel.cross(R::V3::splat(self.edge_v)));
+        let b = w.dot(R::V3::splat(self.edge_u).cross(rel));
+        let (zero, one) = (R::splat(0.0), R::splat(1.0));
+        let inside = zero.less_eq(a) & a.less_eq(one) & zero.less_eq(b) & b.less_eq(one);
+        R::select(inside, t, R::splat(f32::INFINITY))
     }
 
     /// The hit record at `t`, with the point rebuilt from its surface coordinates.
@@ -202,12 +218,20 @@ impl Plane {
     /// Hit distance in (0, t_max), if any.
     #[inline]
     pub fn intersect_t(&self, ray: &Ray, t_max: f32) -> Option<f32> {
-        let denom = self.normal.dot(ray.dir);
-        if denom.abs() < 1e-12 {
-            return None;
-        }
-        let t = self.normal.dot(self.point - ray.origin) / denom;
-        (t > 0.0 && t < t_max).then_some(t)
+        found(self.nearest(ray.origin, ray.dir, t_max))
+    }
+
+    /// [`Plane::intersect_t`] for one ray or one per lane; +∞ where it misses.
+    #[inline(always)]
+    pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, t_max: R) -> R {
+        plane_distance(
+            R::V3::splat(self.normal),
+            R::V3::splat(self.point),
+            o,
+            d,
+            t_max,
+        )
+        .unwrap_or(R::splat(f32::INFINITY))
     }
 
     /// The hit record at `t`, with the point projected onto the plane. The surface
@@ -224,6 +248,25 @@ impl Plane {
             uv: Vec2::new(rel.dot(self.tangent), rel.dot(self.bitangent)),
         }
     }
+}
+
+/// The distance t = n·(q − o) / n·d along each ray to the plane through `q` with normal
+/// `n`, +∞ where it is not in (0, t_max) or the ray runs parallel (|n·d| < 10⁻¹²); `None`
+/// where that holds for every lane, as the scalar test returns early.
+#[inline(always)]
+fn plane_distance<R: Real>(n: R::V3, q: R::V3, o: R::V3, d: R::V3, t_max: R) -> Option<R> {
+    let denom = n.dot(d);
+    let t = n.dot(q - o) / denom;
+    let zero = R::splat(0.0);
+    let ok = !denom.abs().less(R::splat(1e-12)) & zero.less(t) & t.less(t_max);
+    R::any(ok).then(|| R::select(ok, t, R::splat(f32::INFINITY)))
+}
+
+/// A distance from the formulas above as the scalar callers take it: +∞ is no hit (a hit
+/// is below t_max, so finite).
+#[inline(always)]
+fn found(t: f32) -> Option<f32> {
+    (t < f32::INFINITY).then_some(t)
 }
 
 #[cfg(test)]
@@ -296,8 +339,11 @@ mod tests {
             &Ray::new(Vec3::new(0.5, 0.5, 0.0), -Vec3::Z, 0.0),
             f32::INFINITY,
         );
-        let (t, uv) = hit.unwrap();
+        let t = hit.unwrap();
         assert!((t - 3.0).abs() < 1e-6);
+        let uv = q
+            .surface_hit(&Ray::new(Vec3::new(0.5, 0.5, 0.0), -Vec3::Z, 0.0), t)
+            .uv;
         assert!((uv - Vec2::new(0.75, 0.75)).length() < 1e-6);
         assert!(
             q.intersect_t(

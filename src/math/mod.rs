@@ -3,6 +3,7 @@
 //! `Vec3` and `Color` are glam's 16-byte aligned `Vec3A`: SIMD arithmetic, and the type
 //! the BVH traversal (obvhs) takes without conversion.
 
+pub mod lanes;
 pub mod rng;
 pub mod sampling;
 

@@ -4,9 +4,10 @@
 use super::{Accum, Film};
 use crate::camera::Camera;
 use crate::math::Color;
+use crate::math::lanes::Width;
 use crate::params::Params;
 use crate::scene::Scene;
-use crate::tracer::{Stats, Tracer};
+use crate::tracer::{Stats, Tracer, Traversal, Waves};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -45,9 +46,34 @@ pub fn render_pass(
     samples: u32,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
+    render_pass_by(
+        Traversal::best(),
+        scene,
+        camera,
+        params,
+        film,
+        samples,
+        observer,
+    )
+}
+
+/// [`render_pass`] with the ray trees walked as `traversal` says: the same image, bit for
+/// bit or within noise (see [`Traversal`]).
+pub fn render_pass_by(
+    traversal: Traversal,
+    scene: &Scene,
+    camera: &Camera,
+    params: &Params,
+    film: &mut Film,
+    samples: u32,
+    observer: &dyn PassObserver,
+) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
     let first = film.spp();
     let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
+    if let Traversal::Waves(lanes) = traversal.for_tracer(&tracer) {
+        return pass_in_waves(&tracer, lanes, film, first, samples, observer);
+    }
     if !tracer.gathers_photons() {
         return pass(&tracer, film, first, samples, observer);
     }
@@ -96,40 +122,100 @@ fn pass(
     samples: u32,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
+    let width = film.width();
+    over_bands(film, first, samples, observer, |y0, pixels, stats| {
+        // Row by row: the pixel's coordinates without a division per pixel.
+        for (row, pixels) in pixels.chunks_mut(width as usize).enumerate() {
+            let y = y0 + row as u32;
+            for (x, pixel) in (0..width).zip(pixels) {
+                if !observer.keep_going() {
+                    return None;
+                }
+                for s in first..first + samples {
+                    let before = stats.total_rays();
+                    let c = tracer.sample(x, y, s, stats);
+                    add(pixel, s, c, (stats.total_rays() - before) as u32, stats);
+                }
+            }
+        }
+        Some(())
+    })
+}
+
+/// The samples one wave traces together: enough that its deeper levels still fill the
+/// lanes, few enough that its nodes stay in cache and a cancelled pass stops soon.
+const WAVE_SAMPLES: usize = 256;
+
+/// [`pass`] with each band's samples traced in waves of [`WAVE_SAMPLES`], `lanes` rays at
+/// a time.
+fn pass_in_waves(
+    tracer: &Tracer,
+    lanes: Width,
+    film: &mut Film,
+    first: u32,
+    samples: u32,
+    observer: &dyn PassObserver,
+) -> Result<Stats, Cancelled> {
+    let width = film.width();
+    over_bands(film, first, samples, observer, |y0, pixels, stats| {
+        // Pixel by pixel, each pixel's samples in order.
+        let mut all = (0..pixels.len() as u32)
+            .flat_map(|i| (first..first + samples).map(move |s| (i % width, y0 + i / width, s)))
+            .peekable();
+        let mut wave = Vec::with_capacity(WAVE_SAMPLES);
+        let mut waves = Waves::default();
+        while all.peek().is_some() {
+            if !observer.keep_going() {
+                return None;
+            }
+            wave.clear();
+            wave.extend(all.by_ref().take(WAVE_SAMPLES));
+            let traced = tracer.trace_wave(&wave, lanes, stats, &mut waves);
+            for (&(x, y, s), t) in wave.iter().zip(traced) {
+                let pixel = &mut pixels[((y - y0) * width + x) as usize];
+                add(pixel, s, t.radiance, t.rays, stats);
+            }
+        }
+        Some(())
+    })
+}
+
+/// Adds sample `s` of radiance `c`, which traced `rays` rays, to `pixel`; a sample that is
+/// not finite is counted and dropped. Each pixel's samples must come in sample order.
+#[inline]
+fn add(pixel: &mut Accum, s: u32, c: Color, rays: u32, stats: &mut Stats) {
+    if s == 0 {
+        // An empty film keeps its old sums until each pixel starts afresh here.
+        *pixel = Accum::default();
+    }
+    pixel.rays = pixel.rays.saturating_add(rays);
+    if c.is_finite() {
+        pixel.add(s, c);
+    } else {
+        stats.non_finite += 1;
+    }
+}
+
+/// Runs `band` (its first row, its pixels, its counters) on every band of rows of `film`
+/// in parallel, telling `observer` of each; `None` from a band cancels the pass. The film
+/// then holds samples `..first + samples`.
+fn over_bands(
+    film: &mut Film,
+    first: u32,
+    samples: u32,
+    observer: &dyn PassObserver,
+    band: impl Fn(u32, &mut [Accum], &mut Stats) -> Option<()> + Sync,
+) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
         .pixels
         .par_chunks_mut(band_len)
         .enumerate()
-        .map(|(band, pixels)| {
+        .map(|(i, pixels)| {
             let mut stats = Stats::default();
-            let y0 = band as u32 * BAND_ROWS;
-            // Row by row: the pixel's coordinates without a division per pixel.
-            for (row, pixels) in pixels.chunks_mut(width as usize).enumerate() {
-                let y = y0 + row as u32;
-                for (x, pixel) in (0..width).zip(pixels) {
-                    if !observer.keep_going() {
-                        return None;
-                    }
-                    if first == 0 {
-                        // An empty film keeps its old sums until each pixel starts afresh here.
-                        *pixel = Accum::default();
-                    }
-                    for s in first..first + samples {
-                        let before = stats.total_rays();
-                        let c = tracer.sample(x, y, s, &mut stats);
-                        pixel.rays = pixel
-                            .rays
-                            .saturating_add((stats.total_rays() - before) as u32);
-                        if c.is_finite() {
-                            pixel.add(s, c);
-                        } else {
-                            stats.non_finite += 1;
-                        }
-                    }
-                }
-            }
+            let y0 = i as u32 * BAND_ROWS;
+            band(y0, pixels, &mut stats)?;
             observer.band_done(BAND_ROWS.min(height - y0));
             Some(stats)
         })
@@ -163,18 +249,39 @@ pub fn render_preview(
     // The pixel at the centre of block i (the last block may be cut short).
     let centre = |i: u32, size: u32| (i * block + block / 2).min(size - 1);
     let mut grid = vec![Color::ZERO; nx as usize * height.div_ceil(block) as usize];
+    let lanes = match Traversal::best().for_tracer(&tracer) {
+        Traversal::Waves(lanes) => Some(lanes),
+        Traversal::Recursive => None,
+    };
+    let shown = |c: Color| if c.is_finite() { c } else { Color::ZERO };
     let results: Vec<Option<Stats>> = grid
         .par_chunks_mut(nx as usize)
         .enumerate()
         .map(|(j, row)| {
             let mut stats = Stats::default();
             let cy = centre(j as u32, height);
+            if let Some(lanes) = lanes {
+                let mut waves = Waves::default();
+                let mut wave = Vec::with_capacity(WAVE_SAMPLES);
+                for (k, cells) in row.chunks_mut(WAVE_SAMPLES).enumerate() {
+                    if !observer.keep_going() {
+                        return None;
+                    }
+                    let i0 = (k * WAVE_SAMPLES) as u32;
+                    wave.clear();
+                    wave.extend((i0..i0 + cells.len() as u32).map(|i| (centre(i, width), cy, 0)));
+                    let traced = tracer.trace_wave(&wave, lanes, &mut stats, &mut waves);
+                    for (cell, t) in cells.iter_mut().zip(traced) {
+                        *cell = shown(t.radiance);
+                    }
+                }
+                return Some(stats);
+            }
             for (i, cell) in row.iter_mut().enumerate() {
                 if !observer.keep_going() {
                     return None;
                 }
-                let c = tracer.sample(centre(i as u32, width), cy, 0, &mut stats);
-                *cell = if c.is_finite() { c } else { Color::ZERO };
+                *cell = shown(tracer.sample(centre(i as u32, width), cy, 0, &mut stats));
             }
             Some(stats)
         })

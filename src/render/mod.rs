@@ -17,7 +17,7 @@ pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
 pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image};
 pub use frame::{Frame, Progress};
-pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_preview};
+pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by, render_preview};
 pub use sheet::{SheetError, Sweep, animation, contact_sheet, parse_sweep, sweep_frames};
 pub use snapshot::{Rendered, Sidecar, SidecarError, sidecar_path};
 pub use text::with_caption;

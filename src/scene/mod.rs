@@ -22,6 +22,7 @@ use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
 use crate::light::{Background, Light};
 use crate::material::{Diffuse, Material};
+use crate::math::lanes::{RayColumns, Width};
 use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
@@ -338,7 +339,19 @@ impl Scene {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let (prim, t) = self.accel.intersect(&self.shapes, ray, t_max)?;
-        Some(self.hit_record(prim, ray, t))
+        Some(self.hit_at(prim, ray, t))
+    }
+
+    /// The nearest primitive and distance along every ray of a wave (each without a limit),
+    /// into `out`, `width` rays at a time where the shapes allow (see
+    /// [`Accel::intersect_wave`]); [`Scene::hit_at`] makes a hit of each.
+    pub fn intersect_wave(
+        &self,
+        rays: &RayColumns,
+        width: Width,
+        out: &mut Vec<Option<(PrimRef, f32)>>,
+    ) {
+        self.accel.intersect_wave(&self.shapes, rays, width, out);
     }
 
     /// Whether anything lies on `ray` closer than `t_max`.
@@ -350,10 +363,12 @@ impl Scene {
     /// The nearest hit found by testing every primitive (no BVH): the reference for tests.
     pub fn intersect_brute_force(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let (prim, t) = self.accel.intersect_brute_force(&self.shapes, ray, t_max)?;
-        Some(self.hit_record(prim, ray, t))
+        Some(self.hit_at(prim, ray, t))
     }
 
-    fn hit_record(&self, prim: PrimRef, ray: &Ray, t: f32) -> Hit {
+    /// The hit of primitive `prim` at distance `t` along `ray`, as [`Scene::intersect`]
+    /// gives it.
+    pub fn hit_at(&self, prim: PrimRef, ray: &Ray, t: f32) -> Hit {
         let o = prim.object as usize;
         Hit {
             surface: self.shapes[o].surface_hit(prim.index, ray, t, self.object_uses_uv[o]),

@@ -16,11 +16,13 @@ mod shade;
 mod shadow;
 mod spectral;
 mod stats;
+mod wave;
 
 use media::Arrival;
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_ROW, TreeNode};
 pub use stats::Stats;
+pub use wave::{Traced, Traversal, Waves};
 
 use crate::camera::{Camera, CameraFrame};
 use crate::light::PreparedLight;
@@ -228,20 +230,7 @@ impl<'a> Tracer<'a> {
         rec: &mut R,
     ) -> Color {
         let p = self.params;
-        let mut rng = SampleStream::with_seed_key(
-            p.pattern,
-            p.spp,
-            self.seed_key,
-            y * self.width + x,
-            sample,
-        );
-        // The camera's dimensions first, then the tree's own.
-        let cs = self.frame.draw_sample(&mut rng);
-        let film = Vec2::new(
-            (x as f32 + cs.pixel.x) / self.width as f32,
-            (y as f32 + cs.pixel.y) / self.height as f32,
-        );
-        let ray = self.frame.ray(film, cs.lens, cs.time);
+        let (mut rng, ray) = self.camera_sample(x, y, sample);
         stats.samples += 1;
         if !(ray.origin.is_finite() && ray.dir.is_finite()) {
             // Not traced: the kernel counts and drops the sample, where the background
@@ -274,6 +263,26 @@ impl<'a> Tracer<'a> {
                 self.trace_in(&ray, root, &media, &mut walk, &analyzer)
             }
         }
+    }
+
+    /// Sample `sample` of pixel (x, y): its camera ray, and its random numbers from the
+    /// tree's first dimension on (the camera's are drawn first).
+    #[inline(always)]
+    fn camera_sample(&self, x: u32, y: u32, sample: u32) -> (SampleStream, Ray) {
+        let p = self.params;
+        let mut rng = SampleStream::with_seed_key(
+            p.pattern,
+            p.spp,
+            self.seed_key,
+            y * self.width + x,
+            sample,
+        );
+        let cs = self.frame.draw_sample(&mut rng);
+        let film = Vec2::new(
+            (x as f32 + cs.pixel.x) / self.width as f32,
+            (y as f32 + cs.pixel.y) / self.height as f32,
+        );
+        (rng, self.frame.ray(film, cs.lens, cs.time))
     }
 
     /// The index of refraction at `wavelength` of the medium whose innermost dielectric is

@@ -4,7 +4,9 @@
 
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface};
-use super::{Branch, End, MAX_TREE_RAYS, Media, Meet, RayKind, Recorder, Tracer, TreeNode, Walk};
+use super::{
+    Branch, End, MAX_TREE_RAYS, Media, Meet, RayKind, Recorder, Stats, Tracer, TreeNode, Walk,
+};
 use crate::material::{Lobe, Scatter, Side};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::TreeMode;
@@ -143,21 +145,9 @@ impl Tracer<'_> {
             // Let `child` count and record the cut, once.
             return trace_child(first, 1.0, b.weight, w);
         }
-        let u = w.rng.next_1d();
-        let mut chosen = first;
-        let mut cumulative = first.weight.max_element();
-        for lobe in lobes {
-            if u < cumulative {
-                break;
-            }
-            chosen = lobe;
-            cumulative += lobe.weight.max_element();
-        }
-        let p = chosen.weight.max_element();
-        if p <= 0.0 {
+        let Some((chosen, tint)) = pick_lobe(first, lobes, w.rng.next_1d()) else {
             return Color::ZERO;
-        }
-        let tint = chosen.weight / p;
+        };
         tint * trace_child(chosen, tint.max_element(), b.weight * tint.max_element(), w)
     }
 
@@ -170,31 +160,57 @@ impl Tracer<'_> {
         w: &mut Walk<R>,
         pol: &P,
     ) -> Color {
-        let why = if b.depth > self.params.max_depth {
-            w.stats.pruned_by_depth += 1;
-            Some(End::DepthLimit)
-        } else if b.weight < self.params.min_weight {
-            w.stats.pruned_by_weight += 1;
-            Some(End::WeightLimit)
-        } else if w.tree_rays >= MAX_TREE_RAYS {
-            w.stats.pruned_by_budget += 1;
-            Some(End::BudgetLimit)
-        } else {
-            w.tree_rays += 1;
-            None
-        };
+        let why = self.pruned(&b, w.stats, &mut w.tree_rays);
         match why {
             Some(end) => {
                 w.rec.ray(|| b.node(ray, ray.origin, end));
                 Color::ZERO
             }
-            None => {
-                match b.kind {
-                    RayKind::Refract => w.stats.refraction_rays += 1,
-                    _ => w.stats.reflection_rays += 1,
-                }
-                self.trace_in(ray, b, media, w, pol)
-            }
+            None => self.trace_in(ray, b, media, w, pol),
         }
     }
+
+    /// Why the child `b` is not traced, counted, or `None`: it is, counted as a ray of its
+    /// kind and against its sample's budget (`tree_rays` so far).
+    pub(super) fn pruned(&self, b: &Branch, stats: &mut Stats, tree_rays: &mut u32) -> Option<End> {
+        if b.depth > self.params.max_depth {
+            stats.pruned_by_depth += 1;
+            Some(End::DepthLimit)
+        } else if b.weight < self.params.min_weight {
+            stats.pruned_by_weight += 1;
+            Some(End::WeightLimit)
+        } else if *tree_rays >= MAX_TREE_RAYS {
+            stats.pruned_by_budget += 1;
+            Some(End::BudgetLimit)
+        } else {
+            *tree_rays += 1;
+            match b.kind {
+                RayKind::Refract => stats.refraction_rays += 1,
+                _ => stats.reflection_rays += 1,
+            }
+            None
+        }
+    }
+}
+
+/// The stochastic tree's choice among the lobes `first` and `rest` by the uniform number
+/// `u`: each with probability its branch weight (the last takes any rounding remainder),
+/// and the tint its radiance is multiplied by (its weight over that probability); `None`
+/// for a lobe of weight 0.
+pub(super) fn pick_lobe<'s>(
+    first: &'s Lobe,
+    rest: impl Iterator<Item = &'s Lobe>,
+    u: f32,
+) -> Option<(&'s Lobe, Color)> {
+    let mut chosen = first;
+    let mut cumulative = first.weight.max_element();
+    for lobe in rest {
+        if u < cumulative {
+            break;
+        }
+        chosen = lobe;
+        cumulative += lobe.weight.max_element();
+    }
+    let p = chosen.weight.max_element();
+    (p > 0.0).then(|| (chosen, chosen.weight / p))
 }

@@ -1,0 +1,406 @@
+//! The ray tree as waves: the samples of a tile traced together, level by level, so that
+//! the nearest-hit search of a whole level runs in SIMD lanes.
+//!
+//! Level 0 holds every camera ray of the samples; shading a level's hits (in order) queues
+//! their reflected and refracted children as the next level, until a level is empty. Each
+//! node keeps what the recursion would add up at it: its own light (emission, the lights'
+//! shading, or the light or background its ray meets), its children with the weights their
+//! radiance is multiplied by, and the transmittance along its segment. The sums are then
+//! made from the deepest level up in exactly the recursion's order, so a sample's radiance
+//! is the recursive walk's bit for bit wherever its random numbers are drawn in the same
+//! order: always in the stochastic tree (one child a hit) and wherever a split tree draws
+//! no numbers below a hit's first child before its second child draws (the numbers of a
+//! sample are drawn level by level here, depth first there).
+//!
+//! The waves take the lecture's common case: the ray tree (not paths or photons), without
+//! a polariser and without dispersion. The recursion ([`Tracer::sample`]) stays the
+//! reference, and what the inspector records.
+
+use super::media::transmittance;
+use super::path::cross;
+use super::shade::pick_lobe;
+use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
+use crate::geometry::PrimRef;
+use crate::material::{Lobe, Side};
+use crate::math::lanes::{RayColumns, Width, asked_lanes};
+use crate::math::{Color, Ray, SampleStream, offset_ray_origin};
+use crate::params::TreeMode;
+use crate::scene::Hit;
+use std::ops::Range;
+
+/// How the kernel walks each sample's ray tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Traversal {
+    /// One ray after another, depth first: the reference.
+    Recursive,
+    /// In waves of rays, level by level, the hit search `Width` rays at a time, where the
+    /// scene and parameters allow ([`Tracer::traces_waves`]); recursively elsewhere.
+    Waves(Width),
+}
+
+impl std::fmt::Display for Traversal {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Traversal::Recursive => write!(f, "recursively"),
+            Traversal::Waves(w) => write!(
+                f,
+                "in waves, {} lane{} ({})",
+                w.lanes(),
+                if w.lanes() == 1 { "" } else { "s" },
+                w.extension()
+            ),
+        }
+    }
+}
+
+impl Traversal {
+    /// How `tracer`'s samples are walked: this, where it [`Tracer::traces_waves`], else
+    /// recursively.
+    pub fn for_tracer(self, tracer: &Tracer) -> Traversal {
+        if tracer.traces_waves() {
+            self
+        } else {
+            Traversal::Recursive
+        }
+    }
+
+    /// Waves at the widest width this processor runs ([`Width::best`]); the recursion
+    /// where `RAYLAB_LANES` is 0 ([`asked_lanes`]).
+    pub fn best() -> Traversal {
+        match asked_lanes() {
+            Some(0) => Traversal::Recursive,
+            _ => Traversal::Waves(Width::best()),
+        }
+    }
+}
+
+/// What one sample of a wave gave: its radiance (NaN for a camera ray that could not be
+/// traced) and how many rays it traced.
+#[derive(Clone, Copy, Debug)]
+pub struct Traced {
+    /// The sample's radiance.
+    pub radiance: Color,
+    /// Its rays, of every kind.
+    pub rays: u32,
+}
+
+/// Where a ray of a wave sits: its sample, the media it travels through (in the wave's
+/// list of them), and its place in the tree. Kept beside the rays, which the hit search
+/// reads on their own.
+#[derive(Clone, Copy)]
+struct Node {
+    // The sample of the wave it belongs to.
+    slot: u32,
+    media: u32,
+    depth: u32,
+    weight: f32,
+}
+
+/// How a node's radiance is made: (local + Σ weight · L(child), over its children in
+/// order) × tr, the transmittance along its segment (1 where nothing absorbs: 1 · x is x
+/// bit for bit). A node whose ray meets a light or nothing has no children and tr 1.
+struct Value {
+    local: Color,
+    tr: Color,
+    children: Range<u32>,
+}
+
+/// A child of a node: what its radiance is multiplied by, and its node in the next level
+/// (`None`: pruned, radiance 0).
+struct Child {
+    weight: Color,
+    node: Option<u32>,
+}
+
+/// One level of the waves: how each node's radiance is made, and the children they list.
+#[derive(Default)]
+struct Level {
+    values: Vec<Value>,
+    children: Vec<Child>,
+}
+
+/// A sample's state while its tree is traced.
+struct Slot {
+    rng: SampleStream,
+    tree_rays: u32,
+    rays: u32,
+}
+
+/// The rays of one level and where each sits.
+#[derive(Default)]
+struct Rays {
+    rays: RayColumns,
+    nodes: Vec<Node>,
+}
+
+impl Rays {
+    fn clear(&mut self) {
+        self.rays.clear();
+        self.nodes.clear();
+    }
+
+    fn push(&mut self, ray: &Ray, node: Node) -> u32 {
+        self.rays.push(ray);
+        self.nodes.push(node);
+        self.nodes.len() as u32 - 1
+    }
+}
+
+/// What waves work in, kept from one wave to the next so that a wave allocates nothing.
+#[derive(Default)]
+pub struct Waves {
+    slots: Vec<Slot>,
+    roots: Vec<Option<u32>>,
+    level: Rays,
+    next: Rays,
+    // Every medium the wave's rays travel through: a reflected ray shares its parent's.
+    media: Vec<Media>,
+    hits: Vec<Option<(PrimRef, f32)>>,
+    levels: Vec<Level>,
+    radiance: Vec<Color>,
+    below: Vec<Color>,
+    traced: Vec<Traced>,
+}
+
+/// Where a node's children go: the next level's rays, the media they enter, the list of the
+/// level's children.
+struct Queue<'q> {
+    next: &'q mut Rays,
+    media: &'q mut Vec<Media>,
+    children: &'q mut Vec<Child>,
+}
+
+impl Tracer<'_> {
+    /// Whether the kernel traces this tracer's samples in waves: the ray tree, without a
+    /// polariser or dispersion.
+    pub fn traces_waves(&self) -> bool {
+        !self.params.transport.traces_paths() && self.params.polarizer.is_none() && !self.dispersive
+    }
+
+    /// The samples `samples` ((x, y, sample number) each) traced together in waves, the hit
+    /// search `width` rays at a time, in `waves`: what [`Tracer::sample`] gives for each.
+    /// Only for a tracer that [`Tracer::traces_waves`].
+    pub fn trace_wave<'w>(
+        &self,
+        samples: &[(u32, u32, u32)],
+        width: Width,
+        stats: &mut Stats,
+        waves: &'w mut Waves,
+    ) -> &'w [Traced] {
+        let Waves {
+            slots,
+            roots,
+            level,
+            next,
+            media,
+            hits,
+            levels,
+            radiance,
+            below,
+            traced,
+        } = waves;
+        slots.clear();
+        roots.clear();
+        level.clear();
+        media.clear();
+        media.push(Media::default());
+        for &(x, y, sample) in samples {
+            let (rng, ray) = self.camera_sample(x, y, sample);
+            stats.samples += 1;
+            let camera = ray.origin.is_finite() && ray.dir.is_finite();
+            let node = Node {
+                slot: slots.len() as u32,
+                media: 0,
+                depth: 0,
+                weight: 1.0,
+            };
+            roots.push(camera.then(|| level.push(&ray, node)));
+            stats.camera_rays += camera as u64;
+            slots.push(Slot {
+                rng,
+                tree_rays: 0,
+                rays: camera as u32,
+            });
+        }
+        let mut depth = 0;
+        while !level.rays.is_empty() {
+            self.scene.intersect_wave(&level.rays, width, hits);
+            if levels.len() == depth {
+                levels.push(Level::default());
+            }
+            let Level { values, children } = &mut levels[depth];
+            values.clear();
+            children.clear();
+            next.clear();
+            let mut queue = Queue {
+                next,
+                media,
+                children,
+            };
+            for (i, (node, hit)) in level.nodes.iter().zip(hits.iter()).enumerate() {
+                let ray = level.rays.get(i);
+                let slot = &mut slots[node.slot as usize];
+                let before = stats.total_rays();
+                let hit = hit.map(|(prim, t)| self.scene.hit_at(prim, &ray, t));
+                let value = self.shade_node(&ray, node, hit.as_ref(), slot, stats, &mut queue);
+                slot.rays += (stats.total_rays() - before) as u32;
+                values.push(value);
+            }
+            std::mem::swap(level, next);
+            depth += 1;
+        }
+        // The sums, from the deepest level up.
+        below.clear();
+        for level in levels[..depth].iter().rev() {
+            radiance.clear();
+            radiance.extend(level.values.iter().map(|v| {
+                let mut l = v.local;
+                for c in &level.children[v.children.start as usize..v.children.end as usize] {
+                    l += c.weight * c.node.map_or(Color::ZERO, |n| below[n as usize]);
+                }
+                v.tr * l
+            }));
+            std::mem::swap(radiance, below);
+        }
+        traced.clear();
+        traced.extend(roots.iter().zip(slots.iter()).map(|(root, slot)| Traced {
+            radiance: root.map_or(Color::NAN, |r| below[r as usize]),
+            rays: slot.rays,
+        }));
+        traced
+    }
+
+    /// What the recursion's `trace_in` does at `node` once its ray's nearest surface `hit`
+    /// is known: the light it meets, or the hit's own light, with its children queued.
+    #[inline(always)]
+    fn shade_node(
+        &self,
+        ray: &Ray,
+        node: &Node,
+        hit: Option<&Hit>,
+        slot: &mut Slot,
+        stats: &mut Stats,
+        queue: &mut Queue,
+    ) -> Value {
+        let media = &queue.media[node.media as usize];
+        let sigma = self.absorption(media);
+        let first = queue.children.len() as u32;
+        let value = |local: Color, tr: Color, queue: &Queue| Value {
+            local,
+            tr,
+            children: first..queue.children.len() as u32,
+        };
+        let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
+        let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
+        if let Some((_, radiance)) = self.light_seen(ray, &mut nearest) {
+            return value(along(nearest, radiance), Color::ONE, queue);
+        }
+        let Some(hit) = hit else {
+            let l = along(f32::INFINITY, self.scene.background.radiance(ray.dir));
+            return value(l, Color::ONE, queue);
+        };
+        let tr = sigma.map(|s| transmittance(s, hit.surface.t));
+        let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
+        let tr = tr.unwrap_or(Color::ONE);
+        let at = self.interaction(ray, hit, media, None);
+        let material = &self.materials[hit.material as usize];
+        if let Some(radiance) = material.emission(at.uv) {
+            return value(radiance, tr, queue);
+        }
+        let mut rec = NoRecorder;
+        let mut w = Walk {
+            rng: &mut slot.rng,
+            stats,
+            rec: &mut rec,
+            tree_rays: slot.tree_rays,
+        };
+        let scatter = material.scatter(&at, w.rng);
+        if scatter.total_internal_reflection {
+            w.stats.tir_events += 1;
+        }
+        let local = match scatter.direct {
+            Some(direct) => {
+                let m = Meet {
+                    ray,
+                    hit,
+                    media,
+                    id: 0,
+                };
+                direct.scale * self.direct(m, &at, &direct, &mut w)
+            }
+            None => Color::ZERO,
+        };
+        // The child along `lobe`, if the pruning rules let it be traced: its node.
+        let child =
+            |lobe: &Lobe, factor: f32, weight: f32, w: &mut Walk<NoRecorder>, q: &mut Queue| {
+                let branch = Branch {
+                    depth: node.depth + 1,
+                    weight,
+                    kind: match lobe.side {
+                        Side::Reflect => RayKind::Reflect,
+                        Side::Transmit => RayKind::Refract,
+                    },
+                    parent: None,
+                    factor,
+                    wavelength: None,
+                };
+                if self.pruned(&branch, w.stats, &mut w.tree_rays).is_some() {
+                    return None;
+                }
+                let (n_side, media) = match lobe.side {
+                    Side::Reflect => (at.n_geom, node.media),
+                    Side::Transmit => {
+                        let mut beyond = q.media[node.media as usize];
+                        let n_side = cross(&mut beyond, &at, hit, lobe.side);
+                        q.media.push(beyond);
+                        (n_side, q.media.len() as u32 - 1)
+                    }
+                };
+                let ray = Ray {
+                    origin: offset_ray_origin(hit.surface.p, n_side),
+                    dir: lobe.dir,
+                    time: ray.time,
+                };
+                let child = Node {
+                    slot: node.slot,
+                    media,
+                    depth: branch.depth,
+                    weight,
+                };
+                Some(q.next.push(&ray, child))
+            };
+        let lobes = scatter.lobes().count();
+        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
+            // As `follow_one`: one lobe, with probability its branch weight.
+            let mut all = scatter.lobes();
+            if let Some(first) = all.next() {
+                let (weight, node) =
+                    if node.depth >= self.params.max_depth || weight < self.params.min_weight {
+                        (Color::ONE, child(first, 1.0, weight, &mut w, queue))
+                    } else {
+                        match pick_lobe(first, all, w.rng.next_1d()) {
+                            Some((chosen, tint)) => {
+                                let f = tint.max_element();
+                                (tint, child(chosen, f, weight * f, &mut w, queue))
+                            }
+                            None => (Color::ONE, None),
+                        }
+                    };
+                queue.children.push(Child { weight, node });
+            }
+        } else {
+            for lobe in scatter.lobes() {
+                let factor = lobe.weight.max_element();
+                if factor > 0.0 {
+                    let node = child(lobe, factor, weight * factor, &mut w, queue);
+                    queue.children.push(Child {
+                        weight: lobe.weight,
+                        node,
+                    });
+                }
+            }
+        }
+        slot.tree_rays = w.tree_rays;
+        value(local, tr, queue)
+    }
+}

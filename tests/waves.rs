@@ -1,0 +1,183 @@
+//! The ray tree walked in waves, with the hit search in SIMD lanes, against the recursive
+//! walk it stands in for: every width gives the same image bit for bit; the waves give the
+//! recursion's image bit for bit where a sample's random numbers are drawn in the same
+//! order (every built-in scene and slide), and the same image within noise where they are
+//! not.
+#![allow(clippy::unwrap_used)]
+
+use raylab::lecture::{LECTURE, slide_setup};
+use raylab::math::Color;
+use raylab::math::lanes::Width;
+use raylab::params::Params;
+use raylab::render::{Film, render_pass_by, render_preview};
+use raylab::scene::{BUILTIN_SCENES, Scene};
+use raylab::tracer::{Stats, Tracer, Traversal};
+use std::path::Path;
+use std::sync::Arc;
+
+const SIZE: (u32, u32) = (40, 30);
+
+fn render(scene: &Scene, params: &Params, traversal: Traversal) -> (Film, Stats) {
+    let mut film = Film::new(SIZE.0, SIZE.1);
+    let stats = render_pass_by(
+        traversal,
+        scene,
+        &scene.camera,
+        params,
+        &mut film,
+        params.spp,
+        &(),
+    )
+    .unwrap();
+    (film, stats)
+}
+
+fn bits(film: &Film) -> Vec<[u32; 3]> {
+    film.pixels()
+        .map(|p| p.to_array().map(f32::to_bits))
+        .collect()
+}
+
+/// Each built-in scene and each side of each slide, at 4 samples a pixel.
+fn cases() -> Vec<(String, Arc<Scene>, Params)> {
+    let mut out = Vec::new();
+    for b in BUILTIN_SCENES {
+        let scene = Arc::new(Scene::load(b.name).unwrap());
+        let params = Params {
+            spp: 4,
+            ..scene.params.clone()
+        };
+        out.push((b.name.to_string(), scene, params));
+    }
+    for n in 1..=LECTURE.len() {
+        let setup = slide_setup(n).unwrap();
+        let scene = Arc::new(setup.scene);
+        let mut sides = vec![setup.params.clone()];
+        sides.extend(setup.slide.others(&setup.params));
+        for (k, p) in sides.into_iter().enumerate() {
+            let params = Params { spp: 4, ..p };
+            out.push((format!("slide {n}, side {k}"), Arc::clone(&scene), params));
+        }
+    }
+    out
+}
+
+/// Every width there is here, the scalar one first.
+fn widths() -> Vec<Width> {
+    Width::ALL.into_iter().filter(|w| w.runs_here()).collect()
+}
+
+#[test]
+fn every_width_and_the_recursion_give_every_scene_and_slide_bit_for_bit() {
+    let mut waves = 0;
+    for (name, scene, params) in cases() {
+        let (reference, reference_stats) = render(&scene, &params, Traversal::Recursive);
+        for w in widths() {
+            let (film, stats) = render(&scene, &params, Traversal::Waves(w));
+            assert_eq!(bits(&film), bits(&reference), "{name}: {w:?} lanes");
+            assert_eq!(film.cost(), reference.cost(), "{name}: rays per pixel");
+            assert_eq!(stats, reference_stats, "{name}: {w:?} lanes");
+        }
+        waves += Tracer::new(&scene, &params, SIZE.0, SIZE.1).traces_waves() as u32;
+    }
+    // Only the polariser's and dispersion's scenes and slides take the recursion.
+    assert!(waves >= 35, "{waves} cases in waves");
+}
+
+#[test]
+fn the_preview_is_the_recursions_first_sample_at_each_blocks_centre() {
+    for name in ["default", "glass", "depth-of-field"] {
+        let scene = Scene::load(name).unwrap();
+        let params = scene.params.clone();
+        let (w, h, block) = (50, 30, 4);
+        let (grid, _) = render_preview(&scene, &scene.camera, &params, w, h, block, &()).unwrap();
+        let tracer = Tracer::new(&scene, &params, w, h);
+        let centre = |i: u32, size: u32| (i * block + block / 2).min(size - 1);
+        for (k, c) in grid.iter().enumerate() {
+            let (i, j) = (k as u32 % w.div_ceil(block), k as u32 / w.div_ceil(block));
+            let expected = tracer.sample(centre(i, w), centre(j, h), 0, &mut Stats::default());
+            assert_eq!(
+                c.to_array(),
+                expected.to_array(),
+                "{name}: block ({i}, {j})"
+            );
+        }
+    }
+}
+
+/// A pane of glass before a wall, under an area light, with a mirror behind the camera:
+/// a hit's reflected ray comes back by the mirror and draws its light samples two levels
+/// down, after the refracted ray has drawn its own one level down. The waves draw level by
+/// level and the recursion depth first, so their numbers differ here.
+const PANE: &str = r#"
+description = "glass pane, mirror behind the camera, area light"
+[image]
+width = 40
+height = 30
+[params]
+spp = 16
+max_depth = 4
+[camera]
+position = [0.0, 1.0, 4.0]
+look_at = [0.0, 1.0, 0.0]
+fov = 50
+[material.glass]
+type = "dielectric"
+ior = 1.5
+[material.wall]
+type = "diffuse"
+color = [0.8, 0.7, 0.6]
+[material.mirror]
+type = "mirror"
+reflectance = [0.9, 0.9, 0.9]
+[[quad]]
+corner = [-3.0, -2.0, 0.0]
+edge_u = [6.0, 0.0, 0.0]
+edge_v = [0.0, 6.0, 0.0]
+material = "glass"
+[[plane]]
+point = [0.0, 0.0, -2.0]
+normal = [0.0, 0.0, 1.0]
+material = "wall"
+[[plane]]
+point = [0.0, 0.0, 6.0]
+normal = [0.0, 0.0, -1.0]
+material = "mirror"
+[[rect_light]]
+center = [0.0, 3.0, -1.0]
+edge_u = [1.0, 0.0, 0.0]
+edge_v = [0.0, 0.0, 1.0]
+intensity = 30.0
+"#;
+
+#[test]
+fn where_the_numbers_are_drawn_in_another_order_the_image_is_the_same_within_noise() {
+    let scene = Scene::from_toml_str(PANE, "pane.toml", Path::new(".")).unwrap();
+    let params = scene.params.clone();
+    let (reference, _) = render(&scene, &params, Traversal::Recursive);
+    let (waves, _) = render(&scene, &params, Traversal::Waves(Width::best()));
+    assert_ne!(
+        bits(&waves),
+        bits(&reference),
+        "the scene must draw out of order"
+    );
+    // Per pixel, the two estimates' difference has mean 0 if they estimate the same image;
+    // its mean over the image is then within a few standard errors of 0 (pixels are
+    // independent).
+    let luminance = |c: Color| c.dot(Color::new(0.2126, 0.7152, 0.0722)) as f64;
+    let d: Vec<f64> = waves
+        .pixels()
+        .zip(reference.pixels())
+        .map(|(a, b)| luminance(a) - luminance(b))
+        .collect();
+    let n = d.len() as f64;
+    let mean = d.iter().sum::<f64>() / n;
+    let sd = (d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    let total = reference.pixels().map(luminance).sum::<f64>() / n;
+    assert!(sd > 0.0 && total > 0.0);
+    assert!(
+        mean.abs() < 4.0 * sd / n.sqrt(),
+        "mean difference {mean} against a standard error of {}",
+        sd / n.sqrt()
+    );
+}
