@@ -136,31 +136,8 @@ impl Direct {
     /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
     #[inline(always)]
     fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        // One ray: each shape's formula as the lanes have it, but a branch per hit rather
-        // than selects (2 % fewer instructions than `nearest` at one lane, measured).
-        let (o, d) = (ray.origin, ray.dir);
-        let (mut t_best, mut best) = (t_max, None);
-        let mut place = 0;
-        let mut keep = |t: f32, t_best: &mut f32| {
-            if t < f32::INFINITY {
-                *t_best = t;
-                best = Some(place);
-            }
-            place += 1;
-        };
-        for p in &self.planes {
-            keep(p.nearest(o, d, t_best), &mut t_best);
-        }
-        for s in &self.spheres {
-            keep(s.nearest(o, d, ray.time, t_best), &mut t_best);
-        }
-        for q in &self.quads {
-            keep(q.nearest(o, d, t_best), &mut t_best);
-        }
-        best.map(|k| {
-            let object = self.objects[k];
-            (PrimRef { object, index: 0 }, t_best)
-        })
+        let (t, place) = self.nearest(ray.origin, ray.dir, ray.time, t_max);
+        self.found(t, place)
     }
 
     /// The nearest of them along each lane's ray in (0, t_max): its distance and its place
@@ -247,12 +224,23 @@ impl Accel {
         let analytic = |s: &Shape| matches!(s, Shape::Sphere(_) | Shape::Quad(_));
         let direct_ok = shapes.iter().filter(|s| analytic(s)).count() <= DIRECT_MAX;
         let mut direct = Direct::default();
+        // The objects of the planes, spheres and quads tested directly, kind by kind.
+        let mut objects: [Vec<u32>; 3] = Default::default();
         for (object, shape) in shapes.iter().enumerate() {
             let object = object as u32;
             match shape {
-                Shape::Plane(p) => direct.planes.push(p.clone()),
-                Shape::Sphere(s) if direct_ok => direct.spheres.push(s.clone()),
-                Shape::Quad(q) if direct_ok => direct.quads.push(q.clone()),
+                Shape::Plane(p) => {
+                    direct.planes.push(p.clone());
+                    objects[0].push(object);
+                }
+                Shape::Sphere(s) if direct_ok => {
+                    direct.spheres.push(s.clone());
+                    objects[1].push(object);
+                }
+                Shape::Quad(q) if direct_ok => {
+                    direct.quads.push(q.clone());
+                    objects[2].push(object);
+                }
                 _ => {
                     for index in 0..shape.primitive_count() as u32 {
                         prims.push(PrimRef { object, index });
@@ -261,18 +249,8 @@ impl Accel {
                 }
             }
         }
-        // The directly tested objects in the order `Direct::nearest` tests them.
-        let kind_order = |s: &Shape| match s {
-            Shape::Plane(_) => Some(0),
-            Shape::Sphere(_) if direct_ok => Some(1),
-            Shape::Quad(_) if direct_ok => Some(2),
-            _ => None,
-        };
-        for kind in 0..3 {
-            direct.objects.extend(
-                (0..shapes.len() as u32).filter(|&o| kind_order(&shapes[o as usize]) == Some(kind)),
-            );
-        }
+        // In the order `Direct::nearest` tests them.
+        direct.objects = objects.concat();
         break_ties(&mut bounds);
         let bvh = (!prims.is_empty()).then(|| {
             build_cwbvh(

@@ -75,9 +75,6 @@ impl Sphere {
         let ordered = a.less(q);
         let (t0, t1) = (R::select(ordered, a, q), R::select(ordered, q, a));
         let near = real & zero.less(t0) & t0.less(t_max);
-        if R::all(near) {
-            return t0;
-        }
         let far = real & zero.less(t1) & t1.less(t_max);
         R::select(near, t0, R::select(far, t1, miss))
     }

@@ -7,7 +7,7 @@ use crate::math::Color;
 use crate::math::lanes::Width;
 use crate::params::Params;
 use crate::scene::Scene;
-use crate::tracer::{Stats, Tracer, Traversal, Waves};
+use crate::tracer::{Stats, Traced, Tracer, Traversal, Waves};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 
@@ -159,25 +159,48 @@ fn pass_in_waves(
     let width = film.width();
     over_bands(film, first, samples, observer, |y0, pixels, stats| {
         // Pixel by pixel, each pixel's samples in order.
-        let mut all = (0..pixels.len() as u32)
-            .flat_map(|i| (first..first + samples).map(move |s| (i % width, y0 + i / width, s)))
-            .peekable();
-        let mut wave = Vec::with_capacity(WAVE_SAMPLES);
-        let mut waves = Waves::default();
-        while all.peek().is_some() {
-            if !observer.keep_going() {
-                return None;
-            }
-            wave.clear();
-            wave.extend(all.by_ref().take(WAVE_SAMPLES));
-            let traced = tracer.trace_wave(&wave, lanes, stats, &mut waves);
-            for (&(x, y, s), t) in wave.iter().zip(traced) {
+        let all = (0..pixels.len() as u32)
+            .flat_map(|i| (first..first + samples).map(move |s| (i % width, y0 + i / width, s)));
+        in_waves(
+            tracer,
+            lanes,
+            all,
+            observer,
+            stats,
+            |(x, y, s), t, stats| {
                 let pixel = &mut pixels[((y - y0) * width + x) as usize];
                 add(pixel, s, t.radiance, t.rays, stats);
-            }
-        }
-        Some(())
+            },
+        )
     })
+}
+
+/// Traces `samples` ((x, y, sample number) each) in waves of [`WAVE_SAMPLES`], `lanes`
+/// rays at a time, handing each sample and what it gave to `each`, in order; `None` where
+/// `observer` stops it (asked before every wave).
+fn in_waves(
+    tracer: &Tracer,
+    lanes: Width,
+    samples: impl Iterator<Item = (u32, u32, u32)>,
+    observer: &dyn PassObserver,
+    stats: &mut Stats,
+    mut each: impl FnMut((u32, u32, u32), &Traced, &mut Stats),
+) -> Option<()> {
+    let mut samples = samples.peekable();
+    let mut wave = Vec::with_capacity(WAVE_SAMPLES);
+    let mut waves = Waves::default();
+    while samples.peek().is_some() {
+        if !observer.keep_going() {
+            return None;
+        }
+        wave.clear();
+        wave.extend(samples.by_ref().take(WAVE_SAMPLES));
+        let traced = tracer.trace_wave(&wave, lanes, stats, &mut waves);
+        for (&sample, t) in wave.iter().zip(traced) {
+            each(sample, t, stats);
+        }
+    }
+    Some(())
 }
 
 /// Adds sample `s` of radiance `c`, which traced `rays` rays, to `pixel`; a sample that is
@@ -261,20 +284,13 @@ pub fn render_preview(
             let mut stats = Stats::default();
             let cy = centre(j as u32, height);
             if let Some(lanes) = lanes {
-                let mut waves = Waves::default();
-                let mut wave = Vec::with_capacity(WAVE_SAMPLES);
-                for (k, cells) in row.chunks_mut(WAVE_SAMPLES).enumerate() {
-                    if !observer.keep_going() {
-                        return None;
-                    }
-                    let i0 = (k * WAVE_SAMPLES) as u32;
-                    wave.clear();
-                    wave.extend((i0..i0 + cells.len() as u32).map(|i| (centre(i, width), cy, 0)));
-                    let traced = tracer.trace_wave(&wave, lanes, &mut stats, &mut waves);
-                    for (cell, t) in cells.iter_mut().zip(traced) {
+                let centres = (0..row.len() as u32).map(|i| (centre(i, width), cy, 0));
+                let mut cells = row.iter_mut();
+                in_waves(&tracer, lanes, centres, observer, &mut stats, |_, t, _| {
+                    if let Some(cell) = cells.next() {
                         *cell = shown(t.radiance);
                     }
-                }
+                })?;
                 return Some(stats);
             }
             for (i, cell) in row.iter_mut().enumerate() {

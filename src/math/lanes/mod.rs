@@ -59,8 +59,6 @@ pub trait Real:
     /// Whether `m` holds in any lane: lets a formula stop early when no lane goes on, as the
     /// scalar code returns early.
     fn any(m: Self::Mask) -> bool;
-    /// Whether `m` holds in every lane: lets a formula stop early when every lane is done.
-    fn all(m: Self::Mask) -> bool;
 }
 
 impl Real for f32 {
@@ -100,10 +98,6 @@ impl Real for f32 {
     }
     #[inline(always)]
     fn any(m: bool) -> bool {
-        m
-    }
-    #[inline(always)]
-    fn all(m: bool) -> bool {
         m
     }
 }
@@ -256,10 +250,6 @@ impl<const N: usize> Real for Lanes<N> {
         // Or-reduced without a branch per lane, so that it vectorises.
         m.0.iter().fold(false, |a, &b| a | b)
     }
-    #[inline(always)]
-    fn all(m: Mask<N>) -> bool {
-        m.0.iter().fold(true, |a, &b| a & b)
-    }
 }
 
 #[cfg(test)]
@@ -304,8 +294,5 @@ mod tests {
         });
         assert!(Lanes::any(a.equal(b)));
         assert!(!Lanes::any(a.less(Lanes::splat(f32::NEG_INFINITY))));
-        // NaN in one lane: not all.
-        assert!(!Lanes::all(a.less_eq(Lanes::splat(f32::INFINITY))));
-        assert!(Lanes::all(Lanes::<8>::splat(1.0).less(Lanes::splat(2.0))));
     }
 }
