@@ -1,5 +1,6 @@
 //! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
 
+use crate::math::rng::SobolLanes;
 use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk};
 use crate::params::Params;
 use glam::Vec2;
@@ -60,6 +61,34 @@ impl CameraSample {
             0.0
         };
         CameraSample { pixel, lens, time }
+    }
+
+    /// [`CameraSample::draw`] for `N` Sobol streams at once, in the same order: lane i's
+    /// sample is what `draw` gives from lane i's stream.
+    #[inline(always)]
+    pub(crate) fn draw_lanes<const N: usize>(
+        u: &mut SobolLanes<N>,
+        lens: bool,
+        shutter: bool,
+    ) -> [CameraSample; N] {
+        let pixel = u.next_2d();
+        let lens = if lens {
+            u.next_2d()
+        } else {
+            u.skip(1);
+            [Vec2::ZERO; N]
+        };
+        let time = if shutter {
+            u.next_1d()
+        } else {
+            u.skip(1);
+            [0.0; N]
+        };
+        std::array::from_fn(|i| CameraSample {
+            pixel: pixel[i],
+            lens: lens[i],
+            time: time[i],
+        })
     }
 }
 
@@ -177,7 +206,21 @@ impl CameraFrame {
     /// The camera sample for a ray of this frame: the lens and time drawn only where the
     /// frame has a lens and an open shutter.
     pub fn draw_sample(&self, u: &mut impl Uniform) -> CameraSample {
-        CameraSample::draw(u, self.aperture > 0.0, self.shutter.1 > self.shutter.0)
+        let (lens, shutter) = self.draws();
+        CameraSample::draw(u, lens, shutter)
+    }
+
+    /// [`CameraFrame::draw_sample`] for `N` Sobol streams at once.
+    #[inline(always)]
+    pub(crate) fn draw_samples<const N: usize>(&self, u: &mut SobolLanes<N>) -> [CameraSample; N] {
+        let (lens, shutter) = self.draws();
+        CameraSample::draw_lanes(u, lens, shutter)
+    }
+
+    /// Whether its samples draw a lens point and a time: where it has a lens, and an open
+    /// shutter.
+    fn draws(&self) -> (bool, bool) {
+        (self.aperture > 0.0, self.shutter.1 > self.shutter.0)
     }
 
     /// The eye ray through `film`, the image position with (0, 0) at the top-left corner and
@@ -300,6 +343,28 @@ mod tests {
             let r = f.ray(film, lens, 0.0);
             let t = (r.origin.z - target.z) / -r.dir.z;
             assert!((r.at(t) - target).length() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn camera_samples_drawn_in_lanes_are_each_streams_own() {
+        use crate::math::{Pattern, SampleStream, rng::seed_key};
+        let key = seed_key(11);
+        let pixels: [u32; 8] = [0, 1, 2, 640, 641, 99_999, 5, 5];
+        let samples: [u32; 8] = [0, 0, 7, 1, 1023, 65_537, 3, 4];
+        for (lens, shutter) in [(false, false), (true, false), (false, true), (true, true)] {
+            let mut lanes = SobolLanes::new(16, key, pixels, samples);
+            let drawn = CameraSample::draw_lanes(&mut lanes, lens, shutter);
+            for i in 0..8 {
+                let mut one =
+                    SampleStream::with_seed_key(Pattern::Sobol, 16, key, pixels[i], samples[i]);
+                assert_eq!(drawn[i], CameraSample::draw(&mut one, lens, shutter));
+                // And each lane's stream goes on where its own would.
+                let mut rest = lanes.stream(i);
+                assert_eq!(rest.dimension(), one.dimension());
+                assert_eq!(rest.next_2d(), one.next_2d(), "lane {i}");
+                assert_eq!(rest.next_1d(), one.next_1d(), "lane {i}");
+            }
         }
     }
 }

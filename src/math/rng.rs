@@ -171,6 +171,112 @@ pub struct SampleStream {
 
 const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
+/// The key of pixel `pixel` (row-major index) under the seed whose key is `seed_key`.
+#[inline(always)]
+fn pixel_key(seed_key: u64, pixel: u32) -> u64 {
+    mix64(seed_key ^ (pixel as u64).wrapping_mul(GOLDEN))
+}
+
+/// The key of dimension `dim` of the pixel whose key is `pixel_key`, shared by all its
+/// samples.
+#[inline(always)]
+fn dimension_key(pixel_key: u64, dim: u32) -> u64 {
+    mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0x9e6c_63d0_676a_9a99))
+}
+
+/// Dimension `dim`'s Owen-scrambled Sobol pair of the sample whose number, bits reversed, is
+/// `sample_reversed`, in the pixel whose key is `pixel_key`: the sample index shuffled by a
+/// nested uniform scramble (which keeps every power-of-two prefix a (0,m,2)-net), then each
+/// coordinate scrambled, all seeded per pixel and dimension ("padded" Sobol).
+#[inline(always)]
+fn sobol_pair(pixel_key: u64, sample_reversed: u32, dim: u32) -> Vec2 {
+    let key = dimension_key(pixel_key, dim);
+    let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
+    // In full: index = owen_scramble(sample, key), (x, y) = sobol_2d(index), then each
+    // Owen-scrambled. With owen_scramble(v, s) = rev(LK(rev(v), s)) and sobol_2d(i) =
+    // (rev(i), rev(pascal(i))), the bit reversals cancel in pairs: 3 instead of 8,
+    // the same bits. The last two are one 64-bit reversal of the pair side by side
+    // (rev64(a·2³² + b) = rev32(b)·2³² + rev32(a)): a reversal costs some twenty
+    // instructions where the processor has no instruction for it, as x86 has not.
+    let index = laine_karras(sample_reversed, key as u32).reverse_bits();
+    let x = laine_karras(index, sx);
+    let y = laine_karras(pascal(index), sy);
+    let both = ((x as u64) << 32 | y as u64).reverse_bits();
+    Vec2::new(
+        fraction_to_f32(both as u32),
+        fraction_to_f32((both >> 32) as u32),
+    )
+}
+
+/// The Sobol streams of `N` samples begun together, their first draws made in SIMD lanes
+/// (the camera's, which every sample makes at the same dimensions): each lane's numbers are
+/// its [`SampleStream`]'s bit for bit. Only for use inside a [`crate::math::lanes::LaneKernel`]
+/// (everything here is inlined into it, to be compiled for its vector extension).
+pub(crate) struct SobolLanes<const N: usize> {
+    spp: u32,
+    pixel_key: [u64; N],
+    sample: [u32; N],
+    sample_reversed: [u32; N],
+    dim: u32,
+}
+
+impl<const N: usize> SobolLanes<N> {
+    /// Sample `samples[i]` of pixel `pixels[i]` in lane i, of `spp` per pixel, under the seed
+    /// whose key is `seed_key` ([`seed_key`]): [`SampleStream::with_seed_key`] with the
+    /// Sobol pattern, in lanes.
+    #[inline(always)]
+    pub(crate) fn new(spp: u32, seed_key: u64, pixels: [u32; N], samples: [u32; N]) -> Self {
+        SobolLanes {
+            spp,
+            pixel_key: pixels.map(|p| pixel_key(seed_key, p)),
+            sample: samples,
+            sample_reversed: samples.map(u32::reverse_bits),
+            dim: 0,
+        }
+    }
+
+    /// [`SampleStream::next_2d`] in every lane.
+    #[inline(always)]
+    pub(crate) fn next_2d(&mut self) -> [Vec2; N] {
+        let mut out = [Vec2::ZERO; N];
+        for ((o, &key), &rev) in out
+            .iter_mut()
+            .zip(&self.pixel_key)
+            .zip(&self.sample_reversed)
+        {
+            *o = sobol_pair(key, rev, self.dim);
+        }
+        self.dim += 1;
+        out
+    }
+
+    /// [`SampleStream::next_1d`] in every lane.
+    #[inline(always)]
+    pub(crate) fn next_1d(&mut self) -> [f32; N] {
+        self.next_2d().map(|v| v.x)
+    }
+
+    /// Skips `n` dimensions, as [`Uniform::skip`].
+    #[inline(always)]
+    pub(crate) fn skip(&mut self, n: u32) {
+        self.dim += n;
+    }
+
+    /// Lane `lane`'s stream, to go on drawing from where the lanes are.
+    #[inline(always)]
+    pub(crate) fn stream(&self, lane: usize) -> SampleStream {
+        SampleStream {
+            pattern: Pattern::Sobol,
+            count: self.spp.max(1),
+            sample: self.sample[lane],
+            sample_reversed: self.sample_reversed[lane],
+            pixel_key: self.pixel_key[lane],
+            sample_key: 0,
+            dim: self.dim,
+        }
+    }
+}
+
 /// The key every pixel's numbers under `seed` derive from.
 #[inline]
 pub(crate) fn seed_key(seed: u64) -> u64 {
@@ -200,7 +306,7 @@ impl SampleStream {
         pixel: u32,
         sample: u32,
     ) -> Self {
-        let pixel_key = mix64(seed_key ^ (pixel as u64).wrapping_mul(GOLDEN));
+        let pixel_key = pixel_key(seed_key, pixel);
         SampleStream {
             pattern,
             count: spp.max(1),
@@ -230,30 +336,13 @@ impl SampleStream {
     /// A key for this dimension of this pixel, shared by all its samples.
     #[inline]
     fn dimension_key(&self) -> u64 {
-        mix64(self.pixel_key ^ (self.dim as u64 + 1).wrapping_mul(0x9e6c_63d0_676a_9a99))
+        dimension_key(self.pixel_key, self.dim)
     }
 
-    /// This dimension's Owen-scrambled Sobol pair: the sample index shuffled by a nested
-    /// uniform scramble (which keeps every power-of-two prefix a (0,m,2)-net), then each
-    /// coordinate scrambled, all seeded per pixel and dimension ("padded" Sobol).
+    /// This dimension's Owen-scrambled Sobol pair ([`sobol_pair`]).
     #[inline]
     fn sobol_pair(&self) -> Vec2 {
-        let key = self.dimension_key();
-        let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
-        // In full: index = owen_scramble(sample, key), (x, y) = sobol_2d(index), then each
-        // Owen-scrambled. With owen_scramble(v, s) = rev(LK(rev(v), s)) and sobol_2d(i) =
-        // (rev(i), rev(pascal(i))), the bit reversals cancel in pairs: 3 instead of 8,
-        // the same bits. The last two are one 64-bit reversal of the pair side by side
-        // (rev64(a·2³² + b) = rev32(b)·2³² + rev32(a)): a reversal costs some twenty
-        // instructions where the processor has no instruction for it, as x86 has not.
-        let index = laine_karras(self.sample_reversed, key as u32).reverse_bits();
-        let x = laine_karras(index, sx);
-        let y = laine_karras(pascal(index), sy);
-        let both = ((x as u64) << 32 | y as u64).reverse_bits();
-        Vec2::new(
-            fraction_to_f32(both as u32),
-            fraction_to_f32((both >> 32) as u32),
-        )
+        sobol_pair(self.pixel_key, self.sample_reversed, self.dim)
     }
 
     /// The next dimension, uniform in [0, 1).

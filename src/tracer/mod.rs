@@ -24,7 +24,7 @@ pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_RO
 pub use stats::Stats;
 pub use wave::{Traced, Traversal, Waves};
 
-use crate::camera::{Camera, CameraFrame};
+use crate::camera::{Camera, CameraFrame, CameraSample};
 use crate::light::PreparedLight;
 use crate::material::{Interaction, Material};
 use crate::math::{Color, Ray, SampleStream, Vec3};
@@ -269,6 +269,13 @@ impl<'a> Tracer<'a> {
     /// tree's first dimension on (the camera's are drawn first).
     #[inline(always)]
     fn camera_sample(&self, x: u32, y: u32, sample: u32) -> (SampleStream, Ray) {
+        let (rng, cs) = self.camera_draw(x, y, sample);
+        (rng, self.camera_ray(x, y, &cs))
+    }
+
+    /// Sample `sample` of pixel (x, y): its random numbers, with the camera's drawn.
+    #[inline(always)]
+    fn camera_draw(&self, x: u32, y: u32, sample: u32) -> (SampleStream, CameraSample) {
         let p = self.params;
         let mut rng = SampleStream::with_seed_key(
             p.pattern,
@@ -278,11 +285,17 @@ impl<'a> Tracer<'a> {
             sample,
         );
         let cs = self.frame.draw_sample(&mut rng);
+        (rng, cs)
+    }
+
+    /// The camera ray of pixel (x, y) for the camera sample `cs`.
+    #[inline(always)]
+    fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> Ray {
         let film = Vec2::new(
             (x as f32 + cs.pixel.x) / self.width as f32,
             (y as f32 + cs.pixel.y) / self.height as f32,
         );
-        (rng, self.frame.ray(film, cs.lens, cs.time))
+        self.frame.ray(film, cs.lens, cs.time)
     }
 
     /// The index of refraction at `wavelength` of the medium whose innermost dielectric is

@@ -20,10 +20,12 @@ use super::media::transmittance;
 use super::path::cross;
 use super::shade::pick_lobe;
 use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
+use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
 use crate::material::{Lobe, Side};
-use crate::math::lanes::{RayColumns, Width, asked_lanes};
-use crate::math::{Color, Ray, SampleStream, offset_ray_origin};
+use crate::math::lanes::{LaneKernel, RayColumns, Width, asked_lanes};
+use crate::math::rng::SobolLanes;
+use crate::math::{Color, Pattern, Ray, SampleStream, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
 use std::ops::Range;
@@ -149,6 +151,7 @@ impl Rays {
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
 #[derive(Default)]
 pub struct Waves {
+    draws: Vec<(SampleStream, CameraSample)>,
     slots: Vec<Slot>,
     roots: Vec<Option<u32>>,
     level: Rays,
@@ -170,6 +173,34 @@ struct Queue<'q> {
     children: &'q mut Vec<Child>,
 }
 
+/// The camera samples of a wave: each sample's random numbers, with the camera's drawn, `N`
+/// samples' Sobol draws at a time in lanes (the pattern must be Sobol).
+struct CameraDraws<'a, 't> {
+    tracer: &'a Tracer<'t>,
+    samples: &'a [(u32, u32, u32)],
+    out: &'a mut Vec<(SampleStream, CameraSample)>,
+}
+
+impl LaneKernel for CameraDraws<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const N: usize>(self) {
+        let t = self.tracer;
+        let chunks = self.samples.chunks_exact(N);
+        let rest = chunks.remainder();
+        for chunk in chunks {
+            let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
+            let numbers = std::array::from_fn(|i| chunk[i].2);
+            let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
+            let cs = t.frame.draw_samples(&mut lanes);
+            self.out
+                .extend(cs.iter().enumerate().map(|(i, cs)| (lanes.stream(i), *cs)));
+        }
+        let scalar = rest.iter().map(|&(x, y, s)| t.camera_draw(x, y, s));
+        self.out.extend(scalar);
+    }
+}
+
 impl Tracer<'_> {
     /// Whether the kernel traces this tracer's samples in waves: the ray tree, without a
     /// polariser or dispersion.
@@ -188,6 +219,7 @@ impl Tracer<'_> {
         waves: &'w mut Waves,
     ) -> &'w [Traced] {
         let Waves {
+            draws,
             slots,
             roots,
             level,
@@ -204,8 +236,18 @@ impl Tracer<'_> {
         level.clear();
         media.clear();
         media.push(Media::default());
-        for &(x, y, sample) in samples {
-            let (rng, ray) = self.camera_sample(x, y, sample);
+        draws.clear();
+        if self.params.pattern == Pattern::Sobol {
+            width.dispatch(CameraDraws {
+                tracer: self,
+                samples,
+                out: draws,
+            });
+        } else {
+            draws.extend(samples.iter().map(|&(x, y, s)| self.camera_draw(x, y, s)));
+        }
+        for (&(x, y, _), (rng, cs)) in samples.iter().zip(draws.drain(..)) {
+            let ray = self.camera_ray(x, y, &cs);
             stats.samples += 1;
             let camera = ray.origin.is_finite() && ray.dir.is_finite();
             let node = Node {

@@ -52,7 +52,15 @@ impl Width {
             #[cfg(target_arch = "x86_64")]
             Width::Eight => std::arch::is_x86_feature_detected!("avx2"),
             #[cfg(target_arch = "x86_64")]
-            Width::Sixteen => std::arch::is_x86_feature_detected!("avx512f"),
+            Width::Sixteen => {
+                // F for the floats; BW, DQ and VL for the integer lanes of the random
+                // numbers (64-bit products, byte shuffles): every AVX-512 processor but the
+                // Xeon Phi has all four.
+                std::arch::is_x86_feature_detected!("avx512f")
+                    && std::arch::is_x86_feature_detected!("avx512bw")
+                    && std::arch::is_x86_feature_detected!("avx512dq")
+                    && std::arch::is_x86_feature_detected!("avx512vl")
+            }
             #[cfg(not(target_arch = "x86_64"))]
             Width::Eight | Width::Sixteen => false,
         }
@@ -84,7 +92,8 @@ impl Width {
         };
         match width {
             #[cfg(target_arch = "x86_64")]
-            // SAFETY: `run_avx512` needs AVX-512F, which `runs_here` has just detected.
+            // SAFETY: `run_avx512` needs AVX-512 F, BW, DQ and VL, which `runs_here` has just
+            // detected.
             #[allow(unsafe_code)]
             Width::Sixteen => unsafe { run_avx512(kernel) },
             #[cfg(target_arch = "x86_64")]
@@ -127,7 +136,7 @@ pub trait LaneKernel {
 // (AVX-512) 2.6x, bit-identical (docs/performance.md).
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
-#[target_feature(enable = "avx512f")]
+#[target_feature(enable = "avx512f,avx512bw,avx512dq,avx512vl")]
 unsafe fn run_avx512<K: LaneKernel>(kernel: K) -> K::Output {
     kernel.run::<16>()
 }
