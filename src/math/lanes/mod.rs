@@ -107,10 +107,12 @@ impl Real for f32 {
 #[repr(transparent)]
 pub struct Lanes<const N: usize>(pub [f32; N]);
 
-/// A comparison's result in each of `N` lanes.
+/// A comparison's result in each of `N` lanes: all ones where it holds, zeros elsewhere, as
+/// the processor's vector comparisons give it (a `bool` per lane would be narrowed to bytes
+/// and widened again at every use).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(transparent)]
-pub struct Mask<const N: usize>(pub [bool; N]);
+pub struct Mask<const N: usize>(pub [u32; N]);
 
 impl<const N: usize> Lanes<N> {
     #[inline(always)]
@@ -133,9 +135,9 @@ impl<const N: usize> Lanes<N> {
 
     #[inline(always)]
     fn compare(self, other: Self, f: impl Fn(f32, f32) -> bool) -> Mask<N> {
-        let mut out = [false; N];
+        let mut out = [0; N];
         for ((m, x), y) in out.iter_mut().zip(self.0).zip(other.0) {
-            *m = f(x, y);
+            *m = if f(x, y) { u32::MAX } else { 0 };
         }
         Mask(out)
     }
@@ -143,7 +145,7 @@ impl<const N: usize> Lanes<N> {
 
 impl<const N: usize> Mask<N> {
     #[inline(always)]
-    fn zip(self, other: Self, f: impl Fn(bool, bool) -> bool) -> Self {
+    fn zip(self, other: Self, f: impl Fn(u32, u32) -> u32) -> Self {
         let mut out = self.0;
         for (x, y) in out.iter_mut().zip(other.0) {
             *x = f(*x, y);
@@ -239,7 +241,7 @@ impl<const N: usize> Real for Lanes<N> {
     fn select(m: Mask<N>, a: Self, b: Self) -> Self {
         let mut out = b.0;
         for ((o, m), a) in out.iter_mut().zip(m.0).zip(a.0) {
-            if m {
+            if m != 0 {
                 *o = a;
             }
         }
@@ -248,7 +250,7 @@ impl<const N: usize> Real for Lanes<N> {
     #[inline(always)]
     fn any(m: Mask<N>) -> bool {
         // Or-reduced without a branch per lane, so that it vectorises.
-        m.0.iter().fold(false, |a, &b| a | b)
+        m.0.iter().fold(0, |a, &b| a | b) != 0
     }
 }
 
