@@ -4,17 +4,21 @@
 //!
 //! `cargo bench` (criterion). Each 1-spp pass is timed twice, once counted in samples
 //! (elements/s = samples/s) and once in rays (every ray the pass traces, of every kind,
-//! counted up front: the count is deterministic).
+//! counted up front: the count is deterministic). The `*_by_traversal` groups time one
+//! thread's 1-spp pass of (a) and (b) walked each way this processor runs: recursively, and
+//! in waves at every lane width it has (the same image each way).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raylab::camera::Camera;
 use raylab::geometry::{Mesh, Plane, Shape};
 use raylab::light::{Background, Light};
 use raylab::material::{Diffuse, Material, Texture};
+use raylab::math::lanes::Width;
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
-use raylab::render::render;
+use raylab::render::{Film, render, render_pass_by};
 use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
+use raylab::tracer::Traversal;
 use std::f32::consts::PI;
 use std::hint::black_box;
 use std::time::Duration;
@@ -134,6 +138,47 @@ fn throughput(c: &mut Criterion, name: &str, scene: &Scene) {
     group.finish();
 }
 
+/// Samples per second of one thread's 1-spp pass over `scene`, walked recursively and in
+/// waves at each lane width this processor runs.
+fn traversals(c: &mut Criterion, name: &str, scene: &Scene) {
+    let params = Params {
+        spp: 1,
+        ..scene.params.clone()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool");
+    let ways = std::iter::once(Traversal::Recursive).chain(
+        Width::ALL
+            .into_iter()
+            .filter(|w| w.runs_here())
+            .map(Traversal::Waves),
+    );
+    let mut group = c.benchmark_group(format!("{name}_by_traversal"));
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+    group.throughput(Throughput::Elements(u64::from(WIDTH * HEIGHT)));
+    for way in ways {
+        let id = match way {
+            Traversal::Recursive => "recursion".to_string(),
+            Traversal::Waves(w) => format!("waves_{}_lanes", w.lanes()),
+        };
+        group.bench_function(id, |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    let mut film = Film::new(WIDTH, HEIGHT);
+                    let stats =
+                        render_pass_by(way, scene, &scene.camera, &params, &mut film, 1, &());
+                    black_box((film, stats.expect("no cancel")))
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
 /// A benchmark scene of benches/.
 fn bench_scene(file: &str) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -147,6 +192,8 @@ fn benches(c: &mut Criterion) {
     throughput(c, "a_default_scene", &default);
     throughput(c, "b_specular", &bench_scene("specular.toml"));
     throughput(c, "c_thin_lens", &bench_scene("thin-lens.toml"));
+    traversals(c, "a_default_scene", &default);
+    traversals(c, "b_specular", &bench_scene("specular.toml"));
 
     let mesh = bumpy_sphere(1000, 500);
     assert!(mesh.triangle_count() >= 1_000_000);
