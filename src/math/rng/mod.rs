@@ -6,6 +6,12 @@
 //! dimension of a pixel gets its own permutation or scramble, so dimensions are
 //! decorrelated: the lens point of a sample says nothing about its image position.
 
+mod sobol;
+
+pub(crate) use sobol::SobolLanes;
+use sobol::sobol_pair;
+pub use sobol::{owen_scramble, sobol_2d};
+
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -57,56 +63,6 @@ pub fn mix64(mut z: u64) -> u64 {
 #[inline]
 pub fn to_unit_f32(bits: u64) -> f32 {
     (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-}
-
-/// The Laine–Karras permutation of the bits of `x` (least significant first): flipping
-/// each bit by a hash of the bits below it. Applied to bit-reversed numbers it is a nested
-/// uniform (Owen) scramble (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020,
-/// with Vegdahl's constants).
-#[inline]
-fn laine_karras(mut x: u32, seed: u32) -> u32 {
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    x
-}
-
-/// Owen scrambling of the 32-bit fraction `x` (most significant bit first).
-#[inline]
-pub fn owen_scramble(x: u32, seed: u32) -> u32 {
-    laine_karras(x.reverse_bits(), seed).reverse_bits()
-}
-
-/// The first two dimensions of the Sobol sequence at `index`, as 32-bit fractions.
-///
-/// Dimension 0 is the van der Corput sequence: the bits of the index reversed. Dimension
-/// 1's generator matrix is Pascal's triangle mod 2: output bit r is the XOR of the index
-/// bits c with binom(c, r) odd, which by Lucas's theorem means r ⊆ c (as bit sets of the
-/// positions). That superset sum runs over the 5 bits of a position in 5 shift-xor steps.
-#[inline]
-pub fn sobol_2d(index: u32) -> (u32, u32) {
-    (index.reverse_bits(), pascal(index).reverse_bits())
-}
-
-/// The second Sobol dimension before its bit reversal: the Pascal matrix mod 2 applied to
-/// `index` (Lucas's theorem), in five steps.
-#[inline]
-fn pascal(index: u32) -> u32 {
-    let mut y = index;
-    y ^= (y >> 1) & 0x5555_5555;
-    y ^= (y >> 2) & 0x3333_3333;
-    y ^= (y >> 4) & 0x0f0f_0f0f;
-    y ^= (y >> 8) & 0x00ff_00ff;
-    y ^= (y >> 16) & 0x0000_ffff;
-    y
-}
-
-/// A 32-bit fraction to a float in [0, 1) (its top 24 bits, exact in f32).
-#[inline]
-fn fraction_to_f32(x: u32) -> f32 {
-    (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
 /// Element `i` of a pseudo-random permutation of 0..len chosen by `seed`, for any `len`
@@ -173,108 +129,15 @@ const GOLDEN: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// The key of pixel `pixel` (row-major index) under the seed whose key is `seed_key`.
 #[inline(always)]
-fn pixel_key(seed_key: u64, pixel: u32) -> u64 {
+pub(super) fn pixel_key(seed_key: u64, pixel: u32) -> u64 {
     mix64(seed_key ^ (pixel as u64).wrapping_mul(GOLDEN))
 }
 
 /// The key of dimension `dim` of the pixel whose key is `pixel_key`, shared by all its
 /// samples.
 #[inline(always)]
-fn dimension_key(pixel_key: u64, dim: u32) -> u64 {
+pub(super) fn dimension_key(pixel_key: u64, dim: u32) -> u64 {
     mix64(pixel_key ^ (dim as u64 + 1).wrapping_mul(0x9e6c_63d0_676a_9a99))
-}
-
-/// Dimension `dim`'s Owen-scrambled Sobol pair of the sample whose number, bits reversed, is
-/// `sample_reversed`, in the pixel whose key is `pixel_key`: the sample index shuffled by a
-/// nested uniform scramble (which keeps every power-of-two prefix a (0,m,2)-net), then each
-/// coordinate scrambled, all seeded per pixel and dimension ("padded" Sobol).
-#[inline(always)]
-fn sobol_pair(pixel_key: u64, sample_reversed: u32, dim: u32) -> Vec2 {
-    let key = dimension_key(pixel_key, dim);
-    let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
-    // In full: index = owen_scramble(sample, key), (x, y) = sobol_2d(index), then each
-    // Owen-scrambled. With owen_scramble(v, s) = rev(LK(rev(v), s)) and sobol_2d(i) =
-    // (rev(i), rev(pascal(i))), the bit reversals cancel in pairs: 3 instead of 8,
-    // the same bits. The last two are one 64-bit reversal of the pair side by side
-    // (rev64(a·2³² + b) = rev32(b)·2³² + rev32(a)): a reversal costs some twenty
-    // instructions where the processor has no instruction for it, as x86 has not.
-    let index = laine_karras(sample_reversed, key as u32).reverse_bits();
-    let x = laine_karras(index, sx);
-    let y = laine_karras(pascal(index), sy);
-    let both = ((x as u64) << 32 | y as u64).reverse_bits();
-    Vec2::new(
-        fraction_to_f32(both as u32),
-        fraction_to_f32((both >> 32) as u32),
-    )
-}
-
-/// The Sobol streams of `N` samples begun together, their first draws made in SIMD lanes
-/// (the camera's, which every sample makes at the same dimensions): each lane's numbers are
-/// its [`SampleStream`]'s bit for bit. Only for use inside a [`crate::math::lanes::LaneKernel`]
-/// (everything here is inlined into it, to be compiled for its vector extension).
-pub(crate) struct SobolLanes<const N: usize> {
-    spp: u32,
-    pixel_key: [u64; N],
-    sample: [u32; N],
-    sample_reversed: [u32; N],
-    dim: u32,
-}
-
-impl<const N: usize> SobolLanes<N> {
-    /// Sample `samples[i]` of pixel `pixels[i]` in lane i, of `spp` per pixel, under the seed
-    /// whose key is `seed_key` ([`seed_key`]): [`SampleStream::with_seed_key`] with the
-    /// Sobol pattern, in lanes.
-    #[inline(always)]
-    pub(crate) fn new(spp: u32, seed_key: u64, pixels: [u32; N], samples: [u32; N]) -> Self {
-        SobolLanes {
-            spp,
-            pixel_key: pixels.map(|p| pixel_key(seed_key, p)),
-            sample: samples,
-            sample_reversed: samples.map(u32::reverse_bits),
-            dim: 0,
-        }
-    }
-
-    /// [`SampleStream::next_2d`] in every lane.
-    #[inline(always)]
-    pub(crate) fn next_2d(&mut self) -> [Vec2; N] {
-        let mut out = [Vec2::ZERO; N];
-        for ((o, &key), &rev) in out
-            .iter_mut()
-            .zip(&self.pixel_key)
-            .zip(&self.sample_reversed)
-        {
-            *o = sobol_pair(key, rev, self.dim);
-        }
-        self.dim += 1;
-        out
-    }
-
-    /// [`SampleStream::next_1d`] in every lane.
-    #[inline(always)]
-    pub(crate) fn next_1d(&mut self) -> [f32; N] {
-        self.next_2d().map(|v| v.x)
-    }
-
-    /// Skips `n` dimensions, as [`Uniform::skip`].
-    #[inline(always)]
-    pub(crate) fn skip(&mut self, n: u32) {
-        self.dim += n;
-    }
-
-    /// Lane `lane`'s stream, to go on drawing from where the lanes are.
-    #[inline(always)]
-    pub(crate) fn stream(&self, lane: usize) -> SampleStream {
-        SampleStream {
-            pattern: Pattern::Sobol,
-            count: self.spp.max(1),
-            sample: self.sample[lane],
-            sample_reversed: self.sample_reversed[lane],
-            pixel_key: self.pixel_key[lane],
-            sample_key: 0,
-            dim: self.dim,
-        }
-    }
 }
 
 /// The key every pixel's numbers under `seed` derive from.
@@ -306,7 +169,12 @@ impl SampleStream {
         pixel: u32,
         sample: u32,
     ) -> Self {
-        let pixel_key = pixel_key(seed_key, pixel);
+        Self::of_pixel_key(pattern, spp, pixel_key(seed_key, pixel), sample)
+    }
+
+    /// [`SampleStream::with_seed_key`] with the pixel's key, [`pixel_key`].
+    #[inline(always)]
+    fn of_pixel_key(pattern: Pattern, spp: u32, pixel_key: u64, sample: u32) -> Self {
         SampleStream {
             pattern,
             count: spp.max(1),
@@ -517,17 +385,6 @@ mod tests {
     }
 
     #[test]
-    fn sobol_2d_matches_the_sequence() {
-        // Dimension 1 of Sobol in index order: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
-        let expected = [0.0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875];
-        for (i, e) in expected.iter().enumerate() {
-            let (x, y) = sobol_2d(i as u32);
-            assert_eq!(y as f64 / 2f64.powi(32), *e, "index {i}");
-            assert_eq!(x, (i as u32).reverse_bits());
-        }
-    }
-
-    #[test]
     fn sobol_prefixes_are_stratified() {
         // Every power-of-two prefix of every dimension pair is a (0,m,2)-net: one point in
         // each elementary interval of area 1/n, of every shape (n×1, n/2×2, ..., 1×n).
@@ -578,26 +435,6 @@ mod tests {
                 cov.abs() < 4.0 / (12.0 * (n as f64).sqrt()),
                 "{pattern:?}: covariance {cov}"
             );
-        }
-    }
-
-    #[test]
-    fn the_sobol_shortcut_equals_the_long_form() {
-        for pixel in 0..4 {
-            for sample in [0, 1, 2, 3, 7, 100, 1023, 65_537] {
-                let mut st = SampleStream::with_pattern(Pattern::Sobol, 16, 3, pixel, sample);
-                for _ in 0..6 {
-                    let key = st.dimension_key();
-                    let index = owen_scramble(sample, key as u32);
-                    let (x, y) = sobol_2d(index);
-                    let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
-                    let long = Vec2::new(
-                        fraction_to_f32(owen_scramble(x, sx)),
-                        fraction_to_f32(owen_scramble(y, sy)),
-                    );
-                    assert_eq!(st.next_2d(), long, "pixel {pixel}, sample {sample}");
-                }
-            }
         }
     }
 }
