@@ -1,7 +1,8 @@
 //! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
 
+use crate::math::lanes::{Real, Vector};
 use crate::math::rng::SobolLanes;
-use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk};
+use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk_of};
 use crate::params::Params;
 use glam::Vec2;
 
@@ -231,17 +232,38 @@ impl CameraFrame {
     /// pinhole ray meets it, so that plane is sharp and everything else blurs.
     #[inline]
     pub fn ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> Ray {
-        let (x, y) = (2.0 * film.x - 1.0, 1.0 - 2.0 * film.y);
+        let (origin, dir, time) = self.ray_of(film.x, film.y, lens.x, lens.y, time_u);
+        Ray { origin, dir, time }
+    }
+
+    /// [`CameraFrame::ray`] for one ray or one per lane, the film position (`film_x`,
+    /// `film_y`), the lens sample (`lens_x`, `lens_y`) and the time sample given
+    /// coordinate by coordinate: the ray's origin, unit direction and time.
+    #[inline(always)]
+    pub(crate) fn ray_of<R: Real>(
+        &self,
+        film_x: R,
+        film_y: R,
+        lens_x: R,
+        lens_y: R,
+        time_u: R,
+    ) -> (R::V3, R::V3, R) {
+        let (one, two) = (R::splat(1.0), R::splat(2.0));
+        let (x, y) = (two * film_x - one, one - two * film_y);
+        let at = R::V3::splat;
         // The pinhole direction, with unit length along `forward`.
-        let d = self.forward + x * self.right + y * self.up;
-        let time = self.shutter.0 + time_u * (self.shutter.1 - self.shutter.0);
+        let d = at(self.forward) + at(self.right).scale(x) + at(self.up).scale(y);
+        let (open, close) = (R::splat(self.shutter.0), R::splat(self.shutter.1));
+        let time = open + time_u * (close - open);
         if self.aperture <= 0.0 {
-            return Ray::new(self.origin, d, time);
+            return (at(self.origin), d.normalize(), time);
         }
-        let focus_point = self.origin + self.focus_distance * d;
-        let l = self.aperture * concentric_disk(lens);
-        let origin = self.origin + l.x * self.lens_u + l.y * self.lens_v;
-        Ray::new(origin, focus_point - origin, time)
+        let focus_point = at(self.origin) + d.scale(R::splat(self.focus_distance));
+        let (disk_x, disk_y) = concentric_disk_of(lens_x, lens_y);
+        let aperture = R::splat(self.aperture);
+        let (l_x, l_y) = (aperture * disk_x, aperture * disk_y);
+        let origin = at(self.origin) + at(self.lens_u).scale(l_x) + at(self.lens_v).scale(l_y);
+        (origin, (focus_point - origin).normalize(), time)
     }
 
     /// The transmission axis of a linear polariser in front of the lens at `angle_deg`
@@ -343,6 +365,43 @@ mod tests {
             let r = f.ray(film, lens, 0.0);
             let t = (r.origin.z - target.z) / -r.dir.z;
             assert!((r.at(t) - target).length() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn rays_made_in_lanes_are_each_pinhole_and_thin_lens_ray_bit_for_bit() {
+        use crate::math::lanes::Lanes;
+        let c = cam();
+        let lens = Exposure {
+            aperture: 0.3,
+            focus_distance: 4.5,
+            shutter: (0.25, 0.75),
+        };
+        // Film corners and centre, the lens's centre (0.5, 0.5, where the disk map takes
+        // its own branch), its wedges and its edges.
+        let film = [(0.0, 0.0), (1.0, 1.0), (0.5, 0.5), (0.13, 0.91)];
+        let lens_u = [(0.5, 0.5), (0.9, 0.55), (0.45, 0.05), (0.0, 1.0)];
+        let time_u = [0.0, 1.0, 0.37, 0.999];
+        for frame in [c.pinhole(1.5), c.frame(1.5, lens)] {
+            let row = |f: &dyn Fn(usize) -> f32| Lanes::<4>(std::array::from_fn(f));
+            let (o, d, t) = frame.ray_of(
+                row(&|i| film[i].0),
+                row(&|i| film[i].1),
+                row(&|i| lens_u[i].0),
+                row(&|i| lens_u[i].1),
+                row(&|i| time_u[i]),
+            );
+            for i in 0..4 {
+                let r = frame.ray(
+                    Vec2::new(film[i].0, film[i].1),
+                    Vec2::new(lens_u[i].0, lens_u[i].1),
+                    time_u[i],
+                );
+                let bits = |v: [f32; 3]| v.map(f32::to_bits);
+                assert_eq!(bits([o.x.0[i], o.y.0[i], o.z.0[i]]), bits(r.origin.into()));
+                assert_eq!(bits([d.x.0[i], d.y.0[i], d.z.0[i]]), bits(r.dir.into()));
+                assert_eq!(t.0[i].to_bits(), r.time.to_bits());
+            }
         }
     }
 

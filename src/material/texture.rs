@@ -29,7 +29,9 @@ impl Texture {
             Texture::Solid(c) => *c,
             Texture::Checker { even, odd, scale } => {
                 let k = floor_i64(uv.x * scale.x) + floor_i64(uv.y * scale.y);
-                if k.rem_euclid(2) == 0 { *even } else { *odd }
+                // k's parity picks the cell's colour by index, not by a branch: on a
+                // checker seen at random the branch is mispredicted half the time.
+                [*even, *odd][(k & 1) as usize]
             }
         }
     }

@@ -3,6 +3,7 @@
 //! the distribution; [`crate::math::orthonormal_basis`] places them in the world.
 
 use crate::math::Vec3;
+use crate::math::lanes::Real;
 use glam::Vec2;
 use std::f32::consts::{FRAC_PI_4, PI};
 
@@ -13,17 +14,25 @@ use std::f32::consts::{FRAC_PI_4, PI};
 /// in the other, r (sin φ, cos φ) with r = y, φ = π/4 · x/y (the angle π/2 − φ). Either
 /// way |φ| ≤ π/4, where `sin_cos_quarter` needs no range reduction.
 pub fn concentric_disk(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
-    if o.x == 0.0 && o.y == 0.0 {
-        return Vec2::ZERO;
-    }
-    if o.x.abs() > o.y.abs() {
-        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (o.y / o.x));
-        o.x * Vec2::new(cos, sin)
-    } else {
-        let (sin, cos) = sin_cos_quarter(FRAC_PI_4 * (o.x / o.y));
-        o.y * Vec2::new(sin, cos)
-    }
+    let (x, y) = concentric_disk_of(u.x, u.y);
+    Vec2::new(x, y)
+}
+
+/// [`concentric_disk`] for one point or one per lane, the wedges chosen by `select`: the
+/// point (u_x, u_y) of the unit square, mapped to (x, y) in the unit disk.
+#[inline(always)]
+pub(crate) fn concentric_disk_of<R: Real>(u_x: R, u_y: R) -> (R, R) {
+    let (one, two, zero) = (R::splat(1.0), R::splat(2.0), R::splat(0.0));
+    let (o_x, o_y) = (two * u_x - one, two * u_y - one);
+    // |x| > |y|: r = x, φ = π/4 · y/x; else r = y, φ = π/4 · x/y.
+    let wide = o_y.abs().less(o_x.abs());
+    let r = R::select(wide, o_x, o_y);
+    let ratio = R::select(wide, o_y, o_x) / r;
+    let (sin, cos) = sin_cos_quarter(R::splat(FRAC_PI_4) * ratio);
+    let centre = o_x.equal(zero) & o_y.equal(zero);
+    let x = R::select(wide, r * cos, r * sin);
+    let y = R::select(wide, r * sin, r * cos);
+    (R::select(centre, zero, x), R::select(centre, zero, y))
 }
 
 /// (sin φ, cos φ) for |φ| ≤ π/4, by the minimax polynomials of Cephes' `sinf`/`cosf`
@@ -31,11 +40,13 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 /// `sincosf` cost more than the rest of the thin-lens ray.
 ///
 /// sin φ ≈ φ + φ³(s₁ + φ²(s₂ + φ² s₃)),  cos φ ≈ 1 − φ²/2 + φ⁴(c₁ + φ²(c₂ + φ² c₃)).
-#[inline]
-fn sin_cos_quarter(phi: f32) -> (f32, f32) {
+#[inline(always)]
+fn sin_cos_quarter<R: Real>(phi: R) -> (R, R) {
+    let c = R::splat;
     let z = phi * phi;
-    let sin = phi + phi * z * (-1.666_665_5e-1 + z * (8.332_161e-3 + z * -1.951_529_6e-4));
-    let cos = 1.0 - 0.5 * z + z * z * (4.166_664_6e-2 + z * (-1.388_731_6e-3 + z * 2.443_315_7e-5));
+    let sin = phi + phi * z * (c(-1.666_665_5e-1) + z * (c(8.332_161e-3) + z * c(-1.951_529_6e-4)));
+    let cos = c(1.0) - c(0.5) * z
+        + z * z * (c(4.166_664_6e-2) + z * (c(-1.388_731_6e-3) + z * c(2.443_315_7e-5)));
     (sin, cos)
 }
 

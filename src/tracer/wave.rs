@@ -23,9 +23,9 @@ use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
 use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
 use crate::material::{Lobe, Side};
-use crate::math::lanes::{LaneKernel, RayColumns, Width, asked_lanes};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Width, asked_lanes};
 use crate::math::rng::SobolLanes;
-use crate::math::{Color, Pattern, Ray, SampleStream, offset_ray_origin};
+use crate::math::{Color, Pattern, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
 use std::ops::Range;
@@ -151,7 +151,7 @@ impl Rays {
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
 #[derive(Default)]
 pub struct Waves {
-    draws: Vec<(SampleStream, CameraSample)>,
+    draws: Vec<(SampleStream, Ray)>,
     slots: Vec<Slot>,
     roots: Vec<Option<u32>>,
     level: Rays,
@@ -173,15 +173,15 @@ struct Queue<'q> {
     children: &'q mut Vec<Child>,
 }
 
-/// The camera samples of a wave: each sample's random numbers, with the camera's drawn, `N`
-/// samples' Sobol draws at a time in lanes (the pattern must be Sobol).
-struct CameraDraws<'a, 't> {
+/// The camera rays of a wave, with each sample's random numbers after the camera's: `N`
+/// rays at a time in lanes, and their Sobol draws too where the pattern is Sobol.
+struct CameraRays<'a, 't> {
     tracer: &'a Tracer<'t>,
     samples: &'a [(u32, u32, u32)],
-    out: &'a mut Vec<(SampleStream, CameraSample)>,
+    out: &'a mut Vec<(SampleStream, Ray)>,
 }
 
-impl LaneKernel for CameraDraws<'_, '_> {
+impl LaneKernel for CameraRays<'_, '_> {
     type Output = ();
     #[inline(always)]
     fn run<const N: usize>(self) {
@@ -189,15 +189,38 @@ impl LaneKernel for CameraDraws<'_, '_> {
         let chunks = self.samples.chunks_exact(N);
         let rest = chunks.remainder();
         for chunk in chunks {
-            let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
-            let numbers = std::array::from_fn(|i| chunk[i].2);
-            let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
-            let cs = t.frame.draw_samples(&mut lanes);
+            let draws: [(SampleStream, CameraSample); N] = if t.params.pattern == Pattern::Sobol {
+                let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
+                let numbers = std::array::from_fn(|i| chunk[i].2);
+                let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
+                let cs = t.frame.draw_samples(&mut lanes);
+                std::array::from_fn(|i| (lanes.stream(i), cs[i]))
+            } else {
+                std::array::from_fn(|i| t.camera_draw(chunk[i].0, chunk[i].1, chunk[i].2))
+            };
+            let lane = |f: &dyn Fn(usize) -> f32| Lanes::<N>(std::array::from_fn(f));
+            // As `camera_ray`: the film position ((x + pixel.x) / width, (y + pixel.y) / height).
+            let film_x = (lane(&|i| chunk[i].0 as f32) + lane(&|i| draws[i].1.pixel.x))
+                / Lanes::splat(t.width as f32);
+            let film_y = (lane(&|i| chunk[i].1 as f32) + lane(&|i| draws[i].1.pixel.y))
+                / Lanes::splat(t.height as f32);
+            let (lens_x, lens_y) = (lane(&|i| draws[i].1.lens.x), lane(&|i| draws[i].1.lens.y));
+            let time_u = lane(&|i| draws[i].1.time);
+            let (o, d, time) = t.frame.ray_of(film_x, film_y, lens_x, lens_y, time_u);
             self.out
-                .extend(cs.iter().enumerate().map(|(i, cs)| (lanes.stream(i), *cs)));
+                .extend(draws.into_iter().enumerate().map(|(i, (rng, _))| {
+                    let ray = Ray {
+                        origin: Vec3::new(o.x.0[i], o.y.0[i], o.z.0[i]),
+                        dir: Vec3::new(d.x.0[i], d.y.0[i], d.z.0[i]),
+                        time: time.0[i],
+                    };
+                    (rng, ray)
+                }));
         }
-        let scalar = rest.iter().map(|&(x, y, s)| t.camera_draw(x, y, s));
-        self.out.extend(scalar);
+        self.out.extend(rest.iter().map(|&(x, y, s)| {
+            let (rng, cs) = t.camera_draw(x, y, s);
+            (rng, t.camera_ray(x, y, &cs))
+        }));
     }
 }
 
@@ -237,17 +260,12 @@ impl Tracer<'_> {
         media.clear();
         media.push(Media::default());
         draws.clear();
-        if self.params.pattern == Pattern::Sobol {
-            width.dispatch(CameraDraws {
-                tracer: self,
-                samples,
-                out: draws,
-            });
-        } else {
-            draws.extend(samples.iter().map(|&(x, y, s)| self.camera_draw(x, y, s)));
-        }
-        for (&(x, y, _), (rng, cs)) in samples.iter().zip(draws.drain(..)) {
-            let ray = self.camera_ray(x, y, &cs);
+        width.dispatch(CameraRays {
+            tracer: self,
+            samples,
+            out: draws,
+        });
+        for (rng, ray) in draws.drain(..) {
             stats.samples += 1;
             let camera = ray.origin.is_finite() && ray.dir.is_finite();
             let node = Node {

@@ -22,6 +22,9 @@ pub trait Vector<R>: Copy + Add<Output = Self> + Sub<Output = Self> {
     fn length_squared(self) -> R {
         self.dot(self)
     }
+    /// The unit vector along `self`: each coordinate divided by |self| where glam divides
+    /// (SSE2), times 1 / |self| where it multiplies by the reciprocal (NEON, no SIMD).
+    fn normalize(self) -> Self;
 }
 
 /// One ray's vectors are glam's, in SIMD registers as everywhere else in the tracer.
@@ -41,6 +44,10 @@ impl Vector<f32> for Vec3 {
     #[inline(always)]
     fn scale(self, s: f32) -> Vec3 {
         s * self
+    }
+    #[inline(always)]
+    fn normalize(self) -> Vec3 {
+        Vec3::normalize(self)
     }
 }
 
@@ -82,6 +89,19 @@ impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
             x: s * self.x,
             y: s * self.y,
             z: s * self.z,
+        }
+    }
+    #[inline(always)]
+    fn normalize(self) -> Self {
+        let length = self.length_squared().sqrt();
+        if cfg!(target_feature = "sse2") {
+            V3 {
+                x: self.x / length,
+                y: self.y / length,
+                z: self.z / length,
+            }
+        } else {
+            self.scale(Lanes::splat(1.0) / length)
         }
     }
 }
@@ -143,6 +163,11 @@ mod tests {
             assert_eq!(
                 [c.x.0[i], c.y.0[i], c.z.0[i]].map(bits),
                 g.to_array().map(bits)
+            );
+            let n = a.normalize();
+            assert_eq!(
+                [n.x.0[i], n.y.0[i], n.z.0[i]].map(bits),
+                v.normalize().to_array().map(bits)
             );
             let s = a.scale(Lanes::splat(1.5));
             let g = *v * 1.5;
