@@ -14,6 +14,7 @@ pub use accel::{Accel, PrimRef};
 pub use mesh::Mesh;
 pub use shapes::{Plane, Quad, Sphere};
 
+use crate::math::lanes::{Lanes, Real, V3, Vector};
 use crate::math::{Ray, Vec3};
 use glam::Vec2;
 
@@ -57,6 +58,30 @@ pub enum Shape {
     Plane(Plane),
     /// A triangle mesh.
     Mesh(Mesh),
+}
+
+/// The hit records of `N` rays on one analytic shape, column by column: points, unit
+/// normals (geometric and shading alike) and surface coordinates (u, v).
+#[derive(Clone, Copy)]
+pub(crate) struct SurfaceLanes<const N: usize> {
+    pub(crate) p: V3<Lanes<N>>,
+    pub(crate) n: V3<Lanes<N>>,
+    pub(crate) uv: (Lanes<N>, Lanes<N>),
+}
+
+impl<const N: usize> SurfaceLanes<N> {
+    /// Lane `i`'s record, at distance `t`.
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize, t: f32) -> SurfaceHit {
+        let at = |v: &V3<Lanes<N>>| Vec3::new(v.x.0[i], v.y.0[i], v.z.0[i]);
+        SurfaceHit {
+            t,
+            p: at(&self.p),
+            n_geom: at(&self.n),
+            n_shade: at(&self.n),
+            uv: Vec2::new(self.uv.0.0[i], self.uv.1.0[i]),
+        }
+    }
 }
 
 impl Shape {
@@ -127,6 +152,50 @@ impl Shape {
             Shape::Plane(_) => None,
             Shape::Mesh(m) => Some(m.sample_point(index as usize, u, time)),
         }
+    }
+
+    /// The hit records of `N` rays that all met this shape, at distances `t`, computed in
+    /// lanes (the rays given coordinate by coordinate: origins `o`, directions `d`, times):
+    /// lane i of each column is [`Shape::surface_hit`]'s of ray i bit for bit. `None` where
+    /// the record is made ray by ray: a mesh (each lane its own triangle), a sphere
+    /// `with_uv`.
+    #[inline(always)]
+    pub(crate) fn surface_lanes<const N: usize>(
+        &self,
+        o: V3<Lanes<N>>,
+        d: V3<Lanes<N>>,
+        time: Lanes<N>,
+        t: Lanes<N>,
+        with_uv: bool,
+    ) -> Option<SurfaceLanes<N>> {
+        let zero = Lanes::splat(0.0);
+        Some(match self {
+            Shape::Sphere(s) if !with_uv => {
+                let (p, n) = s.surface_of(o, d, time, t);
+                SurfaceLanes {
+                    p,
+                    n,
+                    uv: (zero, zero),
+                }
+            }
+            Shape::Quad(q) => {
+                let (p, a, b) = q.surface_of(o, d, t);
+                SurfaceLanes {
+                    p,
+                    n: V3::splat(q.normal()),
+                    uv: (a, b),
+                }
+            }
+            Shape::Plane(plane) => {
+                let (p, u, v) = plane.surface_of(o, d, t);
+                SurfaceLanes {
+                    p,
+                    n: V3::splat(plane.normal),
+                    uv: (u, v),
+                }
+            }
+            Shape::Sphere(_) | Shape::Mesh(_) => return None,
+        })
     }
 
     /// The full hit record of primitive `index` at distance `t` along `ray`; surface

@@ -81,9 +81,7 @@ impl Sphere {
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
     pub fn surface_hit(&self, ray: &Ray, t: f32, with_uv: bool) -> SurfaceHit {
-        let center = self.center_at(ray.time);
-        let n = (ray.at(t) - center).normalize();
-        let p = center + self.radius * n;
+        let (p, n) = self.surface_of(ray.origin, ray.dir, ray.time, t);
         // Longitude around +y and colatitude from +y, each in [0, 1]; only for textures
         // (atan2 and acos cost as much as the intersection).
         let uv = if with_uv {
@@ -101,6 +99,16 @@ impl Sphere {
             n_shade: n,
             uv,
         }
+    }
+
+    /// The point and unit normal at distance `t` along a ray (origin `o`, direction `d`,
+    /// frame time `time`), for one ray or one per lane: n = (o + t d − c(time)) / |…|, the
+    /// point reprojected onto the sphere as c + r n.
+    #[inline(always)]
+    pub(crate) fn surface_of<R: Real>(&self, o: R::V3, d: R::V3, time: R, t: R) -> (R::V3, R::V3) {
+        let center = R::V3::splat(self.center) + R::V3::splat(self.velocity).scale(time);
+        let n = ((o + d.scale(t)) - center).normalize();
+        (center + n.scale(R::splat(self.radius)), n)
     }
 }
 
@@ -175,16 +183,30 @@ impl Quad {
 
     /// The hit record at `t`, with the point rebuilt from its surface coordinates.
     pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
-        let rel = ray.at(t) - self.corner;
-        let a = self.w.dot(rel.cross(self.edge_v)).clamp(0.0, 1.0);
-        let b = self.w.dot(self.edge_u.cross(rel)).clamp(0.0, 1.0);
+        let (p, a, b) = self.surface_of(ray.origin, ray.dir, t);
         SurfaceHit {
             t,
-            p: self.corner + a * self.edge_u + b * self.edge_v,
+            p,
             n_geom: self.normal,
             n_shade: self.normal,
             uv: Vec2::new(a, b),
         }
+    }
+
+    /// The point at distance `t` along a ray (origin `o`, direction `d`) and its
+    /// coordinates (a, b), for one ray or one per lane: a = w·(rel × edge_v) and
+    /// b = w·(edge_u × rel) clamped to [0, 1] (rel = o + t d − corner), the point rebuilt
+    /// as corner + a edge_u + b edge_v.
+    #[inline(always)]
+    pub(crate) fn surface_of<R: Real>(&self, o: R::V3, d: R::V3, t: R) -> (R::V3, R, R) {
+        let at = R::V3::splat;
+        let rel = (o + d.scale(t)) - at(self.corner);
+        let w = at(self.w);
+        let (zero, one) = (R::splat(0.0), R::splat(1.0));
+        let a = clamp(w.dot(rel.cross(at(self.edge_v))), zero, one);
+        let b = clamp(w.dot(at(self.edge_u).cross(rel)), zero, one);
+        let p = at(self.corner) + at(self.edge_u).scale(a) + at(self.edge_v).scale(b);
+        (p, a, b)
     }
 }
 
@@ -234,17 +256,36 @@ impl Plane {
     /// The hit record at `t`, with the point projected onto the plane. The surface
     /// coordinates are world-space distances along two tangents (for checkers in world units).
     pub fn surface_hit(&self, ray: &Ray, t: f32) -> SurfaceHit {
-        let q = ray.at(t);
-        let p = q - self.normal * self.normal.dot(q - self.point);
-        let rel = p - self.point;
+        let (p, u, v) = self.surface_of(ray.origin, ray.dir, t);
         SurfaceHit {
             t,
             p,
             n_geom: self.normal,
             n_shade: self.normal,
-            uv: Vec2::new(rel.dot(self.tangent), rel.dot(self.bitangent)),
+            uv: Vec2::new(u, v),
         }
     }
+
+    /// The point at distance `t` along a ray (origin `o`, direction `d`), projected onto
+    /// the plane (q − n n·(q − point), q = o + t d), and its distances along the two
+    /// tangents from `point`, for one ray or one per lane.
+    #[inline(always)]
+    pub(crate) fn surface_of<R: Real>(&self, o: R::V3, d: R::V3, t: R) -> (R::V3, R, R) {
+        let at = R::V3::splat;
+        let (n, point) = (at(self.normal), at(self.point));
+        let q = o + d.scale(t);
+        let p = q - n.scale(n.dot(q - point));
+        let rel = p - point;
+        (p, rel.dot(at(self.tangent)), rel.dot(at(self.bitangent)))
+    }
+}
+
+/// `x` clamped to [lo, hi] as `f32::clamp` does it (NaN stays NaN), for one number or
+/// one per lane.
+#[inline(always)]
+fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
+    let x = R::select(x.less(lo), lo, x);
+    R::select(hi.less(x), hi, x)
 }
 
 /// The distance t = n·(q − o) / n·d along each ray to the plane through `q` with normal
@@ -269,6 +310,72 @@ fn found(t: f32) -> Option<f32> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hit_records_made_in_lanes_are_each_rays_own_bit_for_bit() {
+        use crate::geometry::Shape;
+        use crate::math::lanes::{Lanes, V3};
+        let moving = Sphere {
+            velocity: Vec3::new(0.3, 0.0, -0.2),
+            ..Sphere::new(Vec3::new(0.1, 0.2, -5.0), 1.3)
+        };
+        let shapes = [
+            Shape::Sphere(moving),
+            Shape::Quad(Quad::new(
+                Vec3::new(-8.0, -6.0, -9.0),
+                Vec3::new(16.0, 0.0, 0.0),
+                Vec3::new(0.0, 12.0, 1.0),
+            )),
+            Shape::Plane(Plane::new(
+                Vec3::new(0.0, -1.0, 0.0),
+                Vec3::new(0.1, 1.0, 0.05),
+            )),
+        ];
+        // Rays from near the origin towards -z, fanned out, at four times.
+        let rays: [Ray; 4] = std::array::from_fn(|i| {
+            let f = i as f32;
+            let dir = Vec3::new(0.03 * f - 0.05, -0.04 * f - 0.05, -1.0);
+            Ray::new(Vec3::new(0.01 * f, -0.02, 0.3), dir, 0.25 * f)
+        });
+        let row = |f: &dyn Fn(&Ray) -> f32| Lanes::<4>(rays.each_ref().map(f));
+        let o = V3 {
+            x: row(&|r| r.origin.x),
+            y: row(&|r| r.origin.y),
+            z: row(&|r| r.origin.z),
+        };
+        let d = V3 {
+            x: row(&|r| r.dir.x),
+            y: row(&|r| r.dir.y),
+            z: row(&|r| r.dir.z),
+        };
+        for shape in &shapes {
+            let t = row(&|r| shape.intersect_t(0, r, f32::INFINITY).unwrap());
+            let lanes = shape
+                .surface_lanes(o, d, row(&|r| r.time), t, false)
+                .unwrap();
+            for (i, ray) in rays.iter().enumerate() {
+                let (a, b) = (
+                    lanes.get(i, t.0[i]),
+                    shape.surface_hit(0, ray, t.0[i], false),
+                );
+                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                assert_eq!(bits(a.p), bits(b.p), "{shape:?} ray {i}");
+                assert_eq!(bits(a.n_geom), bits(b.n_geom));
+                assert_eq!(bits(a.n_shade), bits(b.n_shade));
+                assert_eq!(
+                    a.uv.to_array().map(f32::to_bits),
+                    b.uv.to_array().map(f32::to_bits)
+                );
+            }
+        }
+        // A sphere's surface coordinates (atan2, acos) are made ray by ray.
+        let t = row(&|r| shapes[0].intersect_t(0, r, f32::INFINITY).unwrap());
+        assert!(
+            shapes[0]
+                .surface_lanes(o, d, row(&|r| r.time), t, true)
+                .is_none()
+        );
+    }
 
     #[test]
     fn sphere_hit_distances() {

@@ -28,6 +28,7 @@ pub use scatter::{Direct, Interface, Lobe, LobeKind, Part, Scatter, Side};
 pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
 pub use texture::Texture;
 
+use crate::math::lanes::Lanes;
 use crate::math::{Color, Uniform, Vec3};
 use crate::optics::polarization::Mueller;
 use crate::optics::reflect;
@@ -144,8 +145,25 @@ impl Material {
     /// The radiance it emits at surface coordinates `uv`, if it is a light.
     #[inline]
     pub fn emission(&self, uv: Vec2) -> Option<Color> {
+        self.light().map(|e| e.radiance.eval(uv))
+    }
+
+    /// [`Material::emission`] at `N` points (surface coordinates u and v per lane): each
+    /// lane's radiance, or `None` if it is not a light.
+    #[inline(always)]
+    pub(crate) fn emission_lanes<const N: usize>(
+        &self,
+        u: Lanes<N>,
+        v: Lanes<N>,
+    ) -> Option<[Color; N]> {
+        self.light().map(|e| e.radiance.eval_lanes(u, v))
+    }
+
+    /// Its emission, if it is a light.
+    #[inline(always)]
+    fn light(&self) -> Option<&Emissive> {
         match self {
-            Material::Emissive(e) => Some(e.radiance.eval(uv)),
+            Material::Emissive(e) => Some(e),
             Material::Diffuse(_)
             | Material::Mirror(_)
             | Material::Glossy(_)

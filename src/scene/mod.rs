@@ -19,10 +19,10 @@ pub use obj::{ObjPart, load_obj};
 pub use values::{MAX_IMAGE_SIDE, MAX_PIXELS, check_size};
 
 use crate::camera::Camera;
-use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit};
+use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit, SurfaceLanes};
 use crate::light::{Background, Light};
 use crate::material::{Diffuse, Material};
-use crate::math::lanes::{RayColumns, Width};
+use crate::math::lanes::{Lanes, RayColumns, V3, Width};
 use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
@@ -375,6 +375,22 @@ impl Scene {
             object: prim.object,
             material: self.object_materials[o],
         }
+    }
+
+    /// The hits of `N` rays that all met `object`, at distances `t` (the rays given
+    /// coordinate by coordinate), made in lanes as [`Shape::surface_lanes`] makes them:
+    /// their records and material; `None` where they are made ray by ray. Lane i's record
+    /// is [`Scene::hit_at`]'s of ray i bit for bit.
+    #[inline(always)]
+    pub(crate) fn hits_in_lanes<const N: usize>(
+        &self,
+        object: u32,
+        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        t: Lanes<N>,
+    ) -> Option<(SurfaceLanes<N>, u32)> {
+        let i = object as usize;
+        let surfaces = self.shapes[i].surface_lanes(o, d, time, t, self.object_uses_uv[i])?;
+        Some((surfaces, self.object_materials[i]))
     }
 }
 

@@ -16,6 +16,7 @@ mod shade;
 mod shadow;
 mod spectral;
 mod stats;
+mod surfaces;
 mod wave;
 
 use media::Arrival;

@@ -19,6 +19,7 @@
 use super::media::transmittance;
 use super::path::cross;
 use super::shade::pick_lobe;
+use super::surfaces::Surfaces;
 use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
 use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
@@ -158,7 +159,9 @@ pub struct Waves {
     next: Rays,
     // Every medium the wave's rays travel through: a reflected ray shares its parent's.
     media: Vec<Media>,
-    hits: Vec<Option<(PrimRef, f32)>>,
+    nearest: Vec<Option<(PrimRef, f32)>>,
+    hits: Vec<Option<Hit>>,
+    emitted: Vec<Option<Color>>,
     levels: Vec<Level>,
     radiance: Vec<Color>,
     below: Vec<Color>,
@@ -248,7 +251,9 @@ impl Tracer<'_> {
             level,
             next,
             media,
+            nearest,
             hits,
+            emitted,
             levels,
             radiance,
             below,
@@ -284,7 +289,14 @@ impl Tracer<'_> {
         }
         let mut depth = 0;
         while !level.rays.is_empty() {
-            self.scene.intersect_wave(&level.rays, width, hits);
+            self.scene.intersect_wave(&level.rays, width, nearest);
+            width.dispatch(Surfaces {
+                tracer: self,
+                rays: &level.rays,
+                nearest,
+                hits,
+                emitted,
+            });
             if levels.len() == depth {
                 levels.push(Level::default());
             }
@@ -297,12 +309,13 @@ impl Tracer<'_> {
                 media,
                 children,
             };
-            for (i, (node, hit)) in level.nodes.iter().zip(hits.iter()).enumerate() {
+            let surfaces = level.nodes.iter().zip(hits.iter()).zip(emitted.iter());
+            for (i, ((node, hit), &emitted)) in surfaces.enumerate() {
                 let ray = level.rays.get(i);
                 let slot = &mut slots[node.slot as usize];
                 let before = stats.total_rays();
-                let hit = hit.map(|(prim, t)| self.scene.hit_at(prim, &ray, t));
-                let value = self.shade_node(&ray, node, hit.as_ref(), slot, stats, &mut queue);
+                let surface = (hit.as_ref(), emitted);
+                let value = self.shade_node(&ray, node, surface, slot, stats, &mut queue);
                 slot.rays += (stats.total_rays() - before) as u32;
                 values.push(value);
             }
@@ -331,13 +344,14 @@ impl Tracer<'_> {
     }
 
     /// What the recursion's `trace_in` does at `node` once its ray's nearest surface `hit`
-    /// is known: the light it meets, or the hit's own light, with its children queued.
+    /// is known, with the radiance it `emitted` (where it is a light): the light it meets,
+    /// or the hit's own light, with its children queued.
     #[inline(always)]
     fn shade_node(
         &self,
         ray: &Ray,
         node: &Node,
-        hit: Option<&Hit>,
+        (hit, emitted): (Option<&Hit>, Option<Color>),
         slot: &mut Slot,
         stats: &mut Stats,
         queue: &mut Queue,
@@ -362,11 +376,11 @@ impl Tracer<'_> {
         let tr = sigma.map(|s| transmittance(s, hit.surface.t));
         let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
         let tr = tr.unwrap_or(Color::ONE);
-        let at = self.interaction(ray, hit, media, None);
-        let material = &self.materials[hit.material as usize];
-        if let Some(radiance) = material.emission(at.uv) {
+        if let Some(radiance) = emitted {
             return value(radiance, tr, queue);
         }
+        let at = self.interaction(ray, hit, media, None);
+        let material = &self.materials[hit.material as usize];
         let mut rec = NoRecorder;
         let mut w = Walk {
             rng: &mut slot.rng,
