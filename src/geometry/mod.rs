@@ -73,12 +73,11 @@ impl<const N: usize> SurfaceLanes<N> {
     /// Lane `i`'s record, at distance `t`.
     #[inline(always)]
     pub(crate) fn get(&self, i: usize, t: f32) -> SurfaceHit {
-        let at = |v: &V3<Lanes<N>>| Vec3::new(v.x.0[i], v.y.0[i], v.z.0[i]);
         SurfaceHit {
             t,
-            p: at(&self.p),
-            n_geom: at(&self.n),
-            n_shade: at(&self.n),
+            p: self.p.get(i),
+            n_geom: self.n.get(i),
+            n_shade: self.n.get(i),
             uv: Vec2::new(self.uv.0.0[i], self.uv.1.0[i]),
         }
     }

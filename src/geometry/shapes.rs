@@ -1,7 +1,7 @@
 //! Spheres, parallelograms and planes.
 
 use super::SurfaceHit;
-use crate::math::lanes::{Real, Vector};
+use crate::math::lanes::{Real, Vector, clamp};
 use crate::math::{Ray, Vec3, orthonormal_basis};
 use glam::Vec2;
 use obvhs::aabb::Aabb;
@@ -278,14 +278,6 @@ impl Plane {
         let rel = p - point;
         (p, rel.dot(at(self.tangent)), rel.dot(at(self.bitangent)))
     }
-}
-
-/// `x` clamped to [lo, hi] as `f32::clamp` does it (NaN stays NaN), for one number or
-/// one per lane.
-#[inline(always)]
-fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
-    let x = R::select(x.less(lo), lo, x);
-    R::select(hi.less(x), hi, x)
 }
 
 /// The distance t = n·(q − o) / n·d along each ray to the plane through `q` with normal

@@ -2,10 +2,12 @@
 //! over a diffuse base). The formulas are in [`crate::optics`].
 
 use super::{Brdf, Direct, Interaction, Interface, Lobe, Scatter, Side, Texture};
-use crate::math::Color;
+use super::{cos_i_of, mirror_dir_of};
+use crate::math::lanes::{Lanes, Mask, Real, V3, Vector};
+use crate::math::{Color, Vec3};
 use crate::optics::dispersion::ior_at;
 use crate::optics::polarization::{Mueller, fresnel_amplitudes};
-use crate::optics::{FresnelMode, refract};
+use crate::optics::{FresnelMode, fresnel_exact_of, refract_of};
 use crate::params::Params;
 
 /// A clear or coloured dielectric (glass, water, an air bubble): every hit splits into a
@@ -140,26 +142,115 @@ impl Dielectric {
 
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
         let (n1, n2) = self.sides(hit);
-        let cos_i = hit.cos_i();
-        // Snell's law; the refracted ray must cross the geometric surface.
-        let refracted = refract(hit.dir, hit.n_shade, n1, n2)
-            .filter(|t| t.dot(hit.n_geom) < 0.0)
-            .or_else(|| refract(hit.dir, hit.n_geom, n1, n2));
+        let split = split_of::<f32>(hit.dir, hit.n_geom, hit.n_shade, n1, n2);
+        let refracted = split.refracts.then_some(split.refracted);
         let r = match refracted {
-            Some(_) => self.reflectance(cos_i, n1, n2),
+            Some(_) => self.reflectance(split.cos_i, n1, n2),
             None => 1.0,
         };
+        Split {
+            mirror: split.mirror,
+            refracted,
+            interface: Interface {
+                cos_i: split.cos_i,
+                n1,
+                n2,
+                r,
+            },
+        }
+        .scatter()
+    }
+}
+
+/// [`Dielectric::scatter`] for `N` hits at once, made in lanes: hit i on `dielectrics[i]`,
+/// the rays' directions `dir`, the normals facing them (`n_geom`, `n_shade`), whether each
+/// is `entering`, and the index on the surface's outer side (`outside_ior`). For samples of
+/// one wavelength only (no dispersion). Lane i's split is what `scatter` gives for hit i,
+/// bit for bit.
+#[inline(always)]
+pub(crate) fn split_lanes<'d, const N: usize>(
+    dielectrics: [&'d Dielectric; N],
+    dir: V3<Lanes<N>>,
+    (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
+    entering: Mask<N>,
+    outside_ior: Lanes<N>,
+) -> impl Iterator<Item = Split> + 'd {
+    let ior = Lanes::from_fn(|i| dielectrics[i].ior);
+    let n1 = Lanes::select(entering, outside_ior, ior);
+    let n2 = Lanes::select(entering, ior, outside_ior);
+    let split = split_of::<Lanes<N>>(dir, n_geom, n_shade, n1, n2);
+    let exact = dielectrics.iter().all(|d| d.fresnel == FresnelMode::Exact);
+    let r = if exact {
+        fresnel_exact_of(split.cos_i, n1, n2).2
+    } else {
+        Lanes::from_fn(|i| dielectrics[i].reflectance(split.cos_i.0[i], n1.0[i], n2.0[i]))
+    };
+    let r = Lanes::select(split.refracts, r, Lanes::splat(1.0));
+    (0..N).map(move |i| Split {
+        mirror: split.mirror.get(i),
+        refracted: (split.refracts.0[i] != 0).then(|| split.refracted.get(i)),
+        interface: Interface {
+            cos_i: split.cos_i.0[i],
+            n1: n1.0[i],
+            n2: n2.0[i],
+            r: r.0[i],
+        },
+    })
+}
+
+/// The two directions of a dielectric's split, for one ray or one per lane: the mirror
+/// direction, the refracted one where it `refracts` (it must cross the geometric surface:
+/// refracted about the shading normal, else about the geometric one), and cos θi.
+struct SplitOf<R: Real> {
+    mirror: R::V3,
+    refracted: R::V3,
+    refracts: R::Mask,
+    cos_i: R,
+}
+
+/// Snell's law at a hit of direction `dir` with normals `n_geom` and `n_shade` (facing the
+/// ray) from index `n1` into `n2`.
+#[inline(always)]
+fn split_of<R: Real>(dir: R::V3, n_geom: R::V3, n_shade: R::V3, n1: R, n2: R) -> SplitOf<R> {
+    let (t, ok) = refract_of::<R>(dir, n_shade, n1, n2);
+    let crosses = ok & t.dot(n_geom).less(R::splat(0.0));
+    let (refracted, refracts) = if R::all(crosses) {
+        (t, crosses)
+    } else {
+        let (about_geom, ok) = refract_of::<R>(dir, n_geom, n1, n2);
+        (R::V3::select(crosses, t, about_geom), crosses | ok)
+    };
+    SplitOf {
+        mirror: mirror_dir_of::<R>(dir, n_geom, n_shade),
+        refracted,
+        refracts,
+        cos_i: cos_i_of::<R>(dir, n_shade),
+    }
+}
+
+/// A dielectric's answer at one hit, before it is a [`Scatter`]: the mirror direction, the
+/// refracted one (`None`: total internal reflection) and the interface's quantities.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Split {
+    mirror: Vec3,
+    refracted: Option<Vec3>,
+    interface: Interface,
+}
+
+impl Split {
+    /// The reflected ray of weight R and the refracted ray of weight 1 − R (under total
+    /// internal reflection, R = 1 and no refracted ray).
+    #[inline]
+    pub(crate) fn scatter(&self) -> Scatter {
+        let r = self.interface.r;
         Scatter {
             lobes: [
-                Some(Lobe::delta(
-                    Side::Reflect,
-                    hit.mirror_dir(),
-                    Color::splat(r),
-                )),
-                refracted.map(|dir| Lobe::delta(Side::Transmit, dir, Color::splat(1.0 - r))),
+                Some(Lobe::delta(Side::Reflect, self.mirror, Color::splat(r))),
+                self.refracted
+                    .map(|dir| Lobe::delta(Side::Transmit, dir, Color::splat(1.0 - r))),
             ],
-            interface: Some(Interface { cos_i, n1, n2, r }),
-            total_internal_reflection: refracted.is_none(),
+            interface: Some(self.interface),
+            total_internal_reflection: self.refracted.is_none(),
             ..Scatter::default()
         }
     }
@@ -227,6 +318,61 @@ mod tests {
         assert_eq!(lobes[1].side, Side::Transmit);
         assert!((lobes[1].dir - -Vec3::Y).length() < 1e-6);
         assert!(!s.total_internal_reflection);
+    }
+
+    #[test]
+    fn splits_made_in_lanes_are_each_hits_scatter_bit_for_bit() {
+        use crate::math::lanes::{Lanes, Mask, V3};
+        let exact = glass(FresnelMode::Exact);
+        let schlick = Dielectric {
+            ior: 1.33,
+            ..glass(FresnelMode::Schlick)
+        };
+        // Entering and leaving, head-on to grazing, beyond the critical angle (45° and 80°
+        // from inside), with a shading normal tilted off the geometric one, so that both
+        // refractions (about the shading normal, then the geometric) and both mirror
+        // directions are taken; an outside index other than air.
+        let tilted = Vec3::new(0.3, 1.0, 0.1).normalize();
+        let hits: [Interaction; 8] = std::array::from_fn(|i| {
+            let theta = [0.0, 30.0, 60.0, 89.9, 20.0, 45.0, 80.0, 87.0][i];
+            Interaction {
+                entering: i < 4,
+                n_shade: if i % 3 == 2 { tilted } else { Vec3::Y },
+                outside_ior: if i == 1 { 1.2 } else { 1.0 },
+                ..hit_at(theta)
+            }
+        });
+        let tir = |h: &Interaction| exact.scatter(h).total_internal_reflection;
+        assert!(
+            hits.iter().any(tir) && !hits.iter().all(tir),
+            "both cases are tried"
+        );
+        for kinds in [
+            [&exact; 8],
+            std::array::from_fn(|i| [&exact, &schlick][i % 2]),
+        ] {
+            let v3 = |f: &dyn Fn(&Interaction) -> Vec3| V3::from_fn(|i| f(&hits[i]));
+            let entering = Mask(
+                hits.each_ref()
+                    .map(|h| if h.entering { u32::MAX } else { 0 }),
+            );
+            let outside = Lanes::from_fn(|i| hits[i].outside_ior);
+            let normals = (v3(&|h| h.n_geom), v3(&|h| h.n_shade));
+            let lanes = split_lanes(kinds, v3(&|h| h.dir), normals, entering, outside);
+            for (i, split) in lanes.enumerate() {
+                let (a, b) = (split.scatter(), kinds[i].scatter(&hits[i]));
+                let bits = |s: &Scatter| {
+                    let i = s.interface.unwrap();
+                    let mut v = vec![i.cos_i, i.n1, i.n2, i.r];
+                    for l in s.lobes() {
+                        v.extend(l.dir.to_array().into_iter().chain(l.weight.to_array()));
+                    }
+                    v.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+                };
+                assert_eq!(bits(&a), bits(&b), "hit {i}");
+                assert_eq!(a.total_internal_reflection, b.total_internal_reflection);
+            }
+        }
     }
 
     #[test]

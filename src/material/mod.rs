@@ -22,6 +22,7 @@ mod specular;
 mod texture;
 
 pub use dielectric::{Dielectric, Glazed};
+pub(crate) use dielectric::{Split, split_lanes};
 pub use diffuse::{Brdf, Diffuse};
 pub use metals::{METALS, Metal, find_metal, metal, metal_names};
 pub use scatter::{Direct, Interface, Lobe, LobeKind, Part, Scatter, Side};
@@ -29,9 +30,10 @@ pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
 pub use texture::Texture;
 
 use crate::math::lanes::Lanes;
+use crate::math::lanes::{Real, Vector, clamp};
 use crate::math::{Color, Uniform, Vec3};
 use crate::optics::polarization::Mueller;
-use crate::optics::reflect;
+use crate::optics::reflect_of;
 use crate::params::Params;
 use glam::Vec2;
 
@@ -95,20 +97,32 @@ impl Interaction {
     /// cos θi, the cosine between the reversed ray and the shading normal.
     #[inline]
     pub fn cos_i(&self) -> f32 {
-        (-self.dir).dot(self.n_shade).clamp(0.0, 1.0)
+        cos_i_of::<f32>(self.dir, self.n_shade)
     }
 
     /// The mirror direction about the shading normal, or about the geometric one where the
     /// shading normal would tilt it below the surface.
     #[inline]
     pub fn mirror_dir(&self) -> Vec3 {
-        let dir = reflect(self.dir, self.n_shade);
-        if dir.dot(self.n_geom) > 0.0 {
-            dir
-        } else {
-            reflect(self.dir, self.n_geom)
-        }
+        mirror_dir_of::<f32>(self.dir, self.n_geom, self.n_shade)
     }
+}
+
+/// [`Interaction::cos_i`] for one ray or one per lane: (−dir)·n_shade clamped to [0, 1].
+#[inline(always)]
+pub(crate) fn cos_i_of<R: Real>(dir: R::V3, n_shade: R::V3) -> R {
+    clamp(dir.neg().dot(n_shade), R::splat(0.0), R::splat(1.0))
+}
+
+/// [`Interaction::mirror_dir`] for one ray or one per lane.
+#[inline(always)]
+pub(crate) fn mirror_dir_of<R: Real>(dir: R::V3, n_geom: R::V3, n_shade: R::V3) -> R::V3 {
+    let about_shade = reflect_of::<R>(dir, n_shade);
+    let above = R::splat(0.0).less(about_shade.dot(n_geom));
+    if R::all(above) {
+        return about_shade;
+    }
+    R::V3::select(above, about_shade, reflect_of::<R>(dir, n_geom))
 }
 
 impl Material {

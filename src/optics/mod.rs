@@ -8,21 +8,39 @@ pub mod dispersion;
 pub mod polarization;
 
 use crate::math::Vec3;
+use crate::math::lanes::{Real, Vector, clamp, is_finite};
 
 /// Ideal mirror reflection of the incoming direction `d` about the unit normal `n`:
 /// r = d − 2 (d·n) n. Works for `n` on either side of the surface.
 #[inline]
 pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
-    d - 2.0 * d.dot(n) * n
+    reflect_of::<f32>(d, n)
+}
+
+/// [`reflect`] for one ray or one per lane.
+#[inline(always)]
+pub(crate) fn reflect_of<R: Real>(d: R::V3, n: R::V3) -> R::V3 {
+    d - n.scale(R::splat(2.0) * d.dot(n))
 }
 
 /// cos θt from Snell's law n1 sin θi = n2 sin θt, or `None` under total internal
 /// reflection (sin θt > 1, possible only when n1 > n2).
 #[inline]
 pub fn cos_transmitted(cos_i: f32, n1: f32, n2: f32) -> Option<f32> {
+    let (cos_t, ok) = cos_transmitted_of(cos_i, n1, n2);
+    ok.then_some(cos_t)
+}
+
+/// [`cos_transmitted`] for one ray or one per lane: cos θt = √(1 − sin²θt) with
+/// sin²θt = (n1/n2)² (1 − cos²θi), and where it exists (sin²θt ≤ 1; NaN elsewhere).
+#[inline(always)]
+pub(crate) fn cos_transmitted_of<R: Real>(cos_i: R, n1: R, n2: R) -> (R, R::Mask) {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
     let eta = n1 / n2;
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
-    (sin2_t <= 1.0).then(|| (1.0 - sin2_t).sqrt())
+    let sin2_i = one - cos_i * cos_i;
+    // max(sin²θi, 0), 0 for NaN as f32::max gives it.
+    let sin2_t = eta * eta * R::select(zero.less(sin2_i), sin2_i, zero);
+    ((one - sin2_t).sqrt(), sin2_t.less_eq(one))
 }
 
 /// Refraction of the unit direction `d` through a surface with unit normal `n` (either
@@ -30,11 +48,21 @@ pub fn cos_transmitted(cos_i: f32, n1: f32, n2: f32) -> Option<f32> {
 /// the normal facing against `d`. `None` under total internal reflection.
 #[inline]
 pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
-    let n = if d.dot(n) > 0.0 { -n } else { n };
-    let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
-    let cos_t = cos_transmitted(cos_i, n1, n2)?;
+    let (t, ok) = refract_of::<f32>(d, n, n1, n2);
+    ok.then_some(t)
+}
+
+/// [`refract`] for one ray or one per lane: the refracted direction, and where it exists.
+#[inline(always)]
+pub(crate) fn refract_of<R: Real>(d: R::V3, n: R::V3, n1: R, n2: R) -> (R::V3, R::Mask) {
+    let n = R::V3::select(R::splat(0.0).less(d.dot(n)), n.neg(), n);
+    let cos_i = clamp(-d.dot(n), R::splat(0.0), R::splat(1.0));
+    let (cos_t, ok) = cos_transmitted_of(cos_i, n1, n2);
     let eta = n1 / n2;
-    Some((eta * d + (eta * cos_i - cos_t) * n).normalize())
+    (
+        (d.scale(eta) + n.scale(eta * cos_i - cos_t)).normalize(),
+        ok,
+    )
 }
 
 /// The exact Fresnel equations for a dielectric interface, as in the lecture:
@@ -47,19 +75,28 @@ pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
 /// passes through 0 at Brewster's angle) and the reflectance. Under total internal
 /// reflection all light is reflected: F_s = F_p = 1 (in magnitude) and R = 1.
 pub fn fresnel_exact(cos_i: f32, n1: f32, n2: f32) -> (f32, f32, f32) {
-    let cos_i = cos_i.clamp(0.0, 1.0);
-    let Some(cos_t) = cos_transmitted(cos_i, n1, n2) else {
-        return (1.0, 1.0, 1.0);
-    };
+    fresnel_exact_of(cos_i, n1, n2)
+}
+
+/// [`fresnel_exact`] for one ray or one per lane.
+#[inline(always)]
+pub(crate) fn fresnel_exact_of<R: Real>(cos_i: R, n1: R, n2: R) -> (R, R, R) {
+    let one = R::splat(1.0);
+    let cos_i = clamp(cos_i, R::splat(0.0), one);
+    let (cos_t, ok) = cos_transmitted_of(cos_i, n1, n2);
     let f_s = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
     let f_p = (n2 * cos_i - n1 * cos_t) / (n2 * cos_i + n1 * cos_t);
     // At exactly grazing incidence both are -1: all light is reflected.
-    let (f_s, f_p) = if f_s.is_finite() && f_p.is_finite() {
-        (f_s, f_p)
-    } else {
-        (-1.0, -1.0)
-    };
-    (f_s, f_p, 0.5 * (f_s * f_s + f_p * f_p))
+    let finite = is_finite(f_s) & is_finite(f_p);
+    let f_s = R::select(finite, f_s, -one);
+    let f_p = R::select(finite, f_p, -one);
+    let r = R::splat(0.5) * (f_s * f_s + f_p * f_p);
+    // Total internal reflection: F_s = F_p = 1, R = 1.
+    (
+        R::select(ok, f_s, one),
+        R::select(ok, f_p, one),
+        R::select(ok, r, one),
+    )
 }
 
 /// The exact Fresnel reflectances of a conductor (a metal) of complex index η + iκ, seen

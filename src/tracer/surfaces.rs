@@ -1,22 +1,27 @@
 //! The hits of one level of the waves, made in lanes: where `N` neighbouring rays all met
-//! the same sphere, quad or plane (as a tile's rays mostly do), their hit records, and the
-//! radiance their surface emits where it is a light, are computed `N` at a time; other rays
-//! one by one. Either way each hit is [`crate::scene::Scene::hit_at`]'s bit for bit.
+//! the same sphere, quad or plane (as a tile's rays mostly do), their hit records, the
+//! radiance their surface emits where it is a light, and a dielectric's reflected and
+//! refracted directions and Fresnel reflectance are computed `N` at a time; other rays one
+//! by one. Either way each is what the scalar code gives, bit for bit.
 
-use super::Tracer;
+use super::wave::Node;
+use super::{Media, Tracer};
 use crate::geometry::PrimRef;
+use crate::material::{Material, Split, split_lanes};
 use crate::math::Color;
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
 use crate::scene::Hit;
 
-/// The hits of a level's rays (`None`: the ray met nothing) and what each hit's surface
-/// emits (`None`: it is not a light), from the nearest primitive and distance of each ray.
+/// The hits of a level's rays (`None`: the ray met nothing), what each hit's surface
+/// emits (`None`: it is not a light), and which hits are on a dielectric (their places
+/// in the level, in order), from the nearest primitive and distance of each ray.
 pub(super) struct Surfaces<'a, 't> {
     pub(super) tracer: &'a Tracer<'t>,
     pub(super) rays: &'a RayColumns,
     pub(super) nearest: &'a [Option<(PrimRef, f32)>],
     pub(super) hits: &'a mut Vec<Option<Hit>>,
     pub(super) emitted: &'a mut Vec<Option<Color>>,
+    pub(super) on_dielectrics: &'a mut Vec<u32>,
 }
 
 impl LaneKernel for Surfaces<'_, '_> {
@@ -29,9 +34,12 @@ impl LaneKernel for Surfaces<'_, '_> {
             nearest,
             hits,
             emitted,
+            on_dielectrics,
         } = self;
         hits.clear();
         emitted.clear();
+        on_dielectrics.clear();
+        let dielectric = |m: u32| matches!(tracer.materials[m as usize], Material::Dielectric(_));
         for (c, chunk) in nearest.chunks(N).enumerate() {
             let first = c * N;
             // The last chunk may be short: it is made ray by ray.
@@ -51,6 +59,9 @@ impl LaneKernel for Surfaces<'_, '_> {
                         material,
                     };
                     hits.extend((0..N).map(|k| Some(hit(k))));
+                    if dielectric(material) {
+                        on_dielectrics.extend(first as u32..(first + N) as u32);
+                    }
                     let (u, v) = lanes.uv;
                     match tracer.materials[material as usize].emission_lanes(u, v) {
                         Some(radiance) => emitted.extend(radiance.iter().map(|&l| Some(l))),
@@ -63,10 +74,86 @@ impl LaneKernel for Surfaces<'_, '_> {
                             .map(|(prim, t)| tracer.scene.hit_at(prim, &rays.get(first + k), t));
                         let material = |h: &Hit| &tracer.materials[h.material as usize];
                         emitted.push(hit.and_then(|h| material(&h).emission(h.surface.uv)));
+                        if hit.is_some_and(|h| dielectric(h.material)) {
+                            on_dielectrics.push((first + k) as u32);
+                        }
                         hits.push(hit);
                     }
                 }
             }
+        }
+    }
+}
+
+/// The split of every hit of a level on a dielectric into its reflected and refracted
+/// rays, with its place in the level, in the order of `on_dielectrics`: `N` at a time,
+/// gathered from wherever they are in the level.
+pub(super) struct Splits<'a, 't> {
+    pub(super) tracer: &'a Tracer<'t>,
+    pub(super) rays: &'a RayColumns,
+    pub(super) nodes: &'a [Node],
+    pub(super) media: &'a [Media],
+    pub(super) hits: &'a [Option<Hit>],
+    pub(super) on_dielectrics: &'a [u32],
+    pub(super) splits: &'a mut Vec<(u32, Split)>,
+}
+
+impl LaneKernel for Splits<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const N: usize>(self) {
+        let Splits {
+            tracer,
+            rays,
+            nodes,
+            media,
+            hits,
+            on_dielectrics,
+            splits,
+        } = self;
+        splits.clear();
+        for group in on_dielectrics.chunks(N) {
+            // Each hit's dielectric; a short last group repeats its last hit in the lanes
+            // past it, and only the group's own lanes are kept.
+            let on = |i: u32| {
+                let hit = hits.get(i as usize)?.as_ref()?;
+                match &tracer.materials[hit.material as usize] {
+                    Material::Dielectric(d) => Some((i, hit, d)),
+                    _ => None,
+                }
+            };
+            let Some(last) = group.last().and_then(|&i| on(i)) else {
+                continue;
+            };
+            let lanes: [_; N] = std::array::from_fn(|k| group.get(k).and_then(|&i| on(i)));
+            let lane = |k: usize| lanes[k].unwrap_or(last);
+            let at = |k: usize| lane(k).0 as usize;
+            let hit = |k: usize| lane(k).1;
+            let dielectrics = std::array::from_fn(|k| lane(k).2);
+            let surface = |k: usize| hit(k).surface;
+            let dir = V3::from_fn(|k| rays.get(at(k)).dir);
+            let n_geom = V3::from_fn(|k| surface(k).n_geom);
+            let n_shade = V3::from_fn(|k| surface(k).n_shade);
+            // As `Arrival::at`: the normals turned to face the ray.
+            let entering = dir.dot(n_geom).less(Lanes::splat(0.0));
+            let facing = |n: V3<Lanes<N>>| V3::select(entering, n, n.neg());
+            let outside_ior = Lanes::<N>::from_fn(|k| {
+                let m = &media[nodes[at(k)].media as usize];
+                let object = hit(k).object;
+                let outside = if entering.0[k] != 0 {
+                    m.innermost()
+                } else {
+                    m.innermost_after_leaving(object)
+                };
+                tracer.ior_of(outside, None)
+            });
+            let normals = (facing(n_geom), facing(n_shade));
+            let made = split_lanes(dielectrics, dir, normals, entering, outside_ior);
+            let kept = lanes
+                .iter()
+                .zip(made)
+                .filter_map(|(l, s)| l.map(|(i, ..)| (i, s)));
+            splits.extend(kept);
         }
     }
 }

@@ -19,14 +19,13 @@
 use super::media::transmittance;
 use super::path::cross;
 use super::shade::pick_lobe;
-use super::surfaces::Surfaces;
+use super::surfaces::{Splits, Surfaces};
 use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
-use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
-use crate::material::{Lobe, Side};
+use crate::material::{Lobe, Side, Split};
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Width, asked_lanes};
 use crate::math::rng::SobolLanes;
-use crate::math::{Color, Pattern, Ray, SampleStream, Vec3, offset_ray_origin};
+use crate::math::{Color, Pattern, Ray, SampleStream, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
 use std::ops::Range;
@@ -91,10 +90,10 @@ pub struct Traced {
 /// list of them), and its place in the tree. Kept beside the rays, which the hit search
 /// reads on their own.
 #[derive(Clone, Copy)]
-struct Node {
+pub(super) struct Node {
     // The sample of the wave it belongs to.
     slot: u32,
-    media: u32,
+    pub(super) media: u32,
     depth: u32,
     weight: f32,
 }
@@ -149,6 +148,15 @@ impl Rays {
     }
 }
 
+/// What is known of a node's surface before it is shaded: the hit (`None`: its ray met
+/// nothing), the radiance it emits where it is a light, and a dielectric's split where the
+/// lanes made it.
+struct Surface<'s> {
+    hit: Option<&'s Hit>,
+    emitted: Option<Color>,
+    split: Option<&'s Split>,
+}
+
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
 #[derive(Default)]
 pub struct Waves {
@@ -162,6 +170,8 @@ pub struct Waves {
     nearest: Vec<Option<(PrimRef, f32)>>,
     hits: Vec<Option<Hit>>,
     emitted: Vec<Option<Color>>,
+    on_dielectrics: Vec<u32>,
+    splits: Vec<(u32, Split)>,
     levels: Vec<Level>,
     radiance: Vec<Color>,
     below: Vec<Color>,
@@ -176,8 +186,9 @@ struct Queue<'q> {
     children: &'q mut Vec<Child>,
 }
 
-/// The camera rays of a wave, with each sample's random numbers after the camera's: `N`
-/// rays at a time in lanes, and their Sobol draws too where the pattern is Sobol.
+/// The camera rays of a wave, with each sample's random numbers after the camera's: with
+/// the Sobol pattern, `N` at a time in lanes, the draws and the rays; with the others (the
+/// sampling lecture's patterns), ray by ray.
 struct CameraRays<'a, 't> {
     tracer: &'a Tracer<'t>,
     samples: &'a [(u32, u32, u32)],
@@ -190,35 +201,37 @@ impl LaneKernel for CameraRays<'_, '_> {
     fn run<const N: usize>(self) {
         let t = self.tracer;
         let chunks = self.samples.chunks_exact(N);
-        let rest = chunks.remainder();
-        for chunk in chunks {
-            let draws: [(SampleStream, CameraSample); N] = if t.params.pattern == Pattern::Sobol {
-                let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
-                let numbers = std::array::from_fn(|i| chunk[i].2);
-                let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
-                let cs = t.frame.draw_samples(&mut lanes);
-                std::array::from_fn(|i| (lanes.stream(i), cs[i]))
-            } else {
-                std::array::from_fn(|i| t.camera_draw(chunk[i].0, chunk[i].1, chunk[i].2))
-            };
-            let lane = |f: &dyn Fn(usize) -> f32| Lanes::<N>(std::array::from_fn(f));
+        let rest = if t.params.pattern == Pattern::Sobol {
+            chunks.remainder()
+        } else {
+            self.samples
+        };
+        for chunk in chunks.filter(|_| t.params.pattern == Pattern::Sobol) {
+            let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
+            let numbers = std::array::from_fn(|i| chunk[i].2);
+            let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
+            let cs = t.frame.draw_samples(&mut lanes);
             // As `camera_ray`: the film position ((x + pixel.x) / width, (y + pixel.y) / height).
-            let film_x = (lane(&|i| chunk[i].0 as f32) + lane(&|i| draws[i].1.pixel.x))
+            let film_x = (Lanes::<N>::from_fn(|i| chunk[i].0 as f32)
+                + Lanes::from_fn(|i| cs[i].pixel.x))
                 / Lanes::splat(t.width as f32);
-            let film_y = (lane(&|i| chunk[i].1 as f32) + lane(&|i| draws[i].1.pixel.y))
+            let film_y = (Lanes::<N>::from_fn(|i| chunk[i].1 as f32)
+                + Lanes::from_fn(|i| cs[i].pixel.y))
                 / Lanes::splat(t.height as f32);
-            let (lens_x, lens_y) = (lane(&|i| draws[i].1.lens.x), lane(&|i| draws[i].1.lens.y));
-            let time_u = lane(&|i| draws[i].1.time);
+            let lens_x = Lanes::from_fn(|i| cs[i].lens.x);
+            let lens_y = Lanes::from_fn(|i| cs[i].lens.y);
+            let time_u = Lanes::from_fn(|i| cs[i].time);
             let (o, d, time) = t.frame.ray_of(film_x, film_y, lens_x, lens_y, time_u);
-            self.out
-                .extend(draws.into_iter().enumerate().map(|(i, (rng, _))| {
-                    let ray = Ray {
-                        origin: Vec3::new(o.x.0[i], o.y.0[i], o.z.0[i]),
-                        dir: Vec3::new(d.x.0[i], d.y.0[i], d.z.0[i]),
-                        time: time.0[i],
-                    };
-                    (rng, ray)
-                }));
+            // Each stream is made where it is stored: an array of them built first and
+            // copied out stalls on store-to-load forwarding.
+            self.out.extend((0..N).map(|i| {
+                let ray = Ray {
+                    origin: o.get(i),
+                    dir: d.get(i),
+                    time: time.0[i],
+                };
+                (lanes.stream(i), ray)
+            }));
         }
         self.out.extend(rest.iter().map(|&(x, y, s)| {
             let (rng, cs) = t.camera_draw(x, y, s);
@@ -254,6 +267,8 @@ impl Tracer<'_> {
             nearest,
             hits,
             emitted,
+            on_dielectrics,
+            splits,
             levels,
             radiance,
             below,
@@ -296,6 +311,16 @@ impl Tracer<'_> {
                 nearest,
                 hits,
                 emitted,
+                on_dielectrics,
+            });
+            width.dispatch(Splits {
+                tracer: self,
+                rays: &level.rays,
+                nodes: &level.nodes,
+                media,
+                hits,
+                on_dielectrics,
+                splits,
             });
             if levels.len() == depth {
                 levels.push(Level::default());
@@ -309,12 +334,19 @@ impl Tracer<'_> {
                 media,
                 children,
             };
+            // The splits, in the order of the hits on dielectrics.
+            let mut splits = splits.iter().peekable();
             let surfaces = level.nodes.iter().zip(hits.iter()).zip(emitted.iter());
             for (i, ((node, hit), &emitted)) in surfaces.enumerate() {
+                let split = splits.next_if(|(j, _)| *j as usize == i).map(|(_, s)| s);
                 let ray = level.rays.get(i);
                 let slot = &mut slots[node.slot as usize];
                 let before = stats.total_rays();
-                let surface = (hit.as_ref(), emitted);
+                let surface = Surface {
+                    hit: hit.as_ref(),
+                    emitted,
+                    split,
+                };
                 let value = self.shade_node(&ray, node, surface, slot, stats, &mut queue);
                 slot.rays += (stats.total_rays() - before) as u32;
                 values.push(value);
@@ -351,11 +383,16 @@ impl Tracer<'_> {
         &self,
         ray: &Ray,
         node: &Node,
-        (hit, emitted): (Option<&Hit>, Option<Color>),
+        surface: Surface,
         slot: &mut Slot,
         stats: &mut Stats,
         queue: &mut Queue,
     ) -> Value {
+        let Surface {
+            hit,
+            emitted,
+            split,
+        } = surface;
         let media = &queue.media[node.media as usize];
         let sigma = self.absorption(media);
         let first = queue.children.len() as u32;
@@ -388,7 +425,10 @@ impl Tracer<'_> {
             rec: &mut rec,
             tree_rays: slot.tree_rays,
         };
-        let scatter = material.scatter(&at, w.rng);
+        let scatter = match split {
+            Some(split) => split.scatter(),
+            None => material.scatter(&at, w.rng),
+        };
         if scatter.total_internal_reflection {
             w.stats.tir_events += 1;
         }

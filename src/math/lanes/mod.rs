@@ -59,6 +59,8 @@ pub trait Real:
     /// Whether `m` holds in any lane: lets a formula stop early when no lane goes on, as the
     /// scalar code returns early.
     fn any(m: Self::Mask) -> bool;
+    /// Whether `m` holds in every lane: lets a formula skip what no lane needs.
+    fn all(m: Self::Mask) -> bool;
 }
 
 impl Real for f32 {
@@ -100,6 +102,10 @@ impl Real for f32 {
     fn any(m: bool) -> bool {
         m
     }
+    #[inline(always)]
+    fn all(m: bool) -> bool {
+        m
+    }
 }
 
 /// `N` numbers operated on together, one per lane.
@@ -115,6 +121,12 @@ pub struct Lanes<const N: usize>(pub [f32; N]);
 pub struct Mask<const N: usize>(pub [u32; N]);
 
 impl<const N: usize> Lanes<N> {
+    /// Lane i is `f(i)`.
+    #[inline(always)]
+    pub fn from_fn(f: impl FnMut(usize) -> f32) -> Self {
+        Lanes(std::array::from_fn(f))
+    }
+
     #[inline(always)]
     fn map(self, f: impl Fn(f32) -> f32) -> Self {
         let mut out = self.0;
@@ -252,6 +264,26 @@ impl<const N: usize> Real for Lanes<N> {
         // Or-reduced without a branch per lane, so that it vectorises.
         m.0.iter().fold(0, |a, &b| a | b) != 0
     }
+    #[inline(always)]
+    fn all(m: Mask<N>) -> bool {
+        m.0.iter().fold(u32::MAX, |a, &b| a & b) == u32::MAX
+    }
+}
+
+/// `x` clamped to [lo, hi] as `f32::clamp` does it (NaN stays NaN), for one number or
+/// one per lane.
+#[inline(always)]
+pub fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
+    let x = R::select(x.less(lo), lo, x);
+    R::select(hi.less(x), hi, x)
+}
+
+/// Where `x` is finite (neither infinite nor NaN), as `f32::is_finite`: x − x is 0 there
+/// and NaN elsewhere.
+#[inline(always)]
+#[allow(clippy::eq_op)] // x − x is the test, not a slip.
+pub fn is_finite<R: Real>(x: R) -> R::Mask {
+    (x - x).equal(R::splat(0.0))
 }
 
 #[cfg(test)]
@@ -295,6 +327,17 @@ mod tests {
             if x == y { x } else { y }
         });
         assert!(Lanes::any(a.equal(b)));
+        assert!(!Lanes::all(a.equal(b)));
+        let (finite, clamped) = (is_finite(a), clamp(a, Lanes::splat(0.0), Lanes::splat(1.0)));
+        for (i, x) in xs.iter().enumerate() {
+            assert_eq!(finite.0[i] != 0, x.is_finite(), "lane {i}");
+            assert_eq!(
+                clamped.0[i].to_bits(),
+                x.clamp(0.0, 1.0).to_bits(),
+                "lane {i}"
+            );
+        }
+        assert!(Lanes::all(a.equal(a) | !a.equal(a)));
         assert!(!Lanes::any(a.less(Lanes::splat(f32::NEG_INFINITY))));
     }
 }

@@ -1,14 +1,14 @@
 //! Points and directions over a [`Real`]: glam's vectors for one ray, a row of lanes per
 //! coordinate for many.
 
-use super::{Lanes, Real};
+use super::{Lanes, Mask, Real};
 use crate::math::Vec3;
 use std::ops::{Add, Sub};
 
 /// A point or direction over a [`Real`]: the operations the shared formulas use, each
 /// coordinate computed as glam's `Vec3A` computes it (on SSE2, NEON and without either),
 /// so that one vector per lane gives `Vec3A`'s results bit for bit.
-pub trait Vector<R>: Copy + Add<Output = Self> + Sub<Output = Self> {
+pub trait Vector<R: Real>: Copy + Add<Output = Self> + Sub<Output = Self> {
     /// `v` in every lane.
     fn splat(v: Vec3) -> Self;
     /// The dot product, (x x′ + y y′) + z z′.
@@ -25,6 +25,10 @@ pub trait Vector<R>: Copy + Add<Output = Self> + Sub<Output = Self> {
     /// The unit vector along `self`: each coordinate divided by |self| where glam divides
     /// (SSE2), times 1 / |self| where it multiplies by the reciprocal (NEON, no SIMD).
     fn normalize(self) -> Self;
+    /// −self.
+    fn neg(self) -> Self;
+    /// `a` where `m` holds, `b` elsewhere.
+    fn select(m: R::Mask, a: Self, b: Self) -> Self;
 }
 
 /// One ray's vectors are glam's, in SIMD registers as everywhere else in the tracer.
@@ -49,6 +53,14 @@ impl Vector<f32> for Vec3 {
     fn normalize(self) -> Vec3 {
         Vec3::normalize(self)
     }
+    #[inline(always)]
+    fn neg(self) -> Vec3 {
+        -self
+    }
+    #[inline(always)]
+    fn select(m: bool, a: Vec3, b: Vec3) -> Vec3 {
+        if m { a } else { b }
+    }
 }
 
 /// A point or direction per lane: each coordinate a row of lanes.
@@ -60,6 +72,24 @@ pub struct V3<R> {
     pub y: R,
     /// z.
     pub z: R,
+}
+
+impl<const N: usize> V3<Lanes<N>> {
+    /// Lane i is `f(i)`.
+    #[inline(always)]
+    pub fn from_fn(f: impl Fn(usize) -> Vec3) -> Self {
+        V3 {
+            x: Lanes::from_fn(|i| f(i).x),
+            y: Lanes::from_fn(|i| f(i).y),
+            z: Lanes::from_fn(|i| f(i).z),
+        }
+    }
+
+    /// Lane `i`'s vector.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> Vec3 {
+        Vec3::new(self.x.0[i], self.y.0[i], self.z.0[i])
+    }
 }
 
 impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
@@ -102,6 +132,22 @@ impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
             }
         } else {
             self.scale(Lanes::splat(1.0) / length)
+        }
+    }
+    #[inline(always)]
+    fn neg(self) -> Self {
+        V3 {
+            x: -self.x,
+            y: -self.y,
+            z: -self.z,
+        }
+    }
+    #[inline(always)]
+    fn select(m: Mask<N>, a: Self, b: Self) -> Self {
+        V3 {
+            x: Lanes::select(m, a.x, b.x),
+            y: Lanes::select(m, a.y, b.y),
+            z: Lanes::select(m, a.z, b.z),
         }
     }
 }
