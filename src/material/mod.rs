@@ -173,6 +173,22 @@ impl Material {
         self.light().map(|e| e.radiance.eval_lanes(u, v))
     }
 
+    /// The interface every hit on it splits into a reflected and a refracted ray of
+    /// weights R and 1 − R and nothing else (clear or coloured glass, not a glaze, whose
+    /// base is shaded too): what the waves split in lanes ([`split_lanes`]).
+    #[inline]
+    pub(crate) fn splitting(&self) -> Option<&Dielectric> {
+        match self {
+            Material::Dielectric(d) => Some(d),
+            Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
     /// Its emission, if it is a light.
     #[inline(always)]
     fn light(&self) -> Option<&Emissive> {

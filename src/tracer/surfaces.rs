@@ -7,7 +7,7 @@
 use super::wave::Node;
 use super::{Media, Tracer};
 use crate::geometry::PrimRef;
-use crate::material::{Material, Split, split_lanes};
+use crate::material::{Split, split_lanes};
 use crate::math::Color;
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
 use crate::scene::Hit;
@@ -39,7 +39,7 @@ impl LaneKernel for Surfaces<'_, '_> {
         hits.clear();
         emitted.clear();
         on_dielectrics.clear();
-        let dielectric = |m: u32| matches!(tracer.materials[m as usize], Material::Dielectric(_));
+        let dielectric = |m: u32| tracer.materials[m as usize].splitting().is_some();
         for (c, chunk) in nearest.chunks(N).enumerate() {
             let first = c * N;
             // The last chunk may be short: it is made ray by ray.
@@ -117,10 +117,8 @@ impl LaneKernel for Splits<'_, '_> {
             // past it, and only the group's own lanes are kept.
             let on = |i: u32| {
                 let hit = hits.get(i as usize)?.as_ref()?;
-                match &tracer.materials[hit.material as usize] {
-                    Material::Dielectric(d) => Some((i, hit, d)),
-                    _ => None,
-                }
+                let dielectric = tracer.materials[hit.material as usize].splitting()?;
+                Some((i, hit, dielectric))
             };
             let Some(last) = group.last().and_then(|&i| on(i)) else {
                 continue;
