@@ -383,13 +383,12 @@ mod tests {
         let lens_u = [(0.5, 0.5), (0.9, 0.55), (0.45, 0.05), (0.0, 1.0)];
         let time_u = [0.0, 1.0, 0.37, 0.999];
         for frame in [c.pinhole(1.5), c.frame(1.5, lens)] {
-            let row = |f: &dyn Fn(usize) -> f32| Lanes::<4>(std::array::from_fn(f));
             let (o, d, t) = frame.ray_of(
-                row(&|i| film[i].0),
-                row(&|i| film[i].1),
-                row(&|i| lens_u[i].0),
-                row(&|i| lens_u[i].1),
-                row(&|i| time_u[i]),
+                Lanes::<4>::from_fn(|i| film[i].0),
+                Lanes::from_fn(|i| film[i].1),
+                Lanes::from_fn(|i| lens_u[i].0),
+                Lanes::from_fn(|i| lens_u[i].1),
+                Lanes::from_fn(|i| time_u[i]),
             );
             for i in 0..4 {
                 let r = frame.ray(
@@ -397,9 +396,9 @@ mod tests {
                     Vec2::new(lens_u[i].0, lens_u[i].1),
                     time_u[i],
                 );
-                let bits = |v: [f32; 3]| v.map(f32::to_bits);
-                assert_eq!(bits([o.x.0[i], o.y.0[i], o.z.0[i]]), bits(r.origin.into()));
-                assert_eq!(bits([d.x.0[i], d.y.0[i], d.z.0[i]]), bits(r.dir.into()));
+                let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                assert_eq!(bits(o.get(i)), bits(r.origin));
+                assert_eq!(bits(d.get(i)), bits(r.dir));
                 assert_eq!(t.0[i].to_bits(), r.time.to_bits());
             }
         }

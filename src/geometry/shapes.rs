@@ -31,7 +31,13 @@ impl Sphere {
     /// The centre at frame time `t`.
     #[inline]
     pub fn center_at(&self, t: f32) -> Vec3 {
-        self.center + self.velocity * t
+        self.center_of(t)
+    }
+
+    /// [`Sphere::center_at`] for one time or one per lane: c + v t.
+    #[inline(always)]
+    fn center_of<R: Real>(&self, time: R) -> R::V3 {
+        R::V3::splat(self.center) + R::V3::splat(self.velocity).scale(time)
     }
 
     /// Bounds of the sphere over the whole frame.
@@ -56,8 +62,7 @@ impl Sphere {
     /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
     #[inline(always)]
     pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> R {
-        let center = R::V3::splat(self.center) + R::V3::splat(self.velocity).scale(time);
-        let f = o - center;
+        let f = o - self.center_of(time);
         let b = -f.dot(d);
         let l = f + d.scale(b);
         let r2 = R::splat(self.radius * self.radius);
@@ -106,7 +111,7 @@ impl Sphere {
     /// point reprojected onto the sphere as c + r n.
     #[inline(always)]
     pub(crate) fn surface_of<R: Real>(&self, o: R::V3, d: R::V3, time: R, t: R) -> (R::V3, R::V3) {
-        let center = R::V3::splat(self.center) + R::V3::splat(self.velocity).scale(time);
+        let center = self.center_of(time);
         let n = ((o + d.scale(t)) - center).normalize();
         (center + n.scale(R::splat(self.radius)), n)
     }
@@ -330,16 +335,10 @@ mod tests {
             Ray::new(Vec3::new(0.01 * f, -0.02, 0.3), dir, 0.25 * f)
         });
         let row = |f: &dyn Fn(&Ray) -> f32| Lanes::<4>(rays.each_ref().map(f));
-        let o = V3 {
-            x: row(&|r| r.origin.x),
-            y: row(&|r| r.origin.y),
-            z: row(&|r| r.origin.z),
-        };
-        let d = V3 {
-            x: row(&|r| r.dir.x),
-            y: row(&|r| r.dir.y),
-            z: row(&|r| r.dir.z),
-        };
+        let (o, d) = (
+            V3::from_fn(|i| rays[i].origin),
+            V3::from_fn(|i| rays[i].dir),
+        );
         for shape in &shapes {
             let t = row(&|r| shape.intersect_t(0, r, f32::INFINITY).unwrap());
             let lanes = shape

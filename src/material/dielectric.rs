@@ -329,15 +329,20 @@ mod tests {
             ..glass(FresnelMode::Schlick)
         };
         // Entering and leaving, head-on to grazing, beyond the critical angle (45° and 80°
-        // from inside), with a shading normal tilted off the geometric one, so that both
-        // refractions (about the shading normal, then the geometric) and both mirror
-        // directions are taken; an outside index other than air.
+        // from inside), with a shading normal tilted off the geometric one (at 60° and 89.9°
+        // entering, 45° leaving), so that both refractions (about the shading normal, and
+        // about the geometric one where the first would not cross the surface) are taken;
+        // an outside index other than air.
         let tilted = Vec3::new(0.3, 1.0, 0.1).normalize();
         let hits: [Interaction; 8] = std::array::from_fn(|i| {
             let theta = [0.0, 30.0, 60.0, 89.9, 20.0, 45.0, 80.0, 87.0][i];
             Interaction {
                 entering: i < 4,
-                n_shade: if i % 3 == 2 { tilted } else { Vec3::Y },
+                n_shade: if matches!(i, 2 | 3 | 5) {
+                    tilted
+                } else {
+                    Vec3::Y
+                },
                 outside_ior: if i == 1 { 1.2 } else { 1.0 },
                 ..hit_at(theta)
             }
@@ -346,6 +351,16 @@ mod tests {
         assert!(
             hits.iter().any(tir) && !hits.iter().all(tir),
             "both cases are tried"
+        );
+        let (n1, n2) = (1.0, exact.ior);
+        let about_geom = |h: &Interaction| {
+            h.entering
+                && crate::optics::refract(h.dir, h.n_shade, n1, n2)
+                    .is_some_and(|t| t.dot(h.n_geom) >= 0.0)
+        };
+        assert!(
+            hits.iter().any(about_geom),
+            "the geometric refraction is tried"
         );
         for kinds in [
             [&exact; 8],

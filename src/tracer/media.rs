@@ -53,6 +53,17 @@ impl Media {
         }
     }
 
+    /// The medium on `object`'s outer side for a ray meeting it, `entering` it or leaving
+    /// it: the innermost one now, or the one that is innermost once it is left.
+    #[inline]
+    pub(super) fn outside(&self, entering: bool, object: u32) -> Option<u32> {
+        if entering {
+            self.innermost()
+        } else {
+            self.innermost_after_leaving(object)
+        }
+    }
+
     /// After leaving `object` (the innermost one, unless geometry overlaps).
     pub(super) fn left(mut self, object: u32) -> Media {
         if let Some(i) = self.active().iter().rposition(|&(o, _)| o == object) {
@@ -98,16 +109,11 @@ impl Arrival {
         } else {
             (-s.n_geom, -s.n_shade)
         };
-        let outside = if entering {
-            media.innermost()
-        } else {
-            media.innermost_after_leaving(hit.object)
-        };
         Arrival {
             entering,
             n_geom,
             n_shade,
-            outside,
+            outside: media.outside(entering, hit.object),
         }
     }
 }

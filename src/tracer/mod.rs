@@ -28,6 +28,7 @@ pub use wave::{Traced, Traversal, Waves};
 use crate::camera::{Camera, CameraFrame, CameraSample};
 use crate::light::PreparedLight;
 use crate::material::{Interaction, Material};
+use crate::math::lanes::Real;
 use crate::math::{Color, Ray, SampleStream, Vec3};
 use crate::optics::polarization::Analyzer;
 use crate::params::{Params, Transport};
@@ -292,11 +293,25 @@ impl<'a> Tracer<'a> {
     /// The camera ray of pixel (x, y) for the camera sample `cs`.
     #[inline(always)]
     fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> Ray {
-        let film = Vec2::new(
-            (x as f32 + cs.pixel.x) / self.width as f32,
-            (y as f32 + cs.pixel.y) / self.height as f32,
-        );
-        self.frame.ray(film, cs.lens, cs.time)
+        let (pixel, lens) = ((cs.pixel.x, cs.pixel.y), (cs.lens.x, cs.lens.y));
+        let (origin, dir, time) = self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time);
+        Ray { origin, dir, time }
+    }
+
+    /// [`Tracer::camera_ray`] for one ray or one per lane: the pixel (x, y), and the camera
+    /// sample's position in it, lens point and time, coordinate by coordinate.
+    #[inline(always)]
+    fn camera_ray_of<R: Real>(
+        &self,
+        (x, y): (R, R),
+        pixel: (R, R),
+        lens: (R, R),
+        time_u: R,
+    ) -> (R::V3, R::V3, R) {
+        // The film position ((x + pixel.x) / width, (y + pixel.y) / height).
+        let film_x = (x + pixel.0) / R::splat(self.width as f32);
+        let film_y = (y + pixel.1) / R::splat(self.height as f32);
+        self.frame.ray_of(film_x, film_y, lens.0, lens.1, time_u)
     }
 
     /// The index of refraction at `wavelength` of the medium whose innermost dielectric is

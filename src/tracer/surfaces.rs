@@ -46,16 +46,16 @@ impl LaneKernel for Surfaces<'_, '_> {
             let in_lanes = one_object(chunk)
                 .filter(|_| chunk.len() == N)
                 .and_then(|object| {
-                    let t = Lanes(std::array::from_fn(|k| chunk[k].map_or(0.0, |(_, t)| t)));
-                    tracer
-                        .scene
-                        .hits_in_lanes(object, rays.lanes::<N>(first), t)
+                    let t = Lanes::from_fn(|k| chunk[k].map_or(0.0, |(_, t)| t));
+                    let scene = tracer.scene;
+                    let made = scene.hits_in_lanes(object, rays.lanes::<N>(first), t)?;
+                    Some((object, t, made))
                 });
             match in_lanes {
-                Some((lanes, material)) => {
+                Some((object, t, (lanes, material))) => {
                     let hit = |k: usize| Hit {
-                        surface: lanes.get(k, chunk[k].map_or(0.0, |(_, t)| t)),
-                        object: chunk[k].map_or(0, |(prim, _)| prim.object),
+                        surface: lanes.get(k, t.0[k]),
+                        object,
                         material,
                     };
                     hits.extend((0..N).map(|k| Some(hit(k))));
@@ -137,13 +137,7 @@ impl LaneKernel for Splits<'_, '_> {
             let facing = |n: V3<Lanes<N>>| V3::select(entering, n, n.neg());
             let outside_ior = Lanes::<N>::from_fn(|k| {
                 let m = &media[nodes[at(k)].media as usize];
-                let object = hit(k).object;
-                let outside = if entering.0[k] != 0 {
-                    m.innermost()
-                } else {
-                    m.innermost_after_leaving(object)
-                };
-                tracer.ior_of(outside, None)
+                tracer.ior_of(m.outside(entering.0[k] != 0, hit(k).object), None)
             });
             let normals = (facing(n_geom), facing(n_shade));
             let made = split_lanes(dielectrics, dir, normals, entering, outside_ior);

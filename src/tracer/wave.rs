@@ -21,9 +21,10 @@ use super::path::cross;
 use super::shade::pick_lobe;
 use super::surfaces::{Splits, Surfaces};
 use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
+use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
 use crate::material::{Lobe, Side, Split};
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Width, asked_lanes};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Width, asked_lanes};
 use crate::math::rng::SobolLanes;
 use crate::math::{Color, Pattern, Ray, SampleStream, offset_ray_origin};
 use crate::params::TreeMode;
@@ -200,28 +201,22 @@ impl LaneKernel for CameraRays<'_, '_> {
     #[inline(always)]
     fn run<const N: usize>(self) {
         let t = self.tracer;
-        let chunks = self.samples.chunks_exact(N);
-        let rest = if t.params.pattern == Pattern::Sobol {
-            chunks.remainder()
-        } else {
-            self.samples
-        };
-        for chunk in chunks.filter(|_| t.params.pattern == Pattern::Sobol) {
+        let sobol = t.params.pattern == Pattern::Sobol;
+        let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
+        let (chunks, rest) = self.samples.split_at(in_lanes);
+        for chunk in chunks.chunks_exact(N) {
             let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
             let numbers = std::array::from_fn(|i| chunk[i].2);
             let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
             let cs = t.frame.draw_samples(&mut lanes);
-            // As `camera_ray`: the film position ((x + pixel.x) / width, (y + pixel.y) / height).
-            let film_x = (Lanes::<N>::from_fn(|i| chunk[i].0 as f32)
-                + Lanes::from_fn(|i| cs[i].pixel.x))
-                / Lanes::splat(t.width as f32);
-            let film_y = (Lanes::<N>::from_fn(|i| chunk[i].1 as f32)
-                + Lanes::from_fn(|i| cs[i].pixel.y))
-                / Lanes::splat(t.height as f32);
-            let lens_x = Lanes::from_fn(|i| cs[i].lens.x);
-            let lens_y = Lanes::from_fn(|i| cs[i].lens.y);
-            let time_u = Lanes::from_fn(|i| cs[i].time);
-            let (o, d, time) = t.frame.ray_of(film_x, film_y, lens_x, lens_y, time_u);
+            let lane = |f: fn(&CameraSample) -> f32| Lanes::<N>::from_fn(|i| f(&cs[i]));
+            let xy = (
+                Lanes::from_fn(|i| chunk[i].0 as f32),
+                Lanes::from_fn(|i| chunk[i].1 as f32),
+            );
+            let pixel = (lane(|c| c.pixel.x), lane(|c| c.pixel.y));
+            let lens = (lane(|c| c.lens.x), lane(|c| c.lens.y));
+            let (o, d, time) = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
             // Each stream is made where it is stored: an array of them built first and
             // copied out stalls on store-to-load forwarding.
             self.out.extend((0..N).map(|i| {
@@ -375,9 +370,9 @@ impl Tracer<'_> {
         traced
     }
 
-    /// What the recursion's `trace_in` does at `node` once its ray's nearest surface `hit`
-    /// is known, with the radiance it `emitted` (where it is a light): the light it meets,
-    /// or the hit's own light, with its children queued.
+    /// What the recursion's `trace_in` does at `node` once its ray's `surface` is known
+    /// (the hit, the radiance it emits, a dielectric's split where the lanes made it): the
+    /// light it meets, or the hit's own light, with its children queued.
     #[inline(always)]
     fn shade_node(
         &self,

@@ -212,7 +212,7 @@ mod tests {
             );
             let n = a.normalize();
             assert_eq!(
-                [n.x.0[i], n.y.0[i], n.z.0[i]].map(bits),
+                n.get(i).to_array().map(bits),
                 v.normalize().to_array().map(bits)
             );
             let s = a.scale(Lanes::splat(1.5));
