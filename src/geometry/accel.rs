@@ -3,9 +3,10 @@
 //! The tree is obvhs's compressed wide BVH (8 children a node), built with PLOC and
 //! reinsertion: a SAH-quality tree that builds a million triangles in well under a second.
 
-use super::{Plane, Quad, Shape, Sphere};
+use super::Shape;
+use super::direct::{Direct, DirectWave};
 use crate::math::Ray;
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Width};
+use crate::math::lanes::{Lanes, Mask, RayColumns, V3, Width};
 use crate::math::rng::mix64;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
 use std::collections::HashMap;
@@ -41,10 +42,6 @@ pub struct PrimRef {
     /// Index of the primitive within the object's shape.
     pub index: u32,
 }
-
-/// Up to this many spheres and quads are tested one by one, outside the BVH: for a handful
-/// of them a loop beats descending a tree built for millions of triangles.
-const DIRECT_MAX: usize = 16;
 
 /// Makes many identical boxes slightly different. PLOC merges mutual nearest neighbours;
 /// among many identical boxes every distance ties, few pairs are mutual and the build turns
@@ -121,136 +118,15 @@ pub struct Accel {
     direct: Direct,
 }
 
-/// The spheres and quads tested directly (when there are at most DIRECT_MAX), and the planes.
-#[derive(Clone, Debug, Default)]
-struct Direct {
-    planes: Vec<Plane>,
-    spheres: Vec<Sphere>,
-    quads: Vec<Quad>,
-    // The object of each, planes first, then spheres, then quads.
-    objects: Vec<u32>,
-}
-
-impl Direct {
-    /// The nearest hit in (0, t_max), and its distance. Always inlined into
-    /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
-    #[inline(always)]
-    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
-        let (t, place) = self.nearest(ray.origin, ray.dir, ray.time, t_max);
-        self.found(t, place)
-    }
-
-    /// The nearest of them along each lane's ray in (0, t_max): its distance and its place
-    /// in `objects` (as a number, exact below 2²⁴), or (t_max, −1) where none is hit. The
-    /// nearest distance so far is the limit of every next test.
-    #[inline(always)]
-    fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> (R, R) {
-        let (mut t_best, mut best) = (t_max, R::splat(-1.0));
-        let mut place = 0.0;
-        let mut keep = |t: R| {
-            let hit = t.less(R::splat(f32::INFINITY));
-            t_best = R::select(hit, t, t_best);
-            best = R::select(hit, R::splat(place), best);
-            place += 1.0;
-            t_best
-        };
-        let mut limit = t_max;
-        for p in &self.planes {
-            limit = keep(p.nearest(o, d, limit));
-        }
-        for s in &self.spheres {
-            limit = keep(s.nearest(o, d, time, limit));
-        }
-        for q in &self.quads {
-            limit = keep(q.nearest(o, d, limit));
-        }
-        (t_best, best)
-    }
-
-    /// The hit of [`Direct::nearest`]'s answer for one ray.
-    #[inline(always)]
-    fn found(&self, t: f32, place: f32) -> Option<(PrimRef, f32)> {
-        (place >= 0.0).then(|| {
-            let object = self.objects[place as usize];
-            (PrimRef { object, index: 0 }, t)
-        })
-    }
-
-    /// Whether any of them blocks `ray` in (0, t_max).
-    #[inline]
-    fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.planes
-            .iter()
-            .any(|p| p.intersect_t(ray, t_max).is_some())
-            || self
-                .spheres
-                .iter()
-                .any(|s| s.intersect_t(ray, t_max).is_some())
-            || self
-                .quads
-                .iter()
-                .any(|q| q.intersect_t(ray, t_max).is_some())
-    }
-}
-
-/// The nearest hit of every ray of a wave against the directly tested shapes, `N` rays at a
-/// time, into `out`.
-struct DirectWave<'a> {
-    direct: &'a Direct,
-    rays: &'a RayColumns,
-    out: &'a mut [Option<(PrimRef, f32)>],
-}
-
-impl LaneKernel for DirectWave<'_> {
-    type Output = ();
-    #[inline(always)]
-    fn run<const N: usize>(self) {
-        for (group, out) in self.out.chunks_mut(N).enumerate() {
-            let (o, d, time) = self.rays.lanes::<N>(group * N);
-            let (t, place) = self.direct.nearest(o, d, time, Lanes::splat(f32::INFINITY));
-            for (i, out) in out.iter_mut().enumerate() {
-                *out = self.direct.found(t.0[i], place.0[i]);
-            }
-        }
-    }
-}
-
 impl Accel {
     /// Builds the BVH over `shapes` (the scene's objects, in order). Every shape must be
     /// [`Shape::within_limits`]: the builder panics on bounds near 5e18.
     pub fn build(shapes: &[Shape]) -> Self {
-        let mut prims = Vec::new();
-        let mut bounds: Vec<Aabb> = Vec::new();
-        let analytic = |s: &Shape| matches!(s, Shape::Sphere(_) | Shape::Quad(_));
-        let direct_ok = shapes.iter().filter(|s| analytic(s)).count() <= DIRECT_MAX;
-        let mut direct = Direct::default();
-        // The objects of the planes, spheres and quads tested directly, kind by kind.
-        let mut objects: [Vec<u32>; 3] = Default::default();
-        for (object, shape) in shapes.iter().enumerate() {
-            let object = object as u32;
-            match shape {
-                Shape::Plane(p) => {
-                    direct.planes.push(p.clone());
-                    objects[0].push(object);
-                }
-                Shape::Sphere(s) if direct_ok => {
-                    direct.spheres.push(s.clone());
-                    objects[1].push(object);
-                }
-                Shape::Quad(q) if direct_ok => {
-                    direct.quads.push(q.clone());
-                    objects[2].push(object);
-                }
-                _ => {
-                    for index in 0..shape.primitive_count() as u32 {
-                        prims.push(PrimRef { object, index });
-                        bounds.push(shape.primitive_bounds(index));
-                    }
-                }
-            }
-        }
-        // In the order `Direct::nearest` tests them.
-        direct.objects = objects.concat();
+        let (direct, mut prims) = Direct::new(shapes);
+        let mut bounds: Vec<Aabb> = prims
+            .iter()
+            .map(|p| shapes[p.object as usize].primitive_bounds(p.index))
+            .collect();
         break_ties(&mut bounds);
         let bvh = (!prims.is_empty()).then(|| {
             build_cwbvh(
@@ -271,7 +147,7 @@ impl Accel {
 
     /// Number of bounded primitives (in the BVH or tested directly).
     pub fn primitive_count(&self) -> usize {
-        self.prims.len() + self.direct.spheres.len() + self.direct.quads.len()
+        self.prims.len() + self.direct.bounded()
     }
 
     /// The nearest primitive hit by `ray` in (0, t_max), and its distance.
@@ -335,21 +211,54 @@ impl Accel {
     /// the first blocker found.
     #[inline]
     pub fn occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
-        if self.direct.occluded(ray, t_max) {
-            return true;
-        }
-        match &self.bvh {
-            Some(bvh) => {
-                let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
-                !bvh.ray_traverse_miss(obv_ray, |r, id| {
-                    let p = self.prims[id];
-                    shapes[p.object as usize]
-                        .intersect_t(p.index, ray, r.tmax)
-                        .unwrap_or(f32::INFINITY)
-                })
+        let (o, d) = (ray.origin, ray.dir);
+        self.direct.occluded(o, d, ray.time, t_max, false) || self.bvh_occluded(shapes, ray, t_max)
+    }
+
+    /// [`Accel::occluded`] for `N` rays (origins `o`, directions `d`, times, each up to its
+    /// `t_max`), where `done` does not hold already: the directly tested shapes in lanes,
+    /// the BVH ray by ray. True where a ray is blocked or done.
+    #[inline(always)]
+    pub(crate) fn occluded_lanes<const N: usize>(
+        &self,
+        shapes: &[Shape],
+        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        t_max: Lanes<N>,
+        done: Mask<N>,
+    ) -> Mask<N> {
+        let mut blocked = self.direct.occluded(o, d, time, t_max, done);
+        if self.bvh.is_some() {
+            for (i, b) in blocked.0.iter_mut().enumerate() {
+                if *b == 0 {
+                    let ray = Ray {
+                        origin: o.get(i),
+                        dir: d.get(i),
+                        time: time.0[i],
+                    };
+                    *b = if self.bvh_occluded(shapes, &ray, t_max.0[i]) {
+                        u32::MAX
+                    } else {
+                        0
+                    };
+                }
             }
-            None => false,
         }
+        blocked
+    }
+
+    /// Whether a BVH primitive blocks `ray` in (0, t_max).
+    #[inline(always)]
+    fn bvh_occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
+        let Some(bvh) = &self.bvh else {
+            return false;
+        };
+        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
+        !bvh.ray_traverse_miss(obv_ray, |r, id| {
+            let p = self.prims[id];
+            shapes[p.object as usize]
+                .intersect_t(p.index, ray, r.tmax)
+                .unwrap_or(f32::INFINITY)
+        })
     }
 
     /// The nearest hit by testing every primitive: the reference the BVH is tested against.
@@ -376,6 +285,7 @@ impl Accel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::{Mesh, Plane, Quad, Sphere};
     use crate::math::Vec3;
     use crate::math::rng::{mix64, to_unit_f32};
     use glam::Vec3A;
@@ -398,7 +308,12 @@ mod tests {
             let c = Vec3::new(k as f32 - 2.0, 0.5 * k as f32, -2.0 - k as f32);
             shapes.push(Shape::Sphere(Sphere::new(c, 0.4 + 0.1 * k as f32)));
         }
+        shapes.extend(boxes());
         let accel = Accel::build(&shapes);
+        assert!(
+            accel.bvh.is_none(),
+            "everything is tested directly, in lanes"
+        );
         // Rays from all over, inside spheres too, some along the plane (parallel to it).
         let mut state = 7u64;
         let mut u = || {
@@ -424,6 +339,46 @@ mod tests {
         }
         let found = scalar.iter().filter(|h| h.is_some()).count();
         assert!(found > 300 && found < 1000, "{found} hits");
+        // Shadow rays: beyond the nearest hit (blocked by it) or short of it, or of length 1.
+        let reach = |i: usize| {
+            let t = scalar[i].map_or(1.0, |(_, t)| t);
+            if i.is_multiple_of(2) {
+                t * 1.001
+            } else {
+                t * 0.5
+            }
+        };
+        let blocked = |i: usize| accel.occluded(&shapes, &rays.get(i), reach(i));
+        fn occluded_lanes<const N: usize>(
+            accel: &Accel,
+            shapes: &[Shape],
+            rays: &RayColumns,
+            reach: &dyn Fn(usize) -> f32,
+        ) -> Vec<bool> {
+            let mut out = Vec::new();
+            for i in (0..rays.len()).step_by(N) {
+                let t_max = Lanes::<N>::from_fn(|k| reach((i + k).min(rays.len() - 1)));
+                let none = Mask([0; N]);
+                let blocked = accel.occluded_lanes(shapes, rays.lanes::<N>(i), t_max, none);
+                out.extend(blocked.0.iter().map(|&b| b != 0));
+            }
+            out.truncate(rays.len());
+            out
+        }
+        let expected: Vec<bool> = (0..rays.len()).map(blocked).collect();
+        assert!(expected.iter().any(|&b| b) && !expected.iter().all(|&b| b));
+        assert_eq!(
+            occluded_lanes::<4>(&accel, &shapes, &rays, &reach),
+            expected
+        );
+        assert_eq!(
+            occluded_lanes::<8>(&accel, &shapes, &rays, &reach),
+            expected
+        );
+        assert_eq!(
+            occluded_lanes::<16>(&accel, &shapes, &rays, &reach),
+            expected
+        );
         for width in Width::ALL {
             let mut out = Vec::new();
             accel.intersect_wave(&shapes, &rays, width, &mut out);
@@ -432,6 +387,78 @@ mod tests {
             let b: Vec<_> = scalar.iter().map(bits).collect();
             assert_eq!(a, b, "{width:?}");
         }
+    }
+
+    /// A rotated box and a moving one: small meshes, tested directly.
+    fn boxes() -> [Shape; 2] {
+        let turn = glam::Affine3A::from_rotation_y(0.5) * glam::Affine3A::from_rotation_x(0.3);
+        let cuboid = |lo: Vec3, hi: Vec3| Mesh::cuboid(lo, hi).expect("a box");
+        let turned = cuboid(Vec3::new(-1.0, -0.5, -2.5), Vec3::new(0.5, 0.8, -1.2))
+            .transformed(&turn, false)
+            .expect("a turned box");
+        let mut moving = cuboid(Vec3::new(0.5, -1.0, -0.5), Vec3::new(1.5, 0.2, 0.4));
+        moving.velocity = Vec3::new(-0.4, 0.3, 0.0);
+        [Shape::Mesh(turned), Shape::Mesh(moving)]
+    }
+
+    #[test]
+    fn small_meshes_tested_directly_find_the_nearest_triangle_and_every_blocker() {
+        let shapes = boxes();
+        let accel = Accel::build(&shapes);
+        assert!(accel.bvh.is_none(), "two boxes need no BVH");
+        let mut state = 11u64;
+        let mut u = || {
+            state = mix64(state);
+            to_unit_f32(state)
+        };
+        let (mut hits, mut short) = (0, 0);
+        for i in 0..20_000 {
+            // From all around the boxes and from within them; some along an axis, some
+            // starting on a face's plane, some with a reach that ends short.
+            let o = Vec3::new(5.0 * u() - 2.5, 4.0 * u() - 2.0, 5.0 * u() - 3.5);
+            let o = if i % 97 == 0 {
+                Vec3::new(o.x, 0.2, o.z)
+            } else {
+                o
+            };
+            let d = match i % 40 {
+                0 => Vec3::Y,
+                1 => -Vec3::X,
+                _ => Vec3::new(u() - 0.5, u() - 0.5, u() - 0.5).normalize_or(Vec3::Z),
+            };
+            let ray = Ray {
+                origin: o,
+                dir: d,
+                time: u(),
+            };
+            let t_max = if i % 5 == 0 { 3.0 * u() } else { f32::INFINITY };
+            // Every triangle, one by one: what the BVH would find, to the bit.
+            let mut every = None::<(PrimRef, f32)>;
+            for (object, shape) in shapes.iter().enumerate() {
+                let Shape::Mesh(m) = shape else {
+                    unreachable!()
+                };
+                for index in 0..m.triangle_count() {
+                    let limit = every.map_or(t_max, |(_, t)| t);
+                    if let Some((t, _)) = m.intersect_t(index, &ray, limit) {
+                        let object = object as u32;
+                        let index = index as u32;
+                        every = Some((PrimRef { object, index }, t));
+                    }
+                }
+            }
+            let found = accel.intersect(&shapes, &ray, t_max);
+            let t = |h: Option<(PrimRef, f32)>| h.map(|(_, t)| t.to_bits());
+            assert_eq!(t(found), t(every), "ray {i}: {ray:?} up to {t_max}");
+            assert_eq!(found.map(|(p, _)| p.object), every.map(|(p, _)| p.object));
+            assert_eq!(accel.occluded(&shapes, &ray, t_max), every.is_some());
+            hits += every.is_some() as u32;
+            short += (every.is_none() && t_max < f32::INFINITY) as u32;
+        }
+        assert!(
+            hits > 2000 && short > 500,
+            "{hits} hits, {short} short misses"
+        );
     }
 
     #[test]

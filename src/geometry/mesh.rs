@@ -1,6 +1,7 @@
 //! Triangle meshes.
 
 use super::SurfaceHit;
+use crate::math::lanes::{Real, Vector};
 use crate::math::{Ray, Vec3};
 use glam::Vec2;
 use obvhs::aabb::Aabb;
@@ -221,25 +222,13 @@ impl Mesh {
     #[inline]
     pub fn intersect_t(&self, i: usize, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
         let ray = &self.local(ray);
-        let [v0, e1, e2] = self.edges[i];
-        let pvec = ray.dir.cross(e2);
-        let det = e1.dot(pvec);
-        if det == 0.0 {
-            return None;
-        }
-        let inv_det = 1.0 / det;
-        let tvec = ray.origin - v0;
-        let u = tvec.dot(pvec) * inv_det;
-        if !(0.0..=1.0).contains(&u) {
-            return None;
-        }
-        let qvec = tvec.cross(e1);
-        let v = ray.dir.dot(qvec) * inv_det;
-        if v < 0.0 || u + v > 1.0 {
-            return None;
-        }
-        let t = e2.dot(qvec) * inv_det;
-        (t > 0.0 && t < t_max).then_some((t, Vec2::new(u, v)))
+        let (t, u, v) = triangle_nearest(&self.edges[i], ray.origin, ray.dir, t_max);
+        (t != f32::INFINITY).then_some((t, Vec2::new(u, v)))
+    }
+
+    /// Per triangle (v0, v1 − v0, v2 − v0), what [`triangle_nearest`] reads.
+    pub(crate) fn edges(&self) -> &[[Vec3; 3]] {
+        &self.edges
     }
 
     /// The hit record of triangle `i` at `t`, with the point rebuilt from barycentrics.
@@ -278,6 +267,45 @@ impl Mesh {
             uv,
         }
     }
+}
+
+/// Möller–Trumbore for one ray or one per lane (origin `o`, direction `d`), against the
+/// triangle (v0, v0 + e1, v0 + e2) given as `[v0, e1, e2]`, either side: the distance
+/// t = e2·q / det where it is hit in (0, t_max), else +∞, and the barycentrics
+/// u = (o − v0)·p / det, v = d·q / det, with p = d × e2, q = (o − v0) × e1, det = e1·p.
+/// A hit needs det ≠ 0, u in [0, 1], v ≥ 0 and u + v ≤ 1.
+#[inline(always)]
+pub(crate) fn triangle_nearest<R: Real>(
+    edges: &[Vec3; 3],
+    o: R::V3,
+    d: R::V3,
+    t_max: R,
+) -> (R, R, R) {
+    let [v0, e1, e2] = edges.map(R::V3::splat);
+    let (zero, one, miss) = (R::splat(0.0), R::splat(1.0), R::splat(f32::INFINITY));
+    let pvec = d.cross(e2);
+    let det = e1.dot(pvec);
+    let hit = !det.equal(zero);
+    if !R::any(hit) {
+        return (miss, zero, zero);
+    }
+    let inv_det = one / det;
+    let tvec = o - v0;
+    let u = tvec.dot(pvec) * inv_det;
+    let hit = hit & zero.less_eq(u) & u.less_eq(one);
+    if !R::any(hit) {
+        return (miss, u, zero);
+    }
+    let qvec = tvec.cross(e1);
+    let v = d.dot(qvec) * inv_det;
+    // Not v < 0 and not u + v > 1: a NaN passes here and fails at t.
+    let hit = hit & !v.less(zero) & !one.less(u + v);
+    if !R::any(hit) {
+        return (miss, u, v);
+    }
+    let t = e2.dot(qvec) * inv_det;
+    let hit = hit & zero.less(t) & t.less(t_max);
+    (R::select(hit, t, miss), u, v)
 }
 
 /// Barycentric coordinates of `rel = p - v0` in the triangle (v0, v0 + e1, v0 + e2).

@@ -6,6 +6,7 @@
 //! [`crate::math::offset_ray_origin`] is sized for.
 
 mod accel;
+mod direct;
 mod mesh;
 mod shapes;
 

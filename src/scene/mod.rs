@@ -22,7 +22,7 @@ use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit, SurfaceLanes};
 use crate::light::{Background, Light};
 use crate::material::{Diffuse, Material};
-use crate::math::lanes::{Lanes, RayColumns, V3, Width};
+use crate::math::lanes::{Lanes, Mask, RayColumns, V3, Width};
 use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
@@ -358,6 +358,18 @@ impl Scene {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel.occluded(&self.shapes, ray, t_max)
+    }
+
+    /// [`Scene::occluded`] for `N` rays (coordinate by coordinate, each up to its `t_max`)
+    /// where `done` does not hold already: true where a ray is blocked or done.
+    #[inline(always)]
+    pub(crate) fn occluded_lanes<const N: usize>(
+        &self,
+        rays: (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        t_max: Lanes<N>,
+        done: Mask<N>,
+    ) -> Mask<N> {
+        self.accel.occluded_lanes(&self.shapes, rays, t_max, done)
     }
 
     /// The nearest hit found by testing every primitive (no BVH): the reference for tests.

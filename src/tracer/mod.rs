@@ -7,6 +7,7 @@
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
 mod emitters;
+mod lights;
 mod media;
 mod path;
 mod photons;
@@ -150,6 +151,9 @@ pub struct Tracer<'a> {
     lights: Vec<PreparedLight>,
     // Whether any of them has an area a ray can hit (points cannot be seen).
     lights_seen: bool,
+    // Whether the waves trace the shadow rays in lanes, after each level: with opaque
+    // shadows, and lights that all aim at points ([`PreparedLight::aims_at_points`]).
+    shadows_in_lanes: bool,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
     emitters: Emitters,
     // The pass's photons, with transport = "photons" (see `prepare_photons`).
@@ -201,6 +205,8 @@ impl<'a> Tracer<'a> {
             photons: None,
             photon_targets: None,
             lights_seen: lights.iter().any(PreparedLight::can_be_seen),
+            shadows_in_lanes: params.transport != Transport::TransmissiveShadows
+                && lights.iter().all(PreparedLight::aims_at_points),
             lights,
             frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
             seed_key: crate::math::rng::seed_key(params.seed),

@@ -37,7 +37,7 @@ impl Tracer<'_> {
         let (n_geom, n) = (at.n_geom, at.n_shade);
         let origin = offset_ray_origin(p, n_geom);
         let view = -ray.dir;
-        let mut sum = self.scene.ambient * direct.brdf.albedo;
+        let mut sum = self.ambient(direct);
         for light in &self.lights {
             let u = light.draw(w.rng);
             let Some(ls) = light.sample(p, u) else {
@@ -76,6 +76,12 @@ impl Tracer<'_> {
                 .ray(|| shadow_node(id, &shadow, ls.dist, blocked, contribution));
         }
         sum
+    }
+
+    /// The ambient term of [`Tracer::direct`]'s sum: a·L_ambient.
+    #[inline(always)]
+    pub(super) fn ambient(&self, direct: &Direct) -> Color {
+        self.scene.ambient * direct.brdf.albedo
     }
 
     /// The transmittance of `shadow` over `dist`, starting in `media` and carrying

@@ -16,6 +16,7 @@
 //! a polariser and without dispersion. The recursion ([`Tracer::sample`]) stays the
 //! reference, and what the inspector records.
 
+use super::lights::{Asked, Lit, Seen, Shadow, Shadows};
 use super::media::transmittance;
 use super::path::cross;
 use super::shade::pick_lobe;
@@ -150,10 +151,11 @@ impl Rays {
 }
 
 /// What is known of a node's surface before it is shaded: the hit (`None`: its ray met
-/// nothing), the radiance it emits where it is a light, and a dielectric's split where the
-/// lanes made it.
+/// nothing), the area light seen in front of it (its distance and radiance), the radiance
+/// the surface emits where it is a light, and a dielectric's split where the lanes made it.
 struct Surface<'s> {
     hit: Option<&'s Hit>,
+    seen: Option<(f32, Color)>,
     emitted: Option<Color>,
     split: Option<&'s Split>,
 }
@@ -170,9 +172,15 @@ pub struct Waves {
     media: Vec<Media>,
     nearest: Vec<Option<(PrimRef, f32)>>,
     hits: Vec<Option<Hit>>,
+    seen: Vec<Option<(f32, Color)>>,
     emitted: Vec<Option<Color>>,
     on_dielectrics: Vec<u32>,
     splits: Vec<(u32, Split)>,
+    // Per light, the level's shadow rays towards it; what they gave; and the nodes whose
+    // sum of lights is then scaled, with the scale.
+    shadows: Vec<Asked>,
+    lit: Vec<Lit>,
+    scaled: Vec<(u32, f32)>,
     levels: Vec<Level>,
     radiance: Vec<Color>,
     below: Vec<Color>,
@@ -180,11 +188,13 @@ pub struct Waves {
 }
 
 /// Where a node's children go: the next level's rays, the media they enter, the list of the
-/// level's children.
+/// level's children; and the shadow rays it asks for, traced after the level.
 struct Queue<'q> {
     next: &'q mut Rays,
     media: &'q mut Vec<Media>,
     children: &'q mut Vec<Child>,
+    shadows: &'q mut [Asked],
+    scaled: &'q mut Vec<(u32, f32)>,
 }
 
 /// The camera rays of a wave, with each sample's random numbers after the camera's: with
@@ -261,9 +271,13 @@ impl Tracer<'_> {
             media,
             nearest,
             hits,
+            seen,
             emitted,
             on_dielectrics,
             splits,
+            shadows,
+            lit,
+            scaled,
             levels,
             radiance,
             below,
@@ -271,6 +285,7 @@ impl Tracer<'_> {
         } = waves;
         slots.clear();
         roots.clear();
+        shadows.resize_with(self.lights.len(), Asked::default);
         level.clear();
         media.clear();
         media.push(Media::default());
@@ -300,6 +315,12 @@ impl Tracer<'_> {
         let mut depth = 0;
         while !level.rays.is_empty() {
             self.scene.intersect_wave(&level.rays, width, nearest);
+            width.dispatch(Seen {
+                tracer: self,
+                rays: &level.rays,
+                nearest,
+                out: seen,
+            });
             width.dispatch(Surfaces {
                 tracer: self,
                 rays: &level.rays,
@@ -324,27 +345,54 @@ impl Tracer<'_> {
             values.clear();
             children.clear();
             next.clear();
+            shadows.iter_mut().for_each(Asked::clear);
+            scaled.clear();
             let mut queue = Queue {
                 next,
                 media,
                 children,
+                shadows,
+                scaled,
             };
             // The splits, in the order of the hits on dielectrics.
             let mut splits = splits.iter().peekable();
-            let surfaces = level.nodes.iter().zip(hits.iter()).zip(emitted.iter());
-            for (i, ((node, hit), &emitted)) in surfaces.enumerate() {
+            let surfaces = level
+                .nodes
+                .iter()
+                .zip(hits.iter())
+                .zip(seen.iter().zip(emitted.iter()));
+            for (i, ((node, hit), (&seen, &emitted))) in surfaces.enumerate() {
                 let split = splits.next_if(|(j, _)| *j as usize == i).map(|(_, s)| s);
                 let ray = level.rays.get(i);
                 let slot = &mut slots[node.slot as usize];
                 let before = stats.total_rays();
                 let surface = Surface {
                     hit: hit.as_ref(),
+                    seen,
                     emitted,
                     split,
                 };
-                let value = self.shade_node(&ray, node, surface, slot, stats, &mut queue);
+                let value = self.shade_node(&ray, (i, node), surface, slot, stats, &mut queue);
                 slot.rays += (stats.total_rays() - before) as u32;
                 values.push(value);
+            }
+            if !scaled.is_empty() {
+                width.dispatch(Shadows {
+                    tracer: self,
+                    asked: shadows,
+                    out: lit,
+                });
+                for &Lit { node, light } in lit.iter() {
+                    if let Some(light) = light {
+                        values[node as usize].local += light;
+                        stats.shadow_rays += 1;
+                        slots[level.nodes[node as usize].slot as usize].rays += 1;
+                    }
+                }
+                for &(node, scale) in scaled.iter() {
+                    let value = &mut values[node as usize];
+                    value.local = scale * value.local;
+                }
             }
             std::mem::swap(level, next);
             depth += 1;
@@ -377,7 +425,7 @@ impl Tracer<'_> {
     fn shade_node(
         &self,
         ray: &Ray,
-        node: &Node,
+        (index, node): (usize, &Node),
         surface: Surface,
         slot: &mut Slot,
         stats: &mut Stats,
@@ -385,6 +433,7 @@ impl Tracer<'_> {
     ) -> Value {
         let Surface {
             hit,
+            seen,
             emitted,
             split,
         } = surface;
@@ -397,9 +446,8 @@ impl Tracer<'_> {
             children: first..queue.children.len() as u32,
         };
         let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
-        let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
-        if let Some((_, radiance)) = self.light_seen(ray, &mut nearest) {
-            return value(along(nearest, radiance), Color::ONE, queue);
+        if let Some((t, radiance)) = seen {
+            return value(along(t, radiance), Color::ONE, queue);
         }
         let Some(hit) = hit else {
             let l = along(f32::INFINITY, self.scene.background.radiance(ray.dir));
@@ -428,6 +476,27 @@ impl Tracer<'_> {
             w.stats.tir_events += 1;
         }
         let local = match scatter.direct {
+            // The lights' sum, kept to be completed and scaled once the level's shadow
+            // rays are traced: their random numbers drawn here, in the recursion's order.
+            Some(direct) if self.shadows_in_lanes => {
+                let (p, n_geom) = (hit.surface.p, at.n_geom);
+                let origin = offset_ray_origin(p, n_geom);
+                for (light, asked) in self.lights.iter().zip(queue.shadows.iter_mut()) {
+                    asked.push(&Shadow {
+                        node: index as u32,
+                        p,
+                        origin,
+                        n_geom,
+                        n: at.n_shade,
+                        view: -ray.dir,
+                        time: ray.time,
+                        u: light.draw(w.rng),
+                        brdf: direct.brdf,
+                    });
+                }
+                queue.scaled.push((index as u32, direct.scale));
+                self.ambient(&direct)
+            }
             Some(direct) => {
                 let m = Meet {
                     ray,

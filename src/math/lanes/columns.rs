@@ -1,4 +1,5 @@
-//! Rays as columns, the layout the lanes load from.
+//! Records as columns, the layout the lanes load from: rays, and whatever else a wave
+//! keeps per ray for its lanes.
 
 use super::{Lanes, V3};
 use crate::math::{Ray, Vec3};
@@ -6,23 +7,32 @@ use crate::math::{Ray, Vec3};
 /// The most lanes any width has.
 const MAX_LANES: usize = 16;
 
-/// Rays kept as columns, one per coordinate, in blocks of [`MAX_LANES`], so that `N` rays'
-/// x (or y, ...) load as one row of lanes and adding a ray checks for room once a block.
-#[derive(Clone, Debug, Default)]
-pub struct RayColumns {
-    // Origin x, y, z, direction x, y, z, time.
-    blocks: Vec<[[f32; MAX_LANES]; 7]>,
+/// Records of `K` numbers kept as columns, one per number, in blocks of [`MAX_LANES`], so
+/// that `N` records' first (or second, ...) numbers load as one row of lanes and adding a
+/// record checks for room once a block.
+#[derive(Clone, Debug)]
+pub struct Columns<const K: usize> {
+    blocks: Vec<[[f32; MAX_LANES]; K]>,
     len: usize,
 }
 
-impl RayColumns {
-    /// No rays.
+impl<const K: usize> Default for Columns<K> {
+    fn default() -> Self {
+        Columns {
+            blocks: Vec::new(),
+            len: 0,
+        }
+    }
+}
+
+impl<const K: usize> Columns<K> {
+    /// No records.
     pub fn clear(&mut self) {
         self.blocks.clear();
         self.len = 0;
     }
 
-    /// The number of rays.
+    /// The number of records.
     pub fn len(&self) -> usize {
         self.len
     }
@@ -32,36 +42,81 @@ impl RayColumns {
         self.len == 0
     }
 
-    /// Adds `ray` at the end.
+    /// Adds `record` at the end.
     #[inline]
-    pub fn push(&mut self, ray: &Ray) {
+    pub fn push(&mut self, record: [f32; K]) {
         let j = self.len % MAX_LANES;
         if j == 0 {
-            // The lanes past the last ray are zeros: a ray of no direction, hitting nothing.
-            self.blocks.push([[0.0; MAX_LANES]; 7]);
+            // The lanes past the last record are zeros: for a ray, one of no direction,
+            // hitting nothing.
+            self.blocks.push([[0.0; MAX_LANES]; K]);
         }
         if let Some(block) = self.blocks.last_mut() {
-            let values = [
-                ray.origin.x,
-                ray.origin.y,
-                ray.origin.z,
-                ray.dir.x,
-                ray.dir.y,
-                ray.dir.z,
-                ray.time,
-            ];
-            for (c, v) in block.iter_mut().zip(values) {
+            for (c, v) in block.iter_mut().zip(record) {
                 c[j] = v;
             }
         }
         self.len += 1;
     }
 
+    /// Number `k` of record `i`.
+    #[inline]
+    pub fn get(&self, i: usize, k: usize) -> f32 {
+        self.blocks[i / MAX_LANES][k][i % MAX_LANES]
+    }
+
+    /// Number `k` of records `i..i + N` (`i` a multiple of `N`, which divides
+    /// [`MAX_LANES`]); lanes past the last record hold zeros.
+    #[inline(always)]
+    pub fn lane<const N: usize>(&self, i: usize, k: usize) -> Lanes<N> {
+        let j = i % MAX_LANES;
+        let mut a = [0.0; N];
+        a.copy_from_slice(&self.blocks[i / MAX_LANES][k][j..j + N]);
+        Lanes(a)
+    }
+
+    /// Numbers `k..k + 3` of records `i..i + N` as vectors, as [`Columns::lane`].
+    #[inline(always)]
+    pub fn lanes3<const N: usize>(&self, i: usize, k: usize) -> V3<Lanes<N>> {
+        V3 {
+            x: self.lane(i, k),
+            y: self.lane(i, k + 1),
+            z: self.lane(i, k + 2),
+        }
+    }
+}
+
+/// Rays as columns: origin x, y, z, direction x, y, z, time.
+#[derive(Clone, Debug, Default)]
+pub struct RayColumns(Columns<7>);
+
+impl RayColumns {
+    /// No rays.
+    pub fn clear(&mut self) {
+        self.0.clear();
+    }
+
+    /// The number of rays.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Adds `ray` at the end.
+    #[inline]
+    pub fn push(&mut self, ray: &Ray) {
+        let (o, d) = (ray.origin, ray.dir);
+        self.0.push([o.x, o.y, o.z, d.x, d.y, d.z, ray.time]);
+    }
+
     /// Ray `i`.
     #[inline]
     pub fn get(&self, i: usize) -> Ray {
-        let block = &self.blocks[i / MAX_LANES];
-        let c = |k: usize| block[k][i % MAX_LANES];
+        let c = |k: usize| self.0.get(i, k);
         Ray {
             origin: Vec3::new(c(0), c(1), c(2)),
             dir: Vec3::new(c(3), c(4), c(5)),
@@ -73,25 +128,6 @@ impl RayColumns {
     /// coordinate: (origin, direction, time). Lanes past the last ray hold zeros.
     #[inline(always)]
     pub fn lanes<const N: usize>(&self, i: usize) -> (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>) {
-        let block = &self.blocks[i / MAX_LANES];
-        let j = i % MAX_LANES;
-        let load = |k: usize| {
-            let mut a = [0.0; N];
-            a.copy_from_slice(&block[k][j..j + N]);
-            Lanes(a)
-        };
-        (
-            V3 {
-                x: load(0),
-                y: load(1),
-                z: load(2),
-            },
-            V3 {
-                x: load(3),
-                y: load(4),
-                z: load(5),
-            },
-            load(6),
-        )
+        (self.0.lanes3(i, 0), self.0.lanes3(i, 3), self.0.lane(i, 6))
     }
 }

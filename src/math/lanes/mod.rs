@@ -17,7 +17,7 @@ mod columns;
 mod vector;
 mod width;
 
-pub use columns::RayColumns;
+pub use columns::{Columns, RayColumns};
 pub use vector::{V3, Vector};
 pub use width::{LaneKernel, Width, asked_lanes};
 
@@ -276,6 +276,20 @@ impl<const N: usize> Real for Lanes<N> {
 pub fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
     let x = R::select(x.less(lo), lo, x);
     R::select(hi.less(x), hi, x)
+}
+
+/// The smaller of `a` and `b`; `a` where they do not compare (a NaN), so that a NaN in
+/// `b` leaves `a` as it was.
+#[inline(always)]
+pub fn min<R: Real>(a: R, b: R) -> R {
+    R::select(b.less(a), b, a)
+}
+
+/// The larger of `a` and `b`; `a` where they do not compare (a NaN), so that a NaN in
+/// `b` leaves `a` as it was.
+#[inline(always)]
+pub fn max<R: Real>(a: R, b: R) -> R {
+    R::select(a.less(b), b, a)
 }
 
 /// Where `x` is finite (neither infinite nor NaN), as `f32::is_finite`: x − x is 0 there

@@ -17,6 +17,8 @@ pub trait Vector<R: Real>: Copy + Add<Output = Self> + Sub<Output = Self> {
     fn cross(self, o: Self) -> Self;
     /// Each coordinate times `s`.
     fn scale(self, s: R) -> Self;
+    /// Each coordinate divided by `s`.
+    fn div(self, s: R) -> Self;
     /// |self|².
     #[inline(always)]
     fn length_squared(self) -> R {
@@ -29,6 +31,8 @@ pub trait Vector<R: Real>: Copy + Add<Output = Self> + Sub<Output = Self> {
     fn neg(self) -> Self;
     /// `a` where `m` holds, `b` elsewhere.
     fn select(m: R::Mask, a: Self, b: Self) -> Self;
+    /// The coordinates (x, y, z).
+    fn coords(self) -> [R; 3];
 }
 
 /// One ray's vectors are glam's, in SIMD registers as everywhere else in the tracer.
@@ -50,6 +54,10 @@ impl Vector<f32> for Vec3 {
         s * self
     }
     #[inline(always)]
+    fn div(self, s: f32) -> Vec3 {
+        self / s
+    }
+    #[inline(always)]
     fn normalize(self) -> Vec3 {
         Vec3::normalize(self)
     }
@@ -60,6 +68,10 @@ impl Vector<f32> for Vec3 {
     #[inline(always)]
     fn select(m: bool, a: Vec3, b: Vec3) -> Vec3 {
         if m { a } else { b }
+    }
+    #[inline(always)]
+    fn coords(self) -> [f32; 3] {
+        self.to_array()
     }
 }
 
@@ -122,6 +134,14 @@ impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
         }
     }
     #[inline(always)]
+    fn div(self, s: Lanes<N>) -> Self {
+        V3 {
+            x: self.x / s,
+            y: self.y / s,
+            z: self.z / s,
+        }
+    }
+    #[inline(always)]
     fn normalize(self) -> Self {
         let length = self.length_squared().sqrt();
         if cfg!(target_feature = "sse2") {
@@ -149,6 +169,10 @@ impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
             y: Lanes::select(m, a.y, b.y),
             z: Lanes::select(m, a.z, b.z),
         }
+    }
+    #[inline(always)]
+    fn coords(self) -> [Lanes<N>; 3] {
+        [self.x, self.y, self.z]
     }
 }
 
@@ -221,6 +245,12 @@ mod tests {
                 [s.x.0[i], s.y.0[i], s.z.0[i]].map(bits),
                 g.to_array().map(bits)
             );
+            let q = a.div(Lanes::splat(0.7));
+            assert_eq!(
+                q.get(i).to_array().map(bits),
+                (*v / 0.7).to_array().map(bits)
+            );
+            assert_eq!(a.coords().map(|c| bits(c.0[i])), v.to_array().map(bits));
         }
     }
 }

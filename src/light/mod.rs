@@ -8,6 +8,7 @@
 //! still emits only forwards, with intensity × cos θ).
 
 use crate::geometry::{Quad, Sphere};
+use crate::math::lanes::{Real, Vector};
 use crate::math::sampling::{concentric_disk, to_world, uniform_cone};
 use crate::math::{Color, Ray, Vec3, orthonormal_basis};
 use glam::Vec2;
@@ -206,56 +207,113 @@ impl PreparedLight {
     /// `p` sees only the back of the light, or is inside it.
     pub fn sample(&self, p: Vec3, u: Vec2) -> Option<LightSample> {
         let s = self.light.scale;
-        let (q, normal) = match &self.light.shape {
-            LightShape::Sphere { center, radius } if radius * s > 0.0 => {
-                return self.sample_sphere(p, *center, radius * s, u);
-            }
-            LightShape::Sphere { center, .. } => (*center, None),
+        if let LightShape::Disk {
+            center,
+            normal,
+            radius,
+        } = &self.light.shape
+        {
+            let (t, b) = orthonormal_basis(*normal);
+            let d = concentric_disk(u) * (radius * s);
+            let q = *center + d.x * t + d.y * b;
+            let (dir, dist, factor, valid) = self.toward::<f32>(p, q);
+            return valid.then(|| self.sample_of(dir, dist, factor));
+        }
+        if let Some(q) = self.point_of::<f32>((u.x, u.y)) {
+            let (dir, dist, factor, valid) = self.toward::<f32>(p, q);
+            return valid.then(|| self.sample_of(dir, dist, factor));
+        }
+        match &self.light.shape {
+            LightShape::Sphere { center, radius } => self.sample_sphere(p, *center, radius * s, u),
+            _ => None,
+        }
+    }
+
+    /// The point [`PreparedLight::sample`] aims at, from the uniform pair `u`, for one
+    /// sample or one per lane, where it is made so: a uniform point on a rectangle,
+    /// centre + s ((u₁ − ½) edge_u + (u₂ − ½) edge_v), or a point light's position. `None`
+    /// for a disk and a sphere with a radius.
+    #[inline(always)]
+    pub(crate) fn point_of<R: Real>(&self, u: (R, R)) -> Option<R::V3> {
+        let s = self.light.scale;
+        match &self.light.shape {
             LightShape::Rect {
                 center,
                 edge_u,
                 edge_v,
-            } => (
-                *center + s * ((u.x - 0.5) * *edge_u + (u.y - 0.5) * *edge_v),
-                self.normal,
-            ),
-            LightShape::Disk {
-                center,
-                normal,
-                radius,
             } => {
-                let (t, b) = orthonormal_basis(*normal);
-                let d = concentric_disk(u) * (radius * s);
-                (*center + d.x * t + d.y * b, Some(*normal))
+                let half = R::splat(0.5);
+                let across = R::V3::splat(*edge_u).scale(u.0 - half)
+                    + R::V3::splat(*edge_v).scale(u.1 - half);
+                Some(R::V3::splat(*center) + across.scale(R::splat(s)))
             }
-        };
+            // A sphere with a radius is sampled by its cone of directions instead.
+            LightShape::Sphere { center, radius } => {
+                if radius * s > 0.0 {
+                    None
+                } else {
+                    Some(R::V3::splat(*center))
+                }
+            }
+            LightShape::Disk { .. } => None,
+        }
+    }
+
+    /// Whether [`PreparedLight::point_of`] makes this light's points: a rectangle or a
+    /// point light.
+    pub(crate) fn aims_at_points(&self) -> bool {
+        self.point_of::<f32>((0.5, 0.5)).is_some()
+    }
+
+    /// From `p` towards the light's point `q`, for one sample or one per lane: the unit
+    /// direction, the distance, the factor on the light's [`PreparedLight::base`]
+    /// (A cos θ_l / d² for an area, cos θ_l / d² for a point: per solid angle the area
+    /// density 1/A becomes d² / (A cos θ_l), and L A = intensity), and whether the point
+    /// is seen from its emitting side at a distance.
+    #[inline(always)]
+    pub(crate) fn toward<R: Real>(&self, p: R::V3, q: R::V3) -> (R::V3, R, R, R::Mask) {
         let to = q - p;
-        let dist = to.length();
-        if dist <= 0.0 {
-            return None;
-        }
-        let dir = to / dist;
-        let cos_l = normal.map_or(1.0, |n| -dir.dot(n));
-        if cos_l <= 0.0 {
-            return None;
-        }
-        let area = self.area;
-        // Per solid angle the area density 1/A becomes d² / (A cos θ_l); L A = intensity.
-        let (value, pdf) = if area > 0.0 {
-            let g = area * cos_l / (dist * dist);
-            (self.radiance * g, 1.0 / g)
-        } else {
-            (
-                self.light.intensity * (cos_l / (dist * dist)),
-                f32::INFINITY,
-            )
+        let dist = to.length_squared().sqrt();
+        let dir = to.div(dist);
+        let cos_l = match self.normal {
+            Some(n) => -dir.dot(R::V3::splat(n)),
+            None => R::splat(1.0),
         };
-        Some(LightSample {
+        let zero = R::splat(0.0);
+        // As `dist > 0` and `cos_l > 0` fail for NaN in the scalar code: not ≤ 0.
+        let valid = !dist.less_eq(zero) & !cos_l.less_eq(zero);
+        let dd = dist * dist;
+        let factor = if self.area > 0.0 {
+            R::splat(self.area) * cos_l / dd
+        } else {
+            cos_l / dd
+        };
+        (dir, dist, factor, valid)
+    }
+
+    /// What a sample's radiance over its density is made of: the light's radiance (an
+    /// area) or its intensity (a point), times a sample's factor.
+    pub(crate) fn base(&self) -> Color {
+        if self.area > 0.0 {
+            self.radiance
+        } else {
+            self.light.intensity
+        }
+    }
+
+    /// The sample along `dir` at `dist`, with [`PreparedLight::toward`]'s `factor`.
+    fn sample_of(&self, dir: Vec3, dist: f32, factor: f32) -> LightSample {
+        let pdf = if self.area > 0.0 {
+            1.0 / factor
+        } else {
+            f32::INFINITY
+        };
+        LightSample {
             dir,
             dist,
-            value,
+            value: self.base() * factor,
             pdf,
-        })
+        }
     }
 
     fn sample_sphere(&self, p: Vec3, center: Vec3, radius: f32, u: Vec2) -> Option<LightSample> {
@@ -316,8 +374,8 @@ impl PreparedLight {
             return None;
         }
         let s = self.light.scale;
+        let (o, d) = (ray.origin, ray.dir);
         let t = match &self.light.shape {
-            LightShape::Rect { .. } => self.quad.as_ref()?.intersect_t(ray, t_max)?,
             LightShape::Disk {
                 center,
                 normal,
@@ -331,12 +389,38 @@ impl PreparedLight {
                 let inside = (ray.at(t) - *center).length_squared() <= (radius * s).powi(2);
                 (t > 0.0 && t < t_max && inside).then_some(t)?
             }
-            LightShape::Sphere { center, radius } => {
-                Sphere::new(*center, radius * s).intersect_t(ray, t_max)?
-            }
+            _ => self.nearest_of::<f32>(o, d, ray.time, t_max)?,
         };
-        let front = self.normal.is_none_or(|n| ray.dir.dot(n) < 0.0);
-        Some((t, if front { self.radiance } else { Color::ZERO }))
+        (t < f32::INFINITY).then(|| (t, self.seen_along(ray.dir)))
+    }
+
+    /// Where a ray (origin `o`, unit direction `d`, frame time `time`) meets a
+    /// rectangle's or sphere's emitting surface in (0, t_max), for one ray or one per
+    /// lane: its distance, +∞ where it misses; `None` for a disk, and for a light that
+    /// [`PreparedLight::can_be_seen`] not.
+    #[inline(always)]
+    pub(crate) fn nearest_of<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> Option<R> {
+        if !self.can_be_seen() {
+            return None;
+        }
+        match &self.light.shape {
+            LightShape::Rect { .. } => Some(self.quad.as_ref()?.nearest(o, d, t_max)),
+            LightShape::Sphere { center, radius } => {
+                let sphere = Sphere::new(*center, radius * self.light.scale);
+                Some(sphere.nearest(o, d, time, t_max))
+            }
+            LightShape::Disk { .. } => None,
+        }
+    }
+
+    /// The radiance a ray along `dir` sees where it meets the light: black from behind a
+    /// rectangle or disk.
+    pub(crate) fn seen_along(&self, dir: Vec3) -> Color {
+        if self.normal.is_none_or(|n| dir.dot(n) < 0.0) {
+            self.radiance
+        } else {
+            Color::ZERO
+        }
     }
 }
 
@@ -366,117 +450,4 @@ impl Background {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::math::SampleStream;
-
-    /// The irradiance estimate at `p` (normal `n`) from `samples` samples of `light`.
-    fn irradiance(light: &Light, p: Vec3, n: Vec3, samples: u32) -> f64 {
-        let light = light.prepare();
-        let mut sum = 0.0f64;
-        for i in 0..samples {
-            let u =
-                SampleStream::with_pattern(crate::math::Pattern::Sobol, samples, 1, 0, i).next_2d();
-            if let Some(s) = light.sample(p, u) {
-                sum += (s.value.x * s.dir.dot(n).max(0.0)) as f64;
-            }
-        }
-        sum / samples as f64
-    }
-
-    #[test]
-    fn disk_light_sampling_converges_to_the_analytic_irradiance() {
-        // On the axis of a disk of radius R and radiance L at height h: E = π L R² / (h² + R²).
-        let (radius, h) = (1.5f32, 2.0f32);
-        let light = Light {
-            shape: LightShape::Disk {
-                center: Vec3::new(0.0, h, 0.0),
-                normal: -Vec3::Y,
-                radius,
-            },
-            intensity: Color::splat(3.0),
-            scale: 1.0,
-        };
-        let l = light.radiance().x as f64;
-        let expected =
-            std::f64::consts::PI * l * (radius * radius) as f64 / (h * h + radius * radius) as f64;
-        let got = irradiance(&light, Vec3::ZERO, Vec3::Y, 1 << 14);
-        assert!(
-            (got - expected).abs() < 1e-3 * expected,
-            "{got} vs {expected}"
-        );
-        // From behind, nothing.
-        assert!(
-            light
-                .prepare()
-                .sample(Vec3::new(0.0, 5.0, 0.0), Vec2::splat(0.5))
-                .is_none()
-        );
-    }
-
-    #[test]
-    fn sphere_light_irradiance_is_that_of_a_point_of_equal_intensity() {
-        // A sphere light's far field: E = I cos θ / d² (exact outside the sphere, for a
-        // surface that sees the whole sphere).
-        let light = Light {
-            shape: LightShape::Sphere {
-                center: Vec3::new(0.0, 3.0, 0.0),
-                radius: 0.8,
-            },
-            intensity: Color::splat(5.0),
-            scale: 1.0,
-        };
-        let got = irradiance(&light, Vec3::ZERO, Vec3::Y, 1 << 12);
-        assert!((got - 5.0 / 9.0).abs() < 1e-4, "{got}");
-    }
-
-    #[test]
-    fn rect_light_at_size_zero_is_a_forward_point_light() {
-        let rect = Light {
-            shape: LightShape::Rect {
-                center: Vec3::new(0.0, 2.0, 0.0),
-                edge_u: Vec3::X,
-                edge_v: Vec3::Z,
-            },
-            intensity: Color::splat(4.0),
-            scale: 0.0,
-        };
-        // edge_u × edge_v = x × z = −y: it shines down.
-        let point = rect.prepare();
-        let s = point.sample(Vec3::ZERO, Vec2::splat(0.3)).unwrap();
-        assert!((s.value.x - 4.0 / 4.0).abs() < 1e-6 && (s.dir - Vec3::Y).length() < 1e-6);
-        assert!(
-            point
-                .sample(Vec3::new(0.0, 4.0, 0.0), Vec2::splat(0.3))
-                .is_none()
-        );
-        assert!(
-            point
-                .hit(&Ray::new(Vec3::ZERO, Vec3::Y, 0.0), f32::INFINITY)
-                .is_none(),
-            "a point is never hit"
-        );
-        // At size 1 it is seen from below, and is dark from above.
-        let big = rect.scaled(1.0).prepare();
-        let (t, l) = big
-            .hit(&Ray::new(Vec3::ZERO, Vec3::Y, 0.0), f32::INFINITY)
-            .unwrap();
-        assert!((t - 2.0).abs() < 1e-6 && (l.x - 4.0).abs() < 1e-6);
-        let (_, back) = big
-            .hit(
-                &Ray::new(Vec3::new(0.0, 4.0, 0.0), -Vec3::Y, 0.0),
-                f32::INFINITY,
-            )
-            .unwrap();
-        assert_eq!(back, Color::ZERO);
-        // Scaling keeps the intensity: the on-axis irradiance far away is unchanged.
-        let far = Vec3::new(0.0, -200.0, 0.0);
-        for size in [0.0, 0.5, 2.0] {
-            let e = irradiance(&rect.scaled(size), far, Vec3::Y, 256);
-            assert!(
-                (e - 4.0 / 202.0f64.powi(2)).abs() < 1e-3 * 4.0 / 202.0f64.powi(2),
-                "size {size}: {e}"
-            );
-        }
-    }
-}
+mod tests;
