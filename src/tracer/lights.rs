@@ -96,13 +96,17 @@ pub(super) struct Shadow {
 #[derive(Default)]
 pub(super) struct Asked {
     columns: Columns<18>,
-    nodes: Vec<(u32, Brdf)>,
+    // Apart: a (node, BRDF) pair built field by field and copied whole stalled on
+    // store-to-load forwarding (measured: 8 % of the default scene).
+    nodes: Vec<u32>,
+    brdfs: Vec<Brdf>,
 }
 
 impl Asked {
     pub(super) fn clear(&mut self) {
         self.columns.clear();
         self.nodes.clear();
+        self.brdfs.clear();
     }
 
     pub(super) fn push(&mut self, s: &Shadow) {
@@ -111,7 +115,8 @@ impl Asked {
             p.x, p.y, p.z, o.x, o.y, o.z, g.x, g.y, g.z, n.x, n.y, n.z, v.x, v.y, v.z, s.time,
             s.u.x, s.u.y,
         ]);
-        self.nodes.push((s.node, s.brdf));
+        self.nodes.push(s.node);
+        self.brdfs.push(s.brdf);
     }
 }
 
@@ -140,7 +145,8 @@ impl LaneKernel for Shadows<'_, '_> {
         for (light, asked) in t.lights.iter().zip(self.asked) {
             let base = light.base();
             let c = &asked.columns;
-            for (k, nodes) in asked.nodes.chunks(N).enumerate() {
+            let chunks = asked.nodes.chunks(N).zip(asked.brdfs.chunks(N));
+            for (k, (nodes, brdfs)) in chunks.enumerate() {
                 let i = k * N;
                 let u = (c.lane::<N>(i, 16), c.lane(i, 17));
                 // The waves ask only lights that aim at points (`Tracer::shadows_in_lanes`).
@@ -160,18 +166,18 @@ impl LaneKernel for Shadows<'_, '_> {
                 } else {
                     !lit
                 };
-                self.out
-                    .extend(nodes.iter().enumerate().map(|(j, &(node, brdf))| {
-                        let light = (lit.0[j] != 0).then(|| {
-                            if blocked.0[j] != 0 {
-                                Color::ZERO
-                            } else {
-                                let f = brdf.eval(n.get(j), dir.get(j), view.get(j));
-                                f * (base * factor.0[j]) * cos.0[j]
-                            }
-                        });
-                        Lit { node, light }
-                    }));
+                let shadows = nodes.iter().zip(brdfs).enumerate();
+                self.out.extend(shadows.map(|(j, (&node, brdf))| {
+                    let light = (lit.0[j] != 0).then(|| {
+                        if blocked.0[j] != 0 {
+                            Color::ZERO
+                        } else {
+                            let f = brdf.eval(n.get(j), dir.get(j), view.get(j));
+                            f * (base * factor.0[j]) * cos.0[j]
+                        }
+                    });
+                    Lit { node, light }
+                }));
             }
         }
     }

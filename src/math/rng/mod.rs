@@ -9,8 +9,8 @@
 mod sobol;
 
 pub(crate) use sobol::SobolLanes;
-use sobol::sobol_pair;
 pub use sobol::{owen_scramble, sobol_2d};
+use sobol::{sobol_first, sobol_pair};
 
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
@@ -214,7 +214,20 @@ impl SampleStream {
     }
 
     /// The next dimension, uniform in [0, 1).
+    #[inline]
     pub fn next_1d(&mut self) -> f32 {
+        // Sobol, the default, in line at every call; the other patterns behind a call.
+        if self.pattern == Pattern::Sobol {
+            let u = sobol_first(self.pixel_key, self.sample_reversed, self.dim);
+            self.dim += 1;
+            return u;
+        }
+        self.next_1d_other()
+    }
+
+    /// [`SampleStream::next_1d`] for the patterns other than Sobol.
+    #[inline(never)]
+    fn next_1d_other(&mut self) -> f32 {
         let u = match self.pattern {
             Pattern::Random => to_unit_f32(self.random_bits(0)),
             Pattern::Sobol => self.sobol_pair().x,

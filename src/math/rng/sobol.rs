@@ -55,6 +55,15 @@ pub(super) fn fraction_to_f32(x: u32) -> f32 {
     (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
+/// The first number of [`sobol_pair`], bit for bit, without the second's work (its hash,
+/// Pascal matrix and scramble): rev32(x) is the low half of the pair's 64-bit reversal.
+#[inline(always)]
+pub(super) fn sobol_first(pixel_key: u64, sample_reversed: u32, dim: u32) -> f32 {
+    let key = dimension_key(pixel_key, dim);
+    let index = laine_karras(sample_reversed, key as u32).reverse_bits();
+    fraction_to_f32(laine_karras(index, (key >> 32) as u32).reverse_bits())
+}
+
 /// Dimension `dim`'s Owen-scrambled Sobol pair of the sample whose number, bits reversed, is
 /// `sample_reversed`, in the pixel whose key is `pixel_key`: the sample index shuffled by a
 /// nested uniform scramble (which keeps every power-of-two prefix a (0,m,2)-net), then each
@@ -124,7 +133,16 @@ impl<const N: usize> SobolLanes<N> {
     /// [`SampleStream::next_1d`] in every lane.
     #[inline(always)]
     pub(crate) fn next_1d(&mut self) -> [f32; N] {
-        self.next_2d().map(|v| v.x)
+        let mut out = [0.0; N];
+        for ((o, &key), &rev) in out
+            .iter_mut()
+            .zip(&self.pixel_key)
+            .zip(&self.sample_reversed)
+        {
+            *o = sobol_first(key, rev, self.dim);
+        }
+        self.dim += 1;
+        out
     }
 
     /// Skips `n` dimensions, as [`Uniform::skip`].
@@ -173,6 +191,10 @@ mod tests {
                         fraction_to_f32(owen_scramble(x, sx)),
                         fraction_to_f32(owen_scramble(y, sy)),
                     );
+                    // One number alone is the pair's first, to the bit.
+                    let (key, rev, dim) = (st.pixel_key, st.sample_reversed, st.dim);
+                    let first = sobol_first(key, rev, dim);
+                    assert_eq!(first.to_bits(), long.x.to_bits());
                     assert_eq!(st.next_2d(), long, "pixel {pixel}, sample {sample}");
                 }
             }
