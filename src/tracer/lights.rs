@@ -5,6 +5,7 @@
 //! recursion's bit for bit. The BVH and each BRDF are asked ray by ray.
 
 use super::Tracer;
+use super::shadow::SHADOW_REACH;
 use crate::geometry::PrimRef;
 use crate::material::Brdf;
 use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, Real, Vector};
@@ -91,8 +92,16 @@ pub(super) struct Shadow {
     pub(super) brdf: Brdf,
 }
 
-/// The shadow rays asked of one light, as columns (p, origin, n_geom, n, view, time, u)
-/// for the lanes to load, beside each one's node and BRDF.
+/// The shadow rays asked of one light, as columns for the lanes to load (at these places:
+/// p, origin, n_geom, n, view, time, u), beside each one's node and BRDF.
+const P: usize = 0;
+const ORIGIN: usize = 3;
+const N_GEOM: usize = 6;
+const N_SHADE: usize = 9;
+const VIEW: usize = 12;
+const TIME: usize = 15;
+const U: usize = 16;
+
 #[derive(Default)]
 pub(super) struct Asked {
     columns: Columns<18>,
@@ -148,20 +157,20 @@ impl LaneKernel for Shadows<'_, '_> {
             let chunks = asked.nodes.chunks(N).zip(asked.brdfs.chunks(N));
             for (k, (nodes, brdfs)) in chunks.enumerate() {
                 let i = k * N;
-                let u = (c.lane::<N>(i, 16), c.lane(i, 17));
+                let u = (c.lane::<N>(i, U), c.lane(i, U + 1));
                 // The waves ask only lights that aim at points (`Tracer::shadows_in_lanes`).
                 let Some(q) = light.point_of::<Lanes<N>>(u) else {
                     continue;
                 };
-                let (dir, dist, factor, valid) = light.toward::<Lanes<N>>(c.lanes3(i, 0), q);
-                let (n, view) = (c.lanes3::<N>(i, 9), c.lanes3::<N>(i, 12));
+                let (dir, dist, factor, valid) = light.toward::<Lanes<N>>(c.lanes3(i, P), q);
+                let (n, view) = (c.lanes3::<N>(i, N_SHADE), c.lanes3::<N>(i, VIEW));
                 let cos = n.dot(dir);
                 let zero = Lanes::splat(0.0);
-                let lit = valid & !cos.less_eq(zero) & !c.lanes3(i, 6).dot(dir).less_eq(zero);
-                // Stop just short of the light's surface (it is not in the BVH anyway).
-                let reach = dist * Lanes::splat(1.0 - 1e-4);
+                let n_geom = c.lanes3(i, N_GEOM);
+                let lit = valid & !cos.less_eq(zero) & !n_geom.dot(dir).less_eq(zero);
+                let reach = dist * Lanes::splat(SHADOW_REACH);
                 let blocked = if Lanes::any(lit) {
-                    let rays = (c.lanes3(i, 3), dir, c.lane(i, 15));
+                    let rays = (c.lanes3(i, ORIGIN), dir, c.lane(i, TIME));
                     t.scene.occluded_lanes(rays, reach, !lit)
                 } else {
                     !lit

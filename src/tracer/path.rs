@@ -22,6 +22,7 @@
 use super::media::transmittance;
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
+use super::shadow::SHADOW_REACH;
 use super::{End, Media, RayKind, Recorder, Stats, Tracer, TreeNode, Walk};
 use crate::material::{Interaction, Part, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
@@ -414,7 +415,7 @@ impl Tracer<'_> {
                 dir: ls.dir,
                 time: v.ray.time,
             };
-            let blocked = self.scene.occluded(&s, ls.dist * (1.0 - 1e-4));
+            let blocked = self.scene.occluded(&s, ls.dist * SHADOW_REACH);
             let c = if blocked {
                 Color::ZERO
             } else {

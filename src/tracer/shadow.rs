@@ -14,6 +14,10 @@ use crate::params::Transport;
 /// a scene of many glass objects in a row cannot make one shadow ray run on for ever.
 const MAX_SHADOW_CROSSINGS: u32 = 64;
 
+/// How far a shadow ray reaches, as a fraction of the distance to the light's point: just
+/// short of the light's surface (which is not in the BVH anyway).
+pub(super) const SHADOW_REACH: f32 = 1.0 - 1e-4;
+
 impl Tracer<'_> {
     /// Shading by the lights: ambient plus every light, one shadow ray to one sampled point
     /// of each: L = a·L_ambient + Σ f(l, v) (L_light / p(l)) cos θ · T, T the shadow ray's
@@ -53,8 +57,7 @@ impl Tracer<'_> {
                 dir: ls.dir,
                 time: ray.time,
             };
-            // Stop just short of the light's surface (it is not in the BVH anyway).
-            let reach = ls.dist * (1.0 - 1e-4);
+            let reach = ls.dist * SHADOW_REACH;
             let (blocked, contribution) = match self.params.transport {
                 Transport::Whitted | Transport::Path | Transport::Photons => {
                     let blocked = self.scene.occluded(&shadow, reach);
