@@ -142,7 +142,7 @@ impl Direct {
     #[inline(always)]
     pub(super) fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
         let (t, place) = self.nearest(ray.origin, ray.dir, ray.time, t_max);
-        self.found(t, place)
+        self.found(t, place as i32)
     }
 
     /// The nearest of them along each lane's ray in (0, t_max): its distance and its place
@@ -185,8 +185,9 @@ impl Direct {
 
     /// The hit of [`Direct::nearest`]'s answer for one ray.
     #[inline(always)]
-    fn found(&self, t: f32, place: f32) -> Option<(PrimRef, f32)> {
-        (place >= 0.0).then(|| (self.prims[place as usize], t))
+    /// (`place` as an integer: a miss's -1 indexes nothing.)
+    fn found(&self, t: f32, place: i32) -> Option<(PrimRef, f32)> {
+        self.prims.get(place as usize).map(|&prim| (prim, t))
     }
 
     /// Where any of them blocks each ray (origin `o`, direction `d`, at `time`) in
@@ -250,8 +251,10 @@ impl LaneKernel for DirectWave<'_> {
         for (group, out) in self.out.chunks_mut(N).enumerate() {
             let (o, d, time) = self.rays.lanes::<N>(group * N);
             let (t, place) = self.direct.nearest(o, d, time, Lanes::splat(f32::INFINITY));
-            for (i, out) in out.iter_mut().enumerate() {
-                *out = self.direct.found(t.0[i], place.0[i]);
+            // The places made integers in lanes.
+            let place: [i32; N] = std::array::from_fn(|i| place.0[i] as i32);
+            for ((out, &place), &t) in out.iter_mut().zip(&place).zip(&t.0) {
+                *out = self.direct.found(t, place);
             }
         }
     }

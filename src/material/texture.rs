@@ -39,8 +39,18 @@ impl Texture {
         match self {
             Texture::Solid(c) => [*c; N],
             Texture::Checker { even, odd, scale } => {
-                let parity: [usize; N] =
-                    std::array::from_fn(|i| cell_parity(Vec2::new(u.0[i], v.0[i]), *scale));
+                let x: [f32; N] = std::array::from_fn(|i| u.0[i] * scale.x);
+                let y: [f32; N] = std::array::from_fn(|i| v.0[i] * scale.y);
+                // Where every cell index fits 32 bits (as on any surface seen), the floors
+                // in 32-bit lanes, which every vector unit converts; floor_i64 elsewhere.
+                let small = |a: &[f32; N]| a.iter().fold(true, |all, x| all & (x.abs() < SMALL));
+                let parity: [usize; N] = if small(&x) & small(&y) {
+                    std::array::from_fn(|i| {
+                        (floor_i32(x[i]).wrapping_add(floor_i32(y[i])) & 1) as usize
+                    })
+                } else {
+                    std::array::from_fn(|i| cell_parity(Vec2::new(u.0[i], v.0[i]), *scale))
+                };
                 parity.map(|k| [*even, *odd][k])
             }
         }
@@ -54,6 +64,17 @@ impl Texture {
 fn cell_parity(uv: Vec2, scale: Vec2) -> usize {
     let k = floor_i64(uv.x * scale.x) + floor_i64(uv.y * scale.y);
     (k & 1) as usize
+}
+
+/// Below this magnitude `floor_i32` is `floor_i64`: its cell index fits 32 bits.
+const SMALL: f32 = (1u32 << 30) as f32;
+
+/// `floor_i64(x)` for |x| < [`SMALL`], in 32 bits: truncation, one less for a negative
+/// non-integer. (The parity of a sum wrapped to 32 bits is the parity of the sum.)
+#[inline(always)]
+fn floor_i32(x: f32) -> i32 {
+    let i = x as i32;
+    i - ((i as f32) > x) as i32
 }
 
 /// `x.floor() as i64`, without the library call `floor` is on processors without a
@@ -95,6 +116,36 @@ mod tests {
         let lanes = t.eval_lanes(Lanes(u), Lanes(v));
         for i in 0..8 {
             assert_eq!(lanes[i], t.eval(Vec2::new(u[i], v[i])), "point {i}");
+        }
+        // Ordinary coordinates, all lanes below the 32-bit bound: cell edges, negative
+        // cells and the largest cells that path takes.
+        let edge = [
+            0.0625,
+            -0.0625,
+            1.0 / 12.0,
+            -0.5,
+            0.999_999_9,
+            -1.0e-8,
+            6.0e7,
+            -6.0e7,
+        ];
+        let spread = (0..4096u32).map(|k| (k as f32 * 0.618_034).fract() * 4.0 - 2.0);
+        let ordinary: Vec<f32> = edge.into_iter().chain(spread).collect();
+        for (a, b) in ordinary
+            .chunks_exact(8)
+            .zip(ordinary.chunks_exact(8).skip(1))
+        {
+            let (u, v): ([f32; 8], [f32; 8]) = (a.try_into().unwrap(), b.try_into().unwrap());
+            let lanes = t.eval_lanes(Lanes(u), Lanes(v));
+            for i in 0..8 {
+                assert_eq!(
+                    lanes[i],
+                    t.eval(Vec2::new(u[i], v[i])),
+                    "({}, {})",
+                    u[i],
+                    v[i]
+                );
+            }
         }
         assert_eq!(
             Texture::Solid(Color::ONE).eval_lanes(Lanes(u), Lanes(v)),
@@ -143,6 +194,11 @@ mod tests {
         let spread = (0..200_000u32).map(|k| f32::from_bits(k.wrapping_mul(0x9e37_79b9)));
         for x in special.into_iter().chain(spread) {
             assert_eq!(floor_i64(x), x.floor() as i64, "{x:e}");
+            if x.abs() < SMALL {
+                assert_eq!(floor_i32(x) as i64, floor_i64(x), "{x:e}");
+            }
         }
+        let bound = SMALL.next_down();
+        assert_eq!(floor_i32(-bound) as i64, floor_i64(-bound));
     }
 }

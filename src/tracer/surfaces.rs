@@ -12,9 +12,10 @@ use crate::math::Color;
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
 use crate::scene::Hit;
 
-/// The hits of a level's rays (`None`: the ray met nothing), what each hit's surface
-/// emits (`None`: it is not a light), and which hits are on a dielectric (their places
-/// in the level, in order), from the nearest primitive and distance of each ray.
+/// The hits of a level's rays (`None`: the ray met nothing, or `N` neighbours met one
+/// light, which needs no records), what each hit's surface emits (`None`: it is not a
+/// light), and which hits are on a dielectric (their places in the level, in order), from
+/// the nearest primitive and distance of each ray.
 pub(super) struct Surfaces<'a, 't> {
     pub(super) tracer: &'a Tracer<'t>,
     pub(super) rays: &'a RayColumns,
@@ -53,6 +54,14 @@ impl LaneKernel for Surfaces<'_, '_> {
                 });
             match in_lanes {
                 Some((object, t, (lanes, material))) => {
+                    let (u, v) = lanes.uv;
+                    if let Some(radiance) = tracer.materials[material as usize].emission_lanes(u, v)
+                    {
+                        // A light's radiance is all its node needs: no records.
+                        emitted.extend(radiance.iter().map(|&l| Some(l)));
+                        hits.extend(std::iter::repeat_n(None, N));
+                        continue;
+                    }
                     let hit = |k: usize| Hit {
                         surface: lanes.get(k, t.0[k]),
                         object,
@@ -62,11 +71,7 @@ impl LaneKernel for Surfaces<'_, '_> {
                     if dielectric(material) {
                         on_dielectrics.extend(first as u32..(first + N) as u32);
                     }
-                    let (u, v) = lanes.uv;
-                    match tracer.materials[material as usize].emission_lanes(u, v) {
-                        Some(radiance) => emitted.extend(radiance.iter().map(|&l| Some(l))),
-                        None => emitted.extend(std::iter::repeat_n(None, N)),
-                    }
+                    emitted.extend(std::iter::repeat_n(None, N));
                 }
                 None => {
                     for (k, near) in chunk.iter().enumerate() {
@@ -154,8 +159,12 @@ impl LaneKernel for Splits<'_, '_> {
 #[inline(always)]
 fn one_object(chunk: &[Option<(PrimRef, f32)>]) -> Option<u32> {
     let object = chunk.first()?.as_ref()?.0.object;
+    // Without an early exit: the chunks that do not qualify are few, and a branch per ray
+    // costs more than the compares.
     chunk
         .iter()
-        .all(|near| near.is_some_and(|(prim, _)| prim.object == object))
+        .fold(true, |all, near| {
+            all & near.is_some_and(|(prim, _)| prim.object == object)
+        })
         .then_some(object)
 }

@@ -151,10 +151,12 @@ impl Rays {
 }
 
 /// What is known of a node's surface before it is shaded: the hit (`None`: its ray met
-/// nothing), the area light seen in front of it (its distance and radiance), the radiance
-/// the surface emits where it is a light, and a dielectric's split where the lanes made it.
+/// nothing, or met a light whose record the lanes did not make), its distance, the area
+/// light seen in front of it (its distance and radiance), the radiance the surface emits
+/// where it is a light, and a dielectric's split where the lanes made it.
 struct Surface<'s> {
     hit: Option<&'s Hit>,
+    t: f32,
     seen: Option<(f32, Color)>,
     emitted: Option<Color>,
     split: Option<&'s Split>,
@@ -163,7 +165,6 @@ struct Surface<'s> {
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
 #[derive(Default)]
 pub struct Waves {
-    draws: Vec<(SampleStream, Ray)>,
     slots: Vec<Slot>,
     roots: Vec<Option<u32>>,
     level: Rays,
@@ -200,16 +201,18 @@ struct Queue<'q> {
 /// The camera rays of a wave, with each sample's random numbers after the camera's: with
 /// the Sobol pattern, `N` at a time in lanes, the draws and the rays; with the others (the
 /// sampling lecture's patterns), ray by ray.
-struct CameraRays<'a, 't> {
+struct CameraRays<'a, 't, F> {
     tracer: &'a Tracer<'t>,
     samples: &'a [(u32, u32, u32)],
-    out: &'a mut Vec<(SampleStream, Ray)>,
+    // Takes each sample's stream and ray, in order: where they are kept, so that they are
+    // not built in one list and copied to another.
+    out: F,
 }
 
-impl LaneKernel for CameraRays<'_, '_> {
+impl<F: FnMut(SampleStream, &Ray)> LaneKernel for CameraRays<'_, '_, F> {
     type Output = ();
     #[inline(always)]
-    fn run<const N: usize>(self) {
+    fn run<const N: usize>(mut self) {
         let t = self.tracer;
         let sobol = t.params.pattern == Pattern::Sobol;
         let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
@@ -229,19 +232,19 @@ impl LaneKernel for CameraRays<'_, '_> {
             let (o, d, time) = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
             // Each stream is made where it is stored: an array of them built first and
             // copied out stalls on store-to-load forwarding.
-            self.out.extend((0..N).map(|i| {
+            for i in 0..N {
                 let ray = Ray {
                     origin: o.get(i),
                     dir: d.get(i),
                     time: time.0[i],
                 };
-                (lanes.stream(i), ray)
-            }));
+                (self.out)(lanes.stream(i), &ray);
+            }
         }
-        self.out.extend(rest.iter().map(|&(x, y, s)| {
+        for &(x, y, s) in rest {
             let (rng, cs) = t.camera_draw(x, y, s);
-            (rng, t.camera_ray(x, y, &cs))
-        }));
+            (self.out)(rng, &t.camera_ray(x, y, &cs));
+        }
     }
 }
 
@@ -263,7 +266,6 @@ impl Tracer<'_> {
         waves: &'w mut Waves,
     ) -> &'w [Traced] {
         let Waves {
-            draws,
             slots,
             roots,
             level,
@@ -289,13 +291,7 @@ impl Tracer<'_> {
         level.clear();
         media.clear();
         media.push(Media::default());
-        draws.clear();
-        width.dispatch(CameraRays {
-            tracer: self,
-            samples,
-            out: draws,
-        });
-        for (rng, ray) in draws.drain(..) {
+        let camera_ray = |rng: SampleStream, ray: &Ray| {
             stats.samples += 1;
             let camera = ray.origin.is_finite() && ray.dir.is_finite();
             let node = Node {
@@ -304,14 +300,19 @@ impl Tracer<'_> {
                 depth: 0,
                 weight: 1.0,
             };
-            roots.push(camera.then(|| level.push(&ray, node)));
+            roots.push(camera.then(|| level.push(ray, node)));
             stats.camera_rays += camera as u64;
             slots.push(Slot {
                 rng,
                 tree_rays: 0,
                 rays: camera as u32,
             });
-        }
+        };
+        width.dispatch(CameraRays {
+            tracer: self,
+            samples,
+            out: camera_ray,
+        });
         let mut depth = 0;
         while !level.rays.is_empty() {
             self.scene.intersect_wave(&level.rays, width, nearest);
@@ -359,22 +360,26 @@ impl Tracer<'_> {
             let surfaces = level
                 .nodes
                 .iter()
-                .zip(hits.iter())
+                .zip(hits.iter().zip(nearest.iter()))
                 .zip(seen.iter().zip(emitted.iter()));
-            for (i, ((node, hit), (&seen, &emitted))) in surfaces.enumerate() {
+            for (i, ((node, (hit, near)), (&seen, &emitted))) in surfaces.enumerate() {
                 let split = splits.next_if(|(j, _)| *j as usize == i).map(|(_, s)| s);
-                let ray = level.rays.get(i);
                 let slot = &mut slots[node.slot as usize];
-                let before = stats.total_rays();
                 let surface = Surface {
                     hit: hit.as_ref(),
+                    t: near.map_or(f32::INFINITY, |(_, t)| t),
                     seen,
                     emitted,
                     split,
                 };
-                let value = self.shade_node(&ray, (i, node), surface, slot, stats, &mut queue);
-                slot.rays += (stats.total_rays() - before) as u32;
-                values.push(value);
+                values.push(self.shade_node(
+                    &level.rays,
+                    (i, node),
+                    surface,
+                    slot,
+                    stats,
+                    &mut queue,
+                ));
             }
             if !scaled.is_empty() {
                 width.dispatch(Shadows {
@@ -424,7 +429,7 @@ impl Tracer<'_> {
     #[inline(always)]
     fn shade_node(
         &self,
-        ray: &Ray,
+        rays: &RayColumns,
         (index, node): (usize, &Node),
         surface: Surface,
         slot: &mut Slot,
@@ -433,6 +438,7 @@ impl Tracer<'_> {
     ) -> Value {
         let Surface {
             hit,
+            t,
             seen,
             emitted,
             split,
@@ -449,16 +455,23 @@ impl Tracer<'_> {
         if let Some((t, radiance)) = seen {
             return value(along(t, radiance), Color::ONE, queue);
         }
+        if let Some(radiance) = emitted {
+            // A light's node has no hit record (its distance is the nearest hit's).
+            let tr = sigma.map_or(Color::ONE, |s| transmittance(s, t));
+            return value(radiance, tr, queue);
+        }
+        // (Its ray is gathered from the columns only where it is needed.)
         let Some(hit) = hit else {
-            let l = along(f32::INFINITY, self.scene.background.radiance(ray.dir));
+            let dir = rays.get(index).dir;
+            let l = along(f32::INFINITY, self.scene.background.radiance(dir));
             return value(l, Color::ONE, queue);
         };
         let tr = sigma.map(|s| transmittance(s, hit.surface.t));
         let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
         let tr = tr.unwrap_or(Color::ONE);
-        if let Some(radiance) = emitted {
-            return value(radiance, tr, queue);
-        }
+        let ray = &rays.get(index);
+        // The rays this node traces (none above, where its ray ends).
+        let before = stats.total_rays();
         let at = self.interaction(ray, hit, media, None);
         let material = &self.materials[hit.material as usize];
         let mut rec = NoRecorder;
@@ -579,6 +592,7 @@ impl Tracer<'_> {
             }
         }
         slot.tree_rays = w.tree_rays;
+        slot.rays += (w.stats.total_rays() - before) as u32;
         value(local, tr, queue)
     }
 }
