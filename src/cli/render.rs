@@ -245,7 +245,8 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
 }
 
 /// What a render took and found, in one line: the status bar's figures, so a render's
-/// noise can be judged without a window.
+/// noise can be judged without a window. Seconds to the millisecond: a benchmark's render
+/// takes a fifth of a second (tests/mitsuba/speed.py reads them).
 fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
     let pixels = (job.width as u64 * job.height as u64) as f64;
     let noise = film
@@ -253,7 +254,7 @@ fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
         .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
     let rays = stats.total_rays();
     format!(
-        "{} {}x{} at {} spp: {:.2} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}",
+        "{} {}x{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}",
         job.scene.name,
         job.width,
         job.height,
