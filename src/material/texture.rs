@@ -118,7 +118,7 @@ mod tests {
             assert_eq!(lanes[i], t.eval(Vec2::new(u[i], v[i])), "point {i}");
         }
         // Ordinary coordinates, all lanes below the 32-bit bound: cell edges, negative
-        // cells and the largest cells that path takes.
+        // cells, and cell indices near the 32-bit bound (6e7 × 16 is close to 2^30).
         let edge = [
             0.0625,
             -0.0625,

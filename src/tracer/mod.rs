@@ -9,6 +9,7 @@
 mod emitters;
 mod lights;
 mod media;
+mod nodes;
 mod path;
 mod photons;
 mod polarized;

@@ -16,19 +16,15 @@
 //! a polariser and without dispersion. The recursion ([`Tracer::sample`]) stays the
 //! reference, and what the inspector records.
 
-use super::lights::{Asked, Lit, Seen, Shadow, Shadows};
-use super::media::transmittance;
-use super::path::cross;
-use super::shade::pick_lobe;
+use super::lights::{Asked, Lit, Seen, Shadows};
 use super::surfaces::{Splits, Surfaces};
-use super::{Branch, Media, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
+use super::{Media, Stats, Tracer};
 use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
-use crate::material::{Lobe, Side, Split};
+use crate::material::Split;
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Width, asked_lanes};
 use crate::math::rng::SobolLanes;
-use crate::math::{Color, Pattern, Ray, SampleStream, offset_ray_origin};
-use crate::params::TreeMode;
+use crate::math::{Color, Pattern, Ray, SampleStream};
 use crate::scene::Hit;
 use std::ops::Range;
 
@@ -94,26 +90,26 @@ pub struct Traced {
 #[derive(Clone, Copy)]
 pub(super) struct Node {
     // The sample of the wave it belongs to.
-    slot: u32,
+    pub(super) slot: u32,
     pub(super) media: u32,
-    depth: u32,
-    weight: f32,
+    pub(super) depth: u32,
+    pub(super) weight: f32,
 }
 
 /// How a node's radiance is made: (local + Σ weight · L(child), over its children in
 /// order) × tr, the transmittance along its segment (1 where nothing absorbs: 1 · x is x
 /// bit for bit). A node whose ray meets a light or nothing has no children and tr 1.
-struct Value {
-    local: Color,
-    tr: Color,
-    children: Range<u32>,
+pub(super) struct Value {
+    pub(super) local: Color,
+    pub(super) tr: Color,
+    pub(super) children: Range<u32>,
 }
 
 /// A child of a node: what its radiance is multiplied by, and its node in the next level
 /// (`None`: pruned, radiance 0).
-struct Child {
-    weight: Color,
-    node: Option<u32>,
+pub(super) struct Child {
+    pub(super) weight: Color,
+    pub(super) node: Option<u32>,
 }
 
 /// One level of the waves: how each node's radiance is made, and the children they list.
@@ -124,17 +120,17 @@ struct Level {
 }
 
 /// A sample's state while its tree is traced.
-struct Slot {
-    rng: SampleStream,
-    tree_rays: u32,
-    rays: u32,
+pub(super) struct Slot {
+    pub(super) rng: SampleStream,
+    pub(super) tree_rays: u32,
+    pub(super) rays: u32,
 }
 
 /// The rays of one level and where each sits.
 #[derive(Default)]
-struct Rays {
-    rays: RayColumns,
-    nodes: Vec<Node>,
+pub(super) struct Rays {
+    pub(super) rays: RayColumns,
+    pub(super) nodes: Vec<Node>,
 }
 
 impl Rays {
@@ -143,7 +139,7 @@ impl Rays {
         self.nodes.clear();
     }
 
-    fn push(&mut self, ray: &Ray, node: Node) -> u32 {
+    pub(super) fn push(&mut self, ray: &Ray, node: Node) -> u32 {
         self.rays.push(ray);
         self.nodes.push(node);
         self.nodes.len() as u32 - 1
@@ -154,12 +150,12 @@ impl Rays {
 /// nothing, or met a light whose record the lanes did not make), its distance, the area
 /// light seen in front of it (its distance and radiance), the radiance the surface emits
 /// where it is a light, and a dielectric's split where the lanes made it.
-struct Surface<'s> {
-    hit: Option<&'s Hit>,
-    t: f32,
-    seen: Option<(f32, Color)>,
-    emitted: Option<Color>,
-    split: Option<&'s Split>,
+pub(super) struct Surface<'s> {
+    pub(super) hit: Option<&'s Hit>,
+    pub(super) t: f32,
+    pub(super) seen: Option<(f32, Color)>,
+    pub(super) emitted: Option<Color>,
+    pub(super) split: Option<&'s Split>,
 }
 
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
@@ -190,12 +186,18 @@ pub struct Waves {
 
 /// Where a node's children go: the next level's rays, the media they enter, the list of the
 /// level's children; and the shadow rays it asks for, traced after the level.
-struct Queue<'q> {
-    next: &'q mut Rays,
-    media: &'q mut Vec<Media>,
-    children: &'q mut Vec<Child>,
-    shadows: &'q mut [Asked],
-    scaled: &'q mut Vec<(u32, f32)>,
+pub(super) struct Queue<'q> {
+    pub(super) next: &'q mut Rays,
+    pub(super) media: &'q mut Vec<Media>,
+    pub(super) children: &'q mut Vec<Child>,
+    pub(super) lights: Lights<'q>,
+}
+
+/// The shadow rays a level's nodes ask for, per light, and the nodes whose sum of lights is
+/// then scaled, with the scale.
+pub(super) struct Lights<'q> {
+    pub(super) shadows: &'q mut [Asked],
+    pub(super) scaled: &'q mut Vec<(u32, f32)>,
 }
 
 /// The camera rays of a wave, with each sample's random numbers after the camera's: with
@@ -285,34 +287,10 @@ impl Tracer<'_> {
             below,
             traced,
         } = waves;
-        slots.clear();
-        roots.clear();
         shadows.resize_with(self.lights.len(), Asked::default);
-        level.clear();
         media.clear();
         media.push(Media::default());
-        let camera_ray = |rng: SampleStream, ray: &Ray| {
-            stats.samples += 1;
-            let camera = ray.origin.is_finite() && ray.dir.is_finite();
-            let node = Node {
-                slot: slots.len() as u32,
-                media: 0,
-                depth: 0,
-                weight: 1.0,
-            };
-            roots.push(camera.then(|| level.push(ray, node)));
-            stats.camera_rays += camera as u64;
-            slots.push(Slot {
-                rng,
-                tree_rays: 0,
-                rays: camera as u32,
-            });
-        };
-        width.dispatch(CameraRays {
-            tracer: self,
-            samples,
-            out: camera_ray,
-        });
+        self.camera_level(samples, width, stats, (slots, roots, level));
         let mut depth = 0;
         while !level.rays.is_empty() {
             self.scene.intersect_wave(&level.rays, width, nearest);
@@ -352,8 +330,7 @@ impl Tracer<'_> {
                 next,
                 media,
                 children,
-                shadows,
-                scaled,
+                lights: Lights { shadows, scaled },
             };
             // The splits, in the order of the hits on dielectrics.
             let mut splits = splits.iter().peekable();
@@ -387,34 +364,12 @@ impl Tracer<'_> {
                     asked: shadows,
                     out: lit,
                 });
-                for &Lit { node, light } in lit.iter() {
-                    if let Some(light) = light {
-                        values[node as usize].local += light;
-                        stats.shadow_rays += 1;
-                        slots[level.nodes[node as usize].slot as usize].rays += 1;
-                    }
-                }
-                for &(node, scale) in scaled.iter() {
-                    let value = &mut values[node as usize];
-                    value.local = scale * value.local;
-                }
+                add_lights((lit, scaled), values, &level.nodes, slots, stats);
             }
             std::mem::swap(level, next);
             depth += 1;
         }
-        // The sums, from the deepest level up.
-        below.clear();
-        for level in levels[..depth].iter().rev() {
-            radiance.clear();
-            radiance.extend(level.values.iter().map(|v| {
-                let mut l = v.local;
-                for c in &level.children[v.children.start as usize..v.children.end as usize] {
-                    l += c.weight * c.node.map_or(Color::ZERO, |n| below[n as usize]);
-                }
-                v.tr * l
-            }));
-            std::mem::swap(radiance, below);
-        }
+        sum_levels(&levels[..depth], radiance, below);
         traced.clear();
         traced.extend(roots.iter().zip(slots.iter()).map(|(root, slot)| Traced {
             radiance: root.map_or(Color::NAN, |r| below[r as usize]),
@@ -423,176 +378,80 @@ impl Tracer<'_> {
         traced
     }
 
-    /// What the recursion's `trace_in` does at `node` once its ray's `surface` is known
-    /// (the hit, the radiance it emits, a dielectric's split where the lanes made it): the
-    /// light it meets, or the hit's own light, with its children queued.
-    #[inline(always)]
-    fn shade_node(
+    /// Level 0 of a wave: the camera ray of each of `samples` (made `width` at a time),
+    /// each sample's slot, and its root node (`None`: its camera ray could not be traced).
+    fn camera_level(
         &self,
-        rays: &RayColumns,
-        (index, node): (usize, &Node),
-        surface: Surface,
-        slot: &mut Slot,
+        samples: &[(u32, u32, u32)],
+        width: Width,
         stats: &mut Stats,
-        queue: &mut Queue,
-    ) -> Value {
-        let Surface {
-            hit,
-            t,
-            seen,
-            emitted,
-            split,
-        } = surface;
-        let media = &queue.media[node.media as usize];
-        let sigma = self.absorption(media);
-        let first = queue.children.len() as u32;
-        let value = |local: Color, tr: Color, queue: &Queue| Value {
-            local,
-            tr,
-            children: first..queue.children.len() as u32,
-        };
-        let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
-        if let Some((t, radiance)) = seen {
-            return value(along(t, radiance), Color::ONE, queue);
-        }
-        if let Some(radiance) = emitted {
-            // A light's node has no hit record (its distance is the nearest hit's).
-            let tr = sigma.map_or(Color::ONE, |s| transmittance(s, t));
-            return value(radiance, tr, queue);
-        }
-        // (Its ray is gathered from the columns only where it is needed.)
-        let Some(hit) = hit else {
-            let dir = rays.get(index).dir;
-            let l = along(f32::INFINITY, self.scene.background.radiance(dir));
-            return value(l, Color::ONE, queue);
-        };
-        let tr = sigma.map(|s| transmittance(s, hit.surface.t));
-        let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
-        let tr = tr.unwrap_or(Color::ONE);
-        let ray = &rays.get(index);
-        // The rays this node traces (none above, where its ray ends).
-        let before = stats.total_rays();
-        let at = self.interaction(ray, hit, media, None);
-        let material = &self.materials[hit.material as usize];
-        let mut rec = NoRecorder;
-        let mut w = Walk {
-            rng: &mut slot.rng,
-            stats,
-            rec: &mut rec,
-            tree_rays: slot.tree_rays,
-        };
-        let scatter = match split {
-            Some(split) => split.scatter(),
-            None => material.scatter(&at, w.rng),
-        };
-        if scatter.total_internal_reflection {
-            w.stats.tir_events += 1;
-        }
-        let local = match scatter.direct {
-            // The lights' sum, kept to be completed and scaled once the level's shadow
-            // rays are traced: their random numbers drawn here, in the recursion's order.
-            Some(direct) if self.shadows_in_lanes => {
-                let (p, n_geom) = (hit.surface.p, at.n_geom);
-                let origin = offset_ray_origin(p, n_geom);
-                for (light, asked) in self.lights.iter().zip(queue.shadows.iter_mut()) {
-                    asked.push(&Shadow {
-                        node: index as u32,
-                        p,
-                        origin,
-                        n_geom,
-                        n: at.n_shade,
-                        view: -ray.dir,
-                        time: ray.time,
-                        u: light.draw(w.rng),
-                        brdf: direct.brdf,
-                    });
-                }
-                queue.scaled.push((index as u32, direct.scale));
-                self.ambient(&direct)
-            }
-            Some(direct) => {
-                let m = Meet {
-                    ray,
-                    hit,
-                    media,
-                    id: 0,
-                };
-                direct.scale * self.direct(m, &at, &direct, &mut w)
-            }
-            None => Color::ZERO,
-        };
-        // The child along `lobe`, if the pruning rules let it be traced: its node.
-        let child =
-            |lobe: &Lobe, factor: f32, weight: f32, w: &mut Walk<NoRecorder>, q: &mut Queue| {
-                let branch = Branch {
-                    depth: node.depth + 1,
-                    weight,
-                    kind: match lobe.side {
-                        Side::Reflect => RayKind::Reflect,
-                        Side::Transmit => RayKind::Refract,
-                    },
-                    parent: None,
-                    factor,
-                    wavelength: None,
-                };
-                if self.pruned(&branch, w.stats, &mut w.tree_rays).is_some() {
-                    return None;
-                }
-                let (n_side, media) = match lobe.side {
-                    Side::Reflect => (at.n_geom, node.media),
-                    Side::Transmit => {
-                        let mut beyond = q.media[node.media as usize];
-                        let n_side = cross(&mut beyond, &at, hit, lobe.side);
-                        q.media.push(beyond);
-                        (n_side, q.media.len() as u32 - 1)
-                    }
-                };
-                let ray = Ray {
-                    origin: offset_ray_origin(hit.surface.p, n_side),
-                    dir: lobe.dir,
-                    time: ray.time,
-                };
-                let child = Node {
-                    slot: node.slot,
-                    media,
-                    depth: branch.depth,
-                    weight,
-                };
-                Some(q.next.push(&ray, child))
+        (slots, roots, level): (&mut Vec<Slot>, &mut Vec<Option<u32>>, &mut Rays),
+    ) {
+        slots.clear();
+        roots.clear();
+        level.clear();
+        let camera_ray = |rng: SampleStream, ray: &Ray| {
+            stats.samples += 1;
+            let camera = ray.origin.is_finite() && ray.dir.is_finite();
+            let node = Node {
+                slot: slots.len() as u32,
+                media: 0,
+                depth: 0,
+                weight: 1.0,
             };
-        let lobes = scatter.lobes().count();
-        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
-            // As `follow_one`: one lobe, with probability its branch weight.
-            let mut all = scatter.lobes();
-            if let Some(first) = all.next() {
-                let (weight, node) =
-                    if node.depth >= self.params.max_depth || weight < self.params.min_weight {
-                        (Color::ONE, child(first, 1.0, weight, &mut w, queue))
-                    } else {
-                        match pick_lobe(first, all, w.rng.next_1d()) {
-                            Some((chosen, tint)) => {
-                                let f = tint.max_element();
-                                (tint, child(chosen, f, weight * f, &mut w, queue))
-                            }
-                            None => (Color::ONE, None),
-                        }
-                    };
-                queue.children.push(Child { weight, node });
-            }
-        } else {
-            for lobe in scatter.lobes() {
-                let factor = lobe.weight.max_element();
-                if factor > 0.0 {
-                    let node = child(lobe, factor, weight * factor, &mut w, queue);
-                    queue.children.push(Child {
-                        weight: lobe.weight,
-                        node,
-                    });
-                }
-            }
+            roots.push(camera.then(|| level.push(ray, node)));
+            stats.camera_rays += camera as u64;
+            slots.push(Slot {
+                rng,
+                tree_rays: 0,
+                rays: camera as u32,
+            });
+        };
+        width.dispatch(CameraRays {
+            tracer: self,
+            samples,
+            out: camera_ray,
+        });
+    }
+}
+
+/// Completes a level's lights once its shadow rays are traced: each node's lights added in
+/// order (`lit`, each shadow ray counted to its sample), then each lit node's sum scaled
+/// (`scaled`), as `Tracer::direct` does.
+fn add_lights(
+    (lit, scaled): (&[Lit], &[(u32, f32)]),
+    values: &mut [Value],
+    nodes: &[Node],
+    slots: &mut [Slot],
+    stats: &mut Stats,
+) {
+    for &Lit { node, light } in lit {
+        if let Some(light) = light {
+            values[node as usize].local += light;
+            stats.shadow_rays += 1;
+            slots[nodes[node as usize].slot as usize].rays += 1;
         }
-        slot.tree_rays = w.tree_rays;
-        slot.rays += (w.stats.total_rays() - before) as u32;
-        value(local, tr, queue)
+    }
+    for &(node, scale) in scaled {
+        let value = &mut values[node as usize];
+        value.local = scale * value.local;
+    }
+}
+
+/// The radiance of the nodes of the first of `levels` into `below`, summed from the
+/// deepest level up: each node's (local + Σ weight · L(child)) × tr, its children in
+/// order, as the recursion adds them.
+fn sum_levels(levels: &[Level], radiance: &mut Vec<Color>, below: &mut Vec<Color>) {
+    below.clear();
+    for level in levels.iter().rev() {
+        radiance.clear();
+        radiance.extend(level.values.iter().map(|v| {
+            let mut l = v.local;
+            for c in &level.children[v.children.start as usize..v.children.end as usize] {
+                l += c.weight * c.node.map_or(Color::ZERO, |n| below[n as usize]);
+            }
+            v.tr * l
+        }));
+        std::mem::swap(radiance, below);
     }
 }

@@ -1,0 +1,256 @@
+//! One node of the waves shaded: what the recursion's `trace_in` and `shade` do once the
+//! node's surface is known. Its light (emission, the light or background its ray meets, the
+//! lights' shading, with the shadow rays queued where they go to the lanes) and its
+//! reflected and refracted children, queued as the next level's rays.
+
+use super::lights::Shadow;
+use super::media::transmittance;
+use super::path::cross;
+use super::shade::pick_lobe;
+use super::wave::{Child, Lights, Node, Queue, Slot, Surface, Value};
+use super::{Branch, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
+use crate::material::{Direct, Interaction, Lobe, Scatter, Side};
+use crate::math::lanes::RayColumns;
+use crate::math::{Color, Ray, offset_ray_origin};
+use crate::params::TreeMode;
+use crate::scene::Hit;
+
+/// Where a node's children set out from: its node, its ray, its hit, and the hit as its
+/// material sees it.
+#[derive(Clone, Copy)]
+struct From<'a> {
+    node: &'a Node,
+    ray: &'a Ray,
+    hit: &'a Hit,
+    at: &'a Interaction,
+}
+
+impl Tracer<'_> {
+    /// What the recursion's `trace_in` does at `node` once its ray's `surface` is known
+    /// (the hit, the radiance it emits, a dielectric's split where the lanes made it): the
+    /// light it meets, or the hit's own light, with its children queued.
+    #[inline(always)]
+    pub(super) fn shade_node(
+        &self,
+        rays: &RayColumns,
+        (index, node): (usize, &Node),
+        surface: Surface,
+        slot: &mut Slot,
+        stats: &mut Stats,
+        queue: &mut Queue,
+    ) -> Value {
+        let Surface {
+            hit,
+            t,
+            seen,
+            emitted,
+            split,
+        } = surface;
+        let media = &queue.media[node.media as usize];
+        let sigma = self.absorption(media);
+        let first = queue.children.len() as u32;
+        let value = |local: Color, tr: Color, queue: &Queue| Value {
+            local,
+            tr,
+            children: first..queue.children.len() as u32,
+        };
+        let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
+        if let Some((t, radiance)) = seen {
+            return value(along(t, radiance), Color::ONE, queue);
+        }
+        if let Some(radiance) = emitted {
+            // A light's node has no hit record (its distance is the nearest hit's).
+            let tr = sigma.map_or(Color::ONE, |s| transmittance(s, t));
+            return value(radiance, tr, queue);
+        }
+        // (Its ray is gathered from the columns only where it is needed.)
+        let Some(hit) = hit else {
+            let dir = rays.get(index).dir;
+            let l = along(f32::INFINITY, self.scene.background.radiance(dir));
+            return value(l, Color::ONE, queue);
+        };
+        let tr = sigma.map(|s| transmittance(s, hit.surface.t));
+        let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
+        let tr = tr.unwrap_or(Color::ONE);
+        let ray = &rays.get(index);
+        // The rays this node traces (none above, where its ray ends).
+        let before = stats.total_rays();
+        let at = self.interaction(ray, hit, media, None);
+        let material = &self.materials[hit.material as usize];
+        let mut rec = NoRecorder;
+        let mut w = Walk {
+            rng: &mut slot.rng,
+            stats,
+            rec: &mut rec,
+            tree_rays: slot.tree_rays,
+        };
+        let scatter = match split {
+            Some(split) => split.scatter(),
+            None => material.scatter(&at, w.rng),
+        };
+        if scatter.total_internal_reflection {
+            w.stats.tir_events += 1;
+        }
+        let local = match scatter.direct {
+            Some(direct) => {
+                let m = Meet {
+                    ray,
+                    hit,
+                    media,
+                    id: 0,
+                };
+                self.node_light(m, &at, &direct, index, &mut w, &mut queue.lights)
+            }
+            None => Color::ZERO,
+        };
+        let from = From {
+            node,
+            ray,
+            hit,
+            at: &at,
+        };
+        self.queue_children(&from, &scatter, weight, &mut w, queue);
+        slot.tree_rays = w.tree_rays;
+        slot.rays += (w.stats.total_rays() - before) as u32;
+        value(local, tr, queue)
+    }
+
+    /// The lights' shading of the hit `m` (a `direct` term): where shadow rays go to the
+    /// lanes, the node's ambient term, its shadow rays queued in `lights` per light (their
+    /// random numbers drawn here, in the recursion's order) to be completed and scaled
+    /// after the level; else the whole sum, traced here.
+    #[inline(always)]
+    fn node_light(
+        &self,
+        m: Meet,
+        at: &Interaction,
+        direct: &Direct,
+        index: usize,
+        w: &mut Walk<NoRecorder>,
+        lights: &mut Lights,
+    ) -> Color {
+        if !self.shadows_in_lanes {
+            return direct.scale * self.direct(m, at, direct, w);
+        }
+        let (p, n_geom) = (m.hit.surface.p, at.n_geom);
+        let origin = offset_ray_origin(p, n_geom);
+        for (light, asked) in self.lights.iter().zip(lights.shadows.iter_mut()) {
+            asked.push(&Shadow {
+                node: index as u32,
+                p,
+                origin,
+                n_geom,
+                n: at.n_shade,
+                view: -m.ray.dir,
+                time: m.ray.time,
+                u: light.draw(w.rng),
+                brdf: direct.brdf,
+            });
+        }
+        lights.scaled.push((index as u32, direct.scale));
+        self.ambient(direct)
+    }
+
+    /// The children of the node `from` along the lobes of `scatter` (its path weight
+    /// `weight`), as the recursion's `shade` traces them: one chosen by its weight in the
+    /// stochastic tree (as `follow_one`), else every lobe of weight above 0; each listed in
+    /// `queue.children`, and queued as a ray where the pruning rules let it be traced.
+    #[inline(always)]
+    fn queue_children(
+        &self,
+        from: &From,
+        scatter: &Scatter,
+        weight: f32,
+        w: &mut Walk<NoRecorder>,
+        queue: &mut Queue,
+    ) {
+        let lobes = scatter.lobes().count();
+        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
+            let mut all = scatter.lobes();
+            let Some(first) = all.next() else {
+                return;
+            };
+            let depth = from.node.depth;
+            let (weight, node) =
+                if depth >= self.params.max_depth || weight < self.params.min_weight {
+                    (
+                        Color::ONE,
+                        self.queue_child(from, first, (1.0, weight), w, queue),
+                    )
+                } else {
+                    match pick_lobe(first, all, w.rng.next_1d()) {
+                        Some((chosen, tint)) => {
+                            let f = tint.max_element();
+                            (
+                                tint,
+                                self.queue_child(from, chosen, (f, weight * f), w, queue),
+                            )
+                        }
+                        None => (Color::ONE, None),
+                    }
+                };
+            queue.children.push(Child { weight, node });
+        } else {
+            for lobe in scatter.lobes() {
+                let factor = lobe.weight.max_element();
+                if factor > 0.0 {
+                    let node = self.queue_child(from, lobe, (factor, weight * factor), w, queue);
+                    queue.children.push(Child {
+                        weight: lobe.weight,
+                        node,
+                    });
+                }
+            }
+        }
+    }
+
+    /// The child of `from` along `lobe` (its branch `factor` and path `weight`), if the
+    /// pruning rules let it be traced: its node in the next level, its ray queued, and the
+    /// media it enters where it crosses the surface.
+    #[inline(always)]
+    fn queue_child(
+        &self,
+        from: &From,
+        lobe: &Lobe,
+        (factor, weight): (f32, f32),
+        w: &mut Walk<NoRecorder>,
+        q: &mut Queue,
+    ) -> Option<u32> {
+        let From { node, ray, hit, at } = *from;
+        let branch = Branch {
+            depth: node.depth + 1,
+            weight,
+            kind: match lobe.side {
+                Side::Reflect => RayKind::Reflect,
+                Side::Transmit => RayKind::Refract,
+            },
+            parent: None,
+            factor,
+            wavelength: None,
+        };
+        if self.pruned(&branch, w.stats, &mut w.tree_rays).is_some() {
+            return None;
+        }
+        let (n_side, media) = match lobe.side {
+            Side::Reflect => (at.n_geom, node.media),
+            Side::Transmit => {
+                let mut beyond = q.media[node.media as usize];
+                let n_side = cross(&mut beyond, at, hit, lobe.side);
+                q.media.push(beyond);
+                (n_side, q.media.len() as u32 - 1)
+            }
+        };
+        let ray = Ray {
+            origin: offset_ray_origin(hit.surface.p, n_side),
+            dir: lobe.dir,
+            time: ray.time,
+        };
+        let child = Node {
+            slot: node.slot,
+            media,
+            depth: branch.depth,
+            weight,
+        };
+        Some(q.next.push(&ray, child))
+    }
+}
