@@ -17,7 +17,7 @@
 //! reference, and what the inspector records.
 
 use super::lights::{Asked, Lit, Seen, Shadows};
-use super::surfaces::{Splits, Surfaces};
+use super::surfaces::{Hits, Splits, Surfaces};
 use super::{Media, Stats, Tracer};
 use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
@@ -168,7 +168,7 @@ pub struct Waves {
     // Every medium the wave's rays travel through: a reflected ray shares its parent's.
     media: Vec<Media>,
     nearest: Vec<Option<(PrimRef, f32)>>,
-    hits: Vec<Option<Hit>>,
+    hits: Hits,
     seen: Vec<Option<(f32, Color)>>,
     emitted: Vec<Option<Color>>,
     on_dielectrics: Vec<u32>,
@@ -343,7 +343,7 @@ impl Tracer<'_> {
                 let split = splits.next_if(|(j, _)| *j as usize == i).map(|(_, s)| s);
                 let slot = &mut slots[node.slot as usize];
                 let surface = Surface {
-                    hit: hit.as_ref(),
+                    hit,
                     t: near.map_or(f32::INFINITY, |(_, t)| t),
                     seen,
                     emitted,
