@@ -22,7 +22,7 @@ use super::{Media, Stats, Tracer};
 use crate::camera::CameraSample;
 use crate::geometry::PrimRef;
 use crate::material::Split;
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Width, asked_lanes};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Width, asked_lanes, is_finite};
 use crate::math::rng::SobolLanes;
 use crate::math::{Color, Pattern, Ray, SampleStream};
 use crate::scene::Hit;
@@ -200,18 +200,49 @@ pub(super) struct Lights<'q> {
     pub(super) scaled: &'q mut Vec<(u32, f32)>,
 }
 
-/// The camera rays of a wave, with each sample's random numbers after the camera's: with
-/// the Sobol pattern, `N` at a time in lanes, the draws and the rays; with the others (the
-/// sampling lecture's patterns), ray by ray.
-struct CameraRays<'a, 't, F> {
+/// The camera rays of a wave, with each sample's random numbers after the camera's, into
+/// its slots, roots and level 0: with the Sobol pattern, `N` at a time in lanes, the draws
+/// and the rays; with the others (the sampling lecture's patterns), ray by ray.
+struct CameraRays<'a, 't> {
     tracer: &'a Tracer<'t>,
     samples: &'a [(u32, u32, u32)],
-    // Takes each sample's stream and ray, in order: where they are kept, so that they are
-    // not built in one list and copied to another.
-    out: F,
+    stats: &'a mut Stats,
+    slots: &'a mut Vec<Slot>,
+    roots: &'a mut Vec<Option<u32>>,
+    level: &'a mut Rays,
 }
 
-impl<F: FnMut(SampleStream, &Ray)> LaneKernel for CameraRays<'_, '_, F> {
+impl CameraRays<'_, '_> {
+    /// A sample's slot (its stream `rng`), and its root: its camera ray's node, if the ray
+    /// can be traced (`ray` finite; `None`: not).
+    #[inline(always)]
+    fn push(&mut self, rng: SampleStream, ray: Option<&Ray>) {
+        let node = ray.map(|ray| {
+            let node = Node {
+                slot: self.slots.len() as u32,
+                media: 0,
+                depth: 0,
+                weight: 1.0,
+            };
+            self.level.push(ray, node)
+        });
+        self.push_slot(rng, node);
+    }
+
+    #[inline(always)]
+    fn push_slot(&mut self, rng: SampleStream, root: Option<u32>) {
+        self.stats.samples += 1;
+        self.stats.camera_rays += root.is_some() as u64;
+        self.roots.push(root);
+        self.slots.push(Slot {
+            rng,
+            tree_rays: 0,
+            rays: root.is_some() as u32,
+        });
+    }
+}
+
+impl LaneKernel for CameraRays<'_, '_> {
     type Output = ();
     #[inline(always)]
     fn run<const N: usize>(mut self) {
@@ -232,20 +263,40 @@ impl<F: FnMut(SampleStream, &Ray)> LaneKernel for CameraRays<'_, '_, F> {
             let pixel = (lane(|c| c.pixel.x), lane(|c| c.pixel.y));
             let lens = (lane(|c| c.lens.x), lane(|c| c.lens.y));
             let (o, d, time) = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
+            let finite = |v: V3<Lanes<N>>| is_finite(v.x) & is_finite(v.y) & is_finite(v.z);
             // Each stream is made where it is stored: an array of them built first and
             // copied out stalls on store-to-load forwarding.
-            for i in 0..N {
-                let ray = Ray {
-                    origin: o.get(i),
-                    dir: d.get(i),
-                    time: time.0[i],
-                };
-                (self.out)(lanes.stream(i), &ray);
+            if Lanes::all(finite(o) & finite(d)) {
+                // The usual case: the rays go to the level as they are, `N` at a time.
+                let first = self.level.nodes.len() as u32;
+                let slot = self.slots.len() as u32;
+                self.level.rays.push_lanes((o, d, time));
+                self.level.nodes.extend((0..N as u32).map(|i| Node {
+                    slot: slot + i,
+                    media: 0,
+                    depth: 0,
+                    weight: 1.0,
+                }));
+                for i in 0..N {
+                    self.push_slot(lanes.stream(i), Some(first + i as u32));
+                }
+            } else {
+                for i in 0..N {
+                    let ray = Ray {
+                        origin: o.get(i),
+                        dir: d.get(i),
+                        time: time.0[i],
+                    };
+                    let traced = ray.origin.is_finite() && ray.dir.is_finite();
+                    self.push(lanes.stream(i), traced.then_some(&ray));
+                }
             }
         }
         for &(x, y, s) in rest {
             let (rng, cs) = t.camera_draw(x, y, s);
-            (self.out)(rng, &t.camera_ray(x, y, &cs));
+            let ray = t.camera_ray(x, y, &cs);
+            let traced = ray.origin.is_finite() && ray.dir.is_finite();
+            self.push(rng, traced.then_some(&ray));
         }
     }
 }
@@ -390,27 +441,13 @@ impl Tracer<'_> {
         slots.clear();
         roots.clear();
         level.clear();
-        let camera_ray = |rng: SampleStream, ray: &Ray| {
-            stats.samples += 1;
-            let camera = ray.origin.is_finite() && ray.dir.is_finite();
-            let node = Node {
-                slot: slots.len() as u32,
-                media: 0,
-                depth: 0,
-                weight: 1.0,
-            };
-            roots.push(camera.then(|| level.push(ray, node)));
-            stats.camera_rays += camera as u64;
-            slots.push(Slot {
-                rng,
-                tree_rays: 0,
-                rays: camera as u32,
-            });
-        };
         width.dispatch(CameraRays {
             tracer: self,
             samples,
-            out: camera_ray,
+            stats,
+            slots,
+            roots,
+            level,
         });
     }
 }

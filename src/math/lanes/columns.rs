@@ -59,6 +59,28 @@ impl<const K: usize> Columns<K> {
         self.len += 1;
     }
 
+    /// Adds `N` records at the end, given number by number (`N` divides [`MAX_LANES`]):
+    /// row by row where the records so far fill whole rows of `N`, else one by one.
+    #[inline(always)]
+    pub fn push_lanes<const N: usize>(&mut self, numbers: [Lanes<N>; K]) {
+        let j = self.len % MAX_LANES;
+        if !j.is_multiple_of(N) {
+            for i in 0..N {
+                self.push(numbers.map(|n| n.0[i]));
+            }
+            return;
+        }
+        if j == 0 {
+            self.blocks.push([[0.0; MAX_LANES]; K]);
+        }
+        if let Some(block) = self.blocks.last_mut() {
+            for (c, n) in block.iter_mut().zip(numbers) {
+                c[j..j + N].copy_from_slice(&n.0);
+            }
+        }
+        self.len += N;
+    }
+
     /// Number `k` of record `i`.
     #[inline]
     pub fn get(&self, i: usize, k: usize) -> f32 {
@@ -113,6 +135,15 @@ impl RayColumns {
         self.0.push([o.x, o.y, o.z, d.x, d.y, d.z, ray.time]);
     }
 
+    /// Adds `N` rays at the end, coordinate by coordinate: (origin, direction, time).
+    #[inline(always)]
+    pub fn push_lanes<const N: usize>(
+        &mut self,
+        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+    ) {
+        self.0.push_lanes([o.x, o.y, o.z, d.x, d.y, d.z, time]);
+    }
+
     /// Ray `i`.
     #[inline]
     pub fn get(&self, i: usize) -> Ray {
@@ -129,5 +160,42 @@ impl RayColumns {
     #[inline(always)]
     pub fn lanes<const N: usize>(&self, i: usize) -> (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>) {
         (self.0.lanes3(i, 0), self.0.lanes3(i, 3), self.0.lane(i, 6))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `N` records pushed as lanes are the records pushed one by one, wherever the list
+    /// stands: at a row of `N`, or part way through one.
+    fn push_lanes_is_push_n_times<const N: usize>() {
+        for before in [0, 1, N - 1, N, 2 * N + 1, MAX_LANES - N, MAX_LANES] {
+            let record = |i: usize| std::array::from_fn::<f32, 3, _>(|k| (i * 3 + k) as f32);
+            let (mut one_by_one, mut in_lanes) = (Columns::<3>::default(), Columns::<3>::default());
+            for i in 0..before {
+                one_by_one.push(record(i));
+                in_lanes.push(record(i));
+            }
+            for i in before..before + N {
+                one_by_one.push(record(i));
+            }
+            in_lanes.push_lanes::<N>(std::array::from_fn(|k| {
+                Lanes::from_fn(|i| record(before + i)[k])
+            }));
+            assert_eq!(in_lanes.len(), before + N);
+            assert_eq!(
+                in_lanes.blocks, one_by_one.blocks,
+                "{N} lanes after {before}"
+            );
+        }
+    }
+
+    #[test]
+    fn records_pushed_in_lanes_are_the_records_pushed_one_by_one() {
+        push_lanes_is_push_n_times::<1>();
+        push_lanes_is_push_n_times::<4>();
+        push_lanes_is_push_n_times::<8>();
+        push_lanes_is_push_n_times::<16>();
     }
 }
