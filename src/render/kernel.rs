@@ -167,24 +167,37 @@ fn pass_in_waves(
             all,
             observer,
             stats,
-            |(x, y, s), t, stats| {
-                let pixel = &mut pixels[((y - y0) * width + x) as usize];
-                add(pixel, s, t.radiance, t.rays, stats);
+            |wave, traced, stats| {
+                // A pixel's samples of the wave summed in a copy of its sums, which stays
+                // in registers: summed in place, each f64 add waited on the last one's
+                // store (measured: a tenth of the depth-of-field scene's time).
+                let mut samples = wave.iter().zip(traced).peekable();
+                while let Some((&(x, y, s), t)) = samples.next() {
+                    let pixel = &mut pixels[((y - y0) * width + x) as usize];
+                    let mut sums = *pixel;
+                    add(&mut sums, s, t.radiance, t.rays, stats);
+                    while let Some((&(_, _, s), t)) =
+                        samples.next_if(|((px, py, _), _)| (*px, *py) == (x, y))
+                    {
+                        add(&mut sums, s, t.radiance, t.rays, stats);
+                    }
+                    *pixel = sums;
+                }
             },
         )
     })
 }
 
 /// Traces `samples` ((x, y, sample number) each) in waves of [`WAVE_SAMPLES`], `lanes`
-/// rays at a time, handing each sample and what it gave to `each`, in order; `None` where
-/// `observer` stops it (asked before every wave).
+/// rays at a time, handing each wave's samples and what each gave to `each`, in order;
+/// `None` where `observer` stops it (asked before every wave).
 fn in_waves(
     tracer: &Tracer,
     lanes: Width,
     samples: impl Iterator<Item = (u32, u32, u32)>,
     observer: &dyn PassObserver,
     stats: &mut Stats,
-    mut each: impl FnMut((u32, u32, u32), &Traced, &mut Stats),
+    mut each: impl FnMut(&[(u32, u32, u32)], &[Traced], &mut Stats),
 ) -> Option<()> {
     let mut samples = samples.peekable();
     let mut wave = Vec::with_capacity(WAVE_SAMPLES);
@@ -196,9 +209,7 @@ fn in_waves(
         wave.clear();
         wave.extend(samples.by_ref().take(WAVE_SAMPLES));
         let traced = tracer.trace_wave(&wave, lanes, stats, &mut waves);
-        for (&sample, t) in wave.iter().zip(traced) {
-            each(sample, t, stats);
-        }
+        each(&wave, traced, stats);
     }
     Some(())
 }
@@ -286,8 +297,9 @@ pub fn render_preview(
             if let Some(lanes) = lanes {
                 let centres = (0..row.len() as u32).map(|i| (centre(i, width), cy, 0));
                 let mut cells = row.iter_mut();
-                in_waves(&tracer, lanes, centres, observer, &mut stats, |_, t, _| {
-                    if let Some(cell) = cells.next() {
+                in_waves(&tracer, lanes, centres, observer, &mut stats, |_, traced, _| {
+                    // (The wave's results first: zip takes from its first side first.)
+                    for (t, cell) in traced.iter().zip(cells.by_ref()) {
                         *cell = shown(t.radiance);
                     }
                 })?;
