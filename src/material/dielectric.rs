@@ -238,6 +238,13 @@ pub(crate) struct Split {
 }
 
 impl Split {
+    /// The mirror direction, the refracted one (`None`: total internal reflection) and
+    /// the reflectance R: what [`Split::scatter`] makes its lobes of.
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> (Vec3, Option<Vec3>, f32) {
+        (self.mirror, self.refracted, self.interface.r)
+    }
+
     /// The reflected ray of weight R and the refracted ray of weight 1 − R (under total
     /// internal reflection, R = 1 and no refracted ray).
     #[inline]

@@ -297,12 +297,19 @@ pub fn render_preview(
             if let Some(lanes) = lanes {
                 let centres = (0..row.len() as u32).map(|i| (centre(i, width), cy, 0));
                 let mut cells = row.iter_mut();
-                in_waves(&tracer, lanes, centres, observer, &mut stats, |_, traced, _| {
-                    // (The wave's results first: zip takes from its first side first.)
-                    for (t, cell) in traced.iter().zip(cells.by_ref()) {
-                        *cell = shown(t.radiance);
-                    }
-                })?;
+                in_waves(
+                    &tracer,
+                    lanes,
+                    centres,
+                    observer,
+                    &mut stats,
+                    |_, traced, _| {
+                        // (The wave's results first: zip takes from its first side first.)
+                        for (t, cell) in traced.iter().zip(cells.by_ref()) {
+                            *cell = shown(t.radiance);
+                        }
+                    },
+                )?;
                 return Some(stats);
             }
             for (i, cell) in row.iter_mut().enumerate() {

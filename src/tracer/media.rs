@@ -45,6 +45,16 @@ impl Media {
         self
     }
 
+    /// After crossing `hit`'s surface into it (`entering`) or out of it.
+    #[inline]
+    pub(super) fn crossed(self, entering: bool, hit: &Hit) -> Media {
+        if entering {
+            self.entered(hit.object, hit.material)
+        } else {
+            self.left(hit.object)
+        }
+    }
+
     /// The innermost medium's material once `object` is left, without building that stack.
     pub(super) fn innermost_after_leaving(&self, object: u32) -> Option<u32> {
         match self.active().iter().rposition(|&(o, _)| o == object) {

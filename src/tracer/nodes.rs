@@ -5,24 +5,25 @@
 
 use super::lights::Shadow;
 use super::media::transmittance;
-use super::path::cross;
 use super::shade::pick_lobe;
 use super::wave::{Child, Lights, Node, Queue, Slot, Surface, Value};
 use super::{Branch, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
-use crate::material::{Direct, Interaction, Lobe, Scatter, Side};
+use crate::material::Split;
+use crate::material::{Direct, Interaction, Scatter, Side};
 use crate::math::lanes::RayColumns;
-use crate::math::{Color, Ray, offset_ray_origin};
+use crate::math::{Color, Ray, Vec3, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
 
-/// Where a node's children set out from: its node, its ray, its hit, and the hit as its
-/// material sees it.
+/// Where a node's children set out from: its node, its ray's time, its hit, whether the
+/// ray arrived from the surface's outside, and the geometric normal facing it.
 #[derive(Clone, Copy)]
 struct From<'a> {
     node: &'a Node,
-    ray: &'a Ray,
+    time: f32,
     hit: &'a Hit,
-    at: &'a Interaction,
+    entering: bool,
+    n_geom: Vec3,
 }
 
 impl Tracer<'_> {
@@ -69,10 +70,22 @@ impl Tracer<'_> {
             let l = along(f32::INFINITY, self.scene.background.radiance(dir));
             return value(l, Color::ONE, queue);
         };
+        let ray = &rays.get(index);
+        if let (Some(split), None) = (split, sigma) {
+            let mut w = Walk {
+                rng: &mut slot.rng,
+                stats,
+                rec: &mut NoRecorder,
+                tree_rays: slot.tree_rays,
+            };
+            let traced = self.split_children(ray, node, hit, split, &mut w, queue);
+            slot.tree_rays = w.tree_rays;
+            slot.rays += traced;
+            return value(Color::ZERO, Color::ONE, queue);
+        }
         let tr = sigma.map(|s| transmittance(s, hit.surface.t));
         let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
         let tr = tr.unwrap_or(Color::ONE);
-        let ray = &rays.get(index);
         // The rays this node traces (none above, where its ray ends).
         let before = stats.total_rays();
         let at = self.interaction(ray, hit, media, None);
@@ -105,9 +118,10 @@ impl Tracer<'_> {
         };
         let from = From {
             node,
-            ray,
+            time: ray.time,
             hit,
-            at: &at,
+            entering: at.entering,
+            n_geom: at.n_geom,
         };
         self.queue_children(&from, &scatter, weight, &mut w, queue);
         slot.tree_rays = w.tree_rays;
@@ -175,7 +189,7 @@ impl Tracer<'_> {
                 if depth >= self.params.max_depth || weight < self.params.min_weight {
                     (
                         Color::ONE,
-                        self.queue_child(from, first, (1.0, weight), w, queue),
+                        self.queue_child(from, (first.side, first.dir), (1.0, weight), w, queue),
                     )
                 } else {
                     match pick_lobe(first, all, w.rng.next_1d()) {
@@ -183,7 +197,13 @@ impl Tracer<'_> {
                             let f = tint.max_element();
                             (
                                 tint,
-                                self.queue_child(from, chosen, (f, weight * f), w, queue),
+                                self.queue_child(
+                                    from,
+                                    (chosen.side, chosen.dir),
+                                    (f, weight * f),
+                                    w,
+                                    queue,
+                                ),
                             )
                         }
                         None => (Color::ONE, None),
@@ -194,7 +214,13 @@ impl Tracer<'_> {
             for lobe in scatter.lobes() {
                 let factor = lobe.weight.max_element();
                 if factor > 0.0 {
-                    let node = self.queue_child(from, lobe, (factor, weight * factor), w, queue);
+                    let node = self.queue_child(
+                        from,
+                        (lobe.side, lobe.dir),
+                        (factor, weight * factor),
+                        w,
+                        queue,
+                    );
                     queue.children.push(Child {
                         weight: lobe.weight,
                         node,
@@ -204,23 +230,106 @@ impl Tracer<'_> {
         }
     }
 
-    /// The child of `from` along `lobe` (its branch `factor` and path `weight`), if the
-    /// pruning rules let it be traced: its node in the next level, its ray queued, and the
-    /// media it enters where it crosses the surface.
+    /// The children of a node on a dielectric whose split (`split`: its mirror and
+    /// refracted directions and R) the lanes made, where nothing absorbs, as
+    /// `queue_children` makes them of the split's scatter: R and 1 − R are each lobe's
+    /// weight, the first lobe the reflected ray. Returns the rays it queued.
+    #[inline(always)]
+    fn split_children(
+        &self,
+        ray: &Ray,
+        node: &Node,
+        hit: &Hit,
+        split: &Split,
+        w: &mut Walk<NoRecorder>,
+        queue: &mut Queue,
+    ) -> u32 {
+        let (mirror, refracted, r) = split.parts();
+        // As `Arrival::at`: the normal turned to face the ray.
+        let entering = ray.dir.dot(hit.surface.n_geom) < 0.0;
+        let n_geom = if entering {
+            hit.surface.n_geom
+        } else {
+            -hit.surface.n_geom
+        };
+        let from = From {
+            node,
+            time: ray.time,
+            hit,
+            entering,
+            n_geom,
+        };
+        let before = w.stats.total_rays();
+        let weight = node.weight;
+        let reflect = (Side::Reflect, mirror);
+        match refracted {
+            None => w.stats.tir_events += 1,
+            Some(dir) if self.params.tree == TreeMode::Stochastic => {
+                let refract = (Side::Transmit, dir);
+                let (tint, node) =
+                    if node.depth >= self.params.max_depth || weight < self.params.min_weight {
+                        let node = self.queue_child(&from, reflect, (1.0, weight), w, queue);
+                        (Color::ONE, node)
+                    } else {
+                        // As `pick_lobe`: the reflected ray with probability R.
+                        let u = w.rng.next_1d();
+                        let (chosen, p) = if u < r {
+                            (reflect, r)
+                        } else {
+                            (refract, 1.0 - r)
+                        };
+                        if p > 0.0 {
+                            let tint = Color::splat(p) / p;
+                            let f = tint.max_element();
+                            (
+                                tint,
+                                self.queue_child(&from, chosen, (f, weight * f), w, queue),
+                            )
+                        } else {
+                            (Color::ONE, None)
+                        }
+                    };
+                queue.children.push(Child { weight: tint, node });
+                return (w.stats.total_rays() - before) as u32;
+            }
+            Some(_) => {}
+        }
+        let refract = refracted.map(|dir| ((Side::Transmit, dir), 1.0 - r));
+        for (lobe, factor) in std::iter::once((reflect, r)).chain(refract) {
+            if factor > 0.0 {
+                let node = self.queue_child(&from, lobe, (factor, weight * factor), w, queue);
+                queue.children.push(Child {
+                    weight: Color::splat(factor),
+                    node,
+                });
+            }
+        }
+        (w.stats.total_rays() - before) as u32
+    }
+
+    /// The child of `from` along a lobe (its side and direction; its branch `factor`
+    /// and path `weight`), if the pruning rules let it be traced: its node in the next
+    /// level, its ray queued, and the media it enters where it crosses the surface.
     #[inline(always)]
     fn queue_child(
         &self,
         from: &From,
-        lobe: &Lobe,
+        (side, dir): (Side, Vec3),
         (factor, weight): (f32, f32),
         w: &mut Walk<NoRecorder>,
         q: &mut Queue,
     ) -> Option<u32> {
-        let From { node, ray, hit, at } = *from;
+        let From {
+            node,
+            time,
+            hit,
+            entering,
+            n_geom,
+        } = *from;
         let branch = Branch {
             depth: node.depth + 1,
             weight,
-            kind: match lobe.side {
+            kind: match side {
                 Side::Reflect => RayKind::Reflect,
                 Side::Transmit => RayKind::Refract,
             },
@@ -231,19 +340,18 @@ impl Tracer<'_> {
         if self.pruned(&branch, w.stats, &mut w.tree_rays).is_some() {
             return None;
         }
-        let (n_side, media) = match lobe.side {
-            Side::Reflect => (at.n_geom, node.media),
+        let (n_side, media) = match side {
+            Side::Reflect => (n_geom, node.media),
             Side::Transmit => {
-                let mut beyond = q.media[node.media as usize];
-                let n_side = cross(&mut beyond, at, hit, lobe.side);
+                let beyond = q.media[node.media as usize].crossed(entering, hit);
                 q.media.push(beyond);
-                (n_side, q.media.len() as u32 - 1)
+                (-n_geom, q.media.len() as u32 - 1)
             }
         };
         let ray = Ray {
             origin: offset_ray_origin(hit.surface.p, n_side),
-            dir: lobe.dir,
-            time: ray.time,
+            dir,
+            time,
         };
         let child = Node {
             slot: node.slot,

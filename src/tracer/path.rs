@@ -60,11 +60,7 @@ pub(super) fn cross(media: &mut Media, at: &Interaction, hit: &Hit, side: Side) 
     match side {
         Side::Reflect => at.n_geom,
         Side::Transmit => {
-            *media = if at.entering {
-                media.entered(hit.object, hit.material)
-            } else {
-                media.left(hit.object)
-            };
+            *media = media.crossed(at.entering, hit);
             -at.n_geom
         }
     }
