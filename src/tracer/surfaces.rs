@@ -8,8 +8,8 @@ use super::wave::Node;
 use super::{Media, Tracer};
 use crate::geometry::PrimRef;
 use crate::material::{Split, split_lanes};
-use crate::math::Color;
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
+use crate::math::{Color, Ray};
 use crate::scene::Hit;
 
 /// The hit records of a level's rays: only the rays that have one, each ray's place in
@@ -80,55 +80,125 @@ impl LaneKernel for Surfaces<'_, '_> {
         hits.clear();
         emitted.clear();
         on_dielectrics.clear();
-        let dielectric = |m: u32| tracer.materials[m as usize].splitting().is_some();
+        let materials = &tracer.materials;
+        let dielectric = |m: u32| materials[m as usize].splitting().is_some();
         for (c, chunk) in nearest.chunks(N).enumerate() {
             let first = c * N;
-            // The last chunk may be short: it is made ray by ray.
-            let in_lanes = one_object(chunk)
-                .filter(|_| chunk.len() == N)
-                .and_then(|object| {
-                    let t = Lanes::from_fn(|k| chunk[k].map_or(0.0, |(_, t)| t));
-                    let scene = tracer.scene;
-                    let made = scene.hits_in_lanes(object, rays.lanes::<N>(first), t)?;
-                    Some((object, t, made))
-                });
-            match in_lanes {
-                Some((object, t, (lanes, material))) => {
-                    let (u, v) = lanes.uv;
-                    if let Some(radiance) = tracer.materials[material as usize].emission_lanes(u, v)
-                    {
-                        // A light's radiance is all its node needs: no records.
-                        emitted.extend(radiance.iter().map(|&l| Some(l)));
-                        hits.of.extend([NONE; N]);
-                        continue;
+            // (The last chunk may be short.)
+            let full = chunk.len() == N;
+            let t = Lanes::from_fn(|k| chunk.get(k).copied().flatten().map_or(0.0, |(_, t)| t));
+            let ray_lanes = rays.lanes::<N>(first);
+            if full
+                && let Some(object) = one_object(chunk)
+                && let Some((lanes, material)) = tracer.scene.hits_in_lanes(object, ray_lanes, t)
+            {
+                let (u, v) = lanes.uv;
+                if let Some(radiance) = materials[material as usize].emission_lanes(u, v) {
+                    // Every ray met one light (as most of a level's rays do where they see
+                    // an emitting surface): its radiance is all their nodes need, no records.
+                    emitted.extend(radiance.iter().map(|&l| Some(l)));
+                    hits.of.extend([NONE; N]);
+                    continue;
+                }
+                let hit = |k: usize| Hit {
+                    surface: lanes.get(k, t.0[k]),
+                    object,
+                    material,
+                };
+                let at = hits.records.len() as u32;
+                hits.records.extend((0..N).map(hit));
+                hits.of.extend(at..at + N as u32);
+                if dielectric(material) {
+                    on_dielectrics.extend(first as u32..(first + N) as u32);
+                }
+                emitted.extend(std::iter::repeat_n(None, N));
+                continue;
+            }
+            // A short chunk, and rays on many objects, are made ray by ray.
+            let Some(objects) = full.then(|| objects_of::<MAX_OBJECTS>(chunk)).flatten() else {
+                by_ray(
+                    tracer,
+                    rays,
+                    (first, chunk),
+                    (hits, emitted, on_dielectrics),
+                );
+                continue;
+            };
+            // Else object by object, each one's records in lanes where its shape has a
+            // lanes formula, its rays' places in the level filled in.
+            let base = hits.of.len();
+            hits.of.extend([NONE; N]);
+            emitted.extend(std::iter::repeat_n(None, N));
+            for object in objects.into_iter().flatten() {
+                let on = |k: &usize| chunk[*k].is_some_and(|(prim, _)| prim.object == object);
+                let Some((lanes, material)) = tracer.scene.hits_in_lanes(object, ray_lanes, t)
+                else {
+                    for k in (0..N).filter(on) {
+                        let near = chunk[k].map(|(prim, t)| (prim, rays.get(first + k), t));
+                        let (hit, light) = tracer.surface_at(near);
+                        emitted[base + k] = light;
+                        if let Some(hit) = hit {
+                            hits.of[base + k] = hits.records.len() as u32;
+                            hits.records.push(hit);
+                        }
                     }
-                    let hit = |k: usize| Hit {
+                    continue;
+                };
+                let (u, v) = lanes.uv;
+                if let Some(radiance) = materials[material as usize].emission_lanes(u, v) {
+                    for k in (0..N).filter(on) {
+                        emitted[base + k] = Some(radiance[k]);
+                    }
+                    continue;
+                }
+                for k in (0..N).filter(on) {
+                    hits.of[base + k] = hits.records.len() as u32;
+                    hits.records.push(Hit {
                         surface: lanes.get(k, t.0[k]),
                         object,
                         material,
-                    };
-                    let at = hits.records.len() as u32;
-                    hits.records.extend((0..N).map(hit));
-                    hits.of.extend(at..at + N as u32);
-                    if dielectric(material) {
-                        on_dielectrics.extend(first as u32..(first + N) as u32);
-                    }
-                    emitted.extend(std::iter::repeat_n(None, N));
+                    });
                 }
-                None => {
-                    for (k, near) in chunk.iter().enumerate() {
-                        let hit = near
-                            .map(|(prim, t)| tracer.scene.hit_at(prim, &rays.get(first + k), t));
-                        let material = |h: &Hit| &tracer.materials[h.material as usize];
-                        emitted.push(hit.and_then(|h| material(&h).emission(h.surface.uv)));
-                        if hit.is_some_and(|h| dielectric(h.material)) {
-                            on_dielectrics.push((first + k) as u32);
-                        }
-                        hits.push(hit);
-                    }
+            }
+            // The hits on dielectrics, in the order of the level.
+            for k in base..base + N {
+                if hits.get(k).is_some_and(|h| dielectric(h.material)) {
+                    on_dielectrics.push(k as u32);
                 }
             }
         }
+    }
+}
+
+/// The hits of `chunk`'s rays (from ray `first` of the level) made one by one: the
+/// records, the lights' radiance, the hits on dielectrics.
+#[inline(always)]
+fn by_ray(
+    tracer: &Tracer,
+    rays: &RayColumns,
+    (first, chunk): (usize, &[Option<(PrimRef, f32)>]),
+    (hits, emitted, on_dielectrics): (&mut Hits, &mut Vec<Option<Color>>, &mut Vec<u32>),
+) {
+    for (k, near) in chunk.iter().enumerate() {
+        let near = near.map(|(prim, t)| (prim, rays.get(first + k), t));
+        let (hit, light) = tracer.surface_at(near);
+        emitted.push(light);
+        if hit.is_some_and(|h| tracer.materials[h.material as usize].splitting().is_some()) {
+            on_dielectrics.push((first + k) as u32);
+        }
+        hits.push(hit);
+    }
+}
+
+impl Tracer<'_> {
+    /// The hit of a ray that met `near` (its primitive, the ray, the distance), and the
+    /// radiance its surface emits where it is a light.
+    #[inline(always)]
+    fn surface_at(&self, near: Option<(PrimRef, Ray, f32)>) -> (Option<Hit>, Option<Color>) {
+        let hit = near.map(|(prim, ray, t)| self.scene.hit_at(prim, &ray, t));
+        let material = |h: &Hit| &self.materials[h.material as usize];
+        let light = hit.and_then(|h| material(&h).emission(h.surface.uv));
+        (hit, light)
     }
 }
 
@@ -195,6 +265,27 @@ impl LaneKernel for Splits<'_, '_> {
             splits.extend(kept);
         }
     }
+}
+
+/// The most objects the rays of one chunk may meet for their records to be made in lanes,
+/// once per object.
+const MAX_OBJECTS: usize = 3;
+
+/// The objects the rays of `chunk` met, each once, in the order they are first met (none
+/// where no ray met anything); `None` where they met more than `K`.
+#[inline(always)]
+fn objects_of<const K: usize>(chunk: &[Option<(PrimRef, f32)>]) -> Option<[Option<u32>; K]> {
+    let mut objects = [None; K];
+    let mut count = 0;
+    for (prim, _) in chunk.iter().flatten() {
+        let object = Some(prim.object);
+        if objects[..count].contains(&object) {
+            continue;
+        }
+        *objects.get_mut(count)? = object;
+        count += 1;
+    }
+    Some(objects)
 }
 
 /// The object every ray of `chunk` met, if they all met one.
