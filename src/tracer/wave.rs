@@ -277,9 +277,15 @@ impl LaneKernel for CameraRays<'_, '_> {
                     depth: 0,
                     weight: 1.0,
                 }));
-                for i in 0..N {
-                    self.push_slot(lanes.stream(i), Some(first + i as u32));
-                }
+                // (Counted once for the `N`: an add to memory per sample waited on the last.)
+                self.stats.samples += N as u64;
+                self.stats.camera_rays += N as u64;
+                self.roots.extend((first..first + N as u32).map(Some));
+                self.slots.extend((0..N).map(|i| Slot {
+                    rng: lanes.stream(i),
+                    tree_rays: 0,
+                    rays: 1,
+                }));
             } else {
                 for i in 0..N {
                     let ray = Ray {
