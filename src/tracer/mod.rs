@@ -153,9 +153,9 @@ pub struct Tracer<'a> {
     // Whether any of them has an area a ray can hit (points cannot be seen).
     lights_seen: bool,
     // Whether the waves trace the shadow rays in lanes, after each level: with opaque
-    // shadows, and lights that all aim at points ([`PreparedLight::aims_at_points`]), one
-    // of them an area. Point lights alone are cheaper shaded at once (measured: the
-    // default scene's instructions +2.5 % in lanes).
+    // shadows, and lights that all aim at points ([`PreparedLight::aims_at_points`]),
+    // point lights alone too (measured: the default scene 1.03-1.05x and metals 1.07x
+    // faster at 16 lanes, 8 lanes even, for 1.4 % more instructions).
     shadows_in_lanes: bool,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
     emitters: Emitters,
@@ -209,8 +209,7 @@ impl<'a> Tracer<'a> {
             photon_targets: None,
             lights_seen: lights.iter().any(PreparedLight::can_be_seen),
             shadows_in_lanes: params.transport != Transport::TransmissiveShadows
-                && lights.iter().all(PreparedLight::aims_at_points)
-                && lights.iter().any(PreparedLight::can_be_seen),
+                && lights.iter().all(PreparedLight::aims_at_points),
             lights,
             frame: camera.frame(width as f32 / height as f32, camera.exposure(params)),
             seed_key: crate::math::rng::seed_key(params.seed),
