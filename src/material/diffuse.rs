@@ -92,15 +92,21 @@ impl Diffuse {
 
     pub(super) fn scatter(&self, hit: &Interaction) -> Scatter {
         Scatter {
-            direct: Some(Direct {
-                brdf: Brdf {
-                    albedo: self.albedo.eval(hit.uv),
-                    specular: self.specular,
-                    exponent: self.exponent,
-                },
-                scale: 1.0,
-            }),
+            direct: Some(self.direct(hit.uv)),
             ..Scatter::default()
+        }
+    }
+
+    /// Its shading by the lights at surface coordinates `uv`: all its scatter is.
+    #[inline(always)]
+    pub(crate) fn direct(&self, uv: Vec2) -> Direct {
+        Direct {
+            brdf: Brdf {
+                albedo: self.albedo.eval(uv),
+                specular: self.specular,
+                exponent: self.exponent,
+            },
+            scale: 1.0,
         }
     }
 }

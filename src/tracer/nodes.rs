@@ -9,9 +9,9 @@ use super::shade::pick_lobe;
 use super::wave::{Child, Lights, Node, Queue, Slot, Surface, Value};
 use super::{Branch, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
 use crate::material::Split;
-use crate::material::{Direct, Interaction, Scatter, Side};
+use crate::material::{Direct, Interaction, Material, Scatter, Side};
 use crate::math::lanes::RayColumns;
-use crate::math::{Color, Ray, Vec3, offset_ray_origin};
+use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::params::TreeMode;
 use crate::scene::Hit;
 
@@ -83,13 +83,30 @@ impl Tracer<'_> {
             slot.rays += traced;
             return value(Color::ZERO, Color::ONE, queue);
         }
+        let material = &self.materials[hit.material as usize];
+        if let (Material::Diffuse(diffuse), None, true) = (material, sigma, self.shadows_in_lanes) {
+            // A diffuse surface's light is all it has: its shadow rays queued, no
+            // children, without an Interaction or a Scatter built for it. Its normals as
+            // `Arrival::at` turns them to face the ray.
+            let s = &hit.surface;
+            let (n_geom, n_shade) = if ray.dir.dot(s.n_geom) < 0.0 {
+                (s.n_geom, s.n_shade)
+            } else {
+                (-s.n_geom, -s.n_shade)
+            };
+            let direct = diffuse.direct(s.uv);
+            let normals = (n_geom, n_shade);
+            let shadow = (ray, hit, index);
+            let local =
+                self.queue_shadows(shadow, normals, &direct, &mut slot.rng, &mut queue.lights);
+            return value(local, Color::ONE, queue);
+        }
         let tr = sigma.map(|s| transmittance(s, hit.surface.t));
         let weight = tr.map_or(node.weight, |tr| node.weight * tr.max_element());
         let tr = tr.unwrap_or(Color::ONE);
         // The rays this node traces (none above, where its ray ends).
         let before = stats.total_rays();
         let at = self.interaction(ray, hit, media, None);
-        let material = &self.materials[hit.material as usize];
         let mut rec = NoRecorder;
         let mut w = Walk {
             rng: &mut slot.rng,
@@ -146,7 +163,24 @@ impl Tracer<'_> {
         if !self.shadows_in_lanes {
             return direct.scale * self.direct(m, at, direct, w);
         }
-        let (p, n_geom) = (m.hit.surface.p, at.n_geom);
+        let shadow = (m.ray, m.hit, index);
+        self.queue_shadows(shadow, (at.n_geom, at.n_shade), direct, w.rng, lights)
+    }
+
+    /// The shadow rays of a hit (its ray, the hit, its node's place in the level) with
+    /// the normals `n_geom` and `n_shade` facing the ray, shaded by `direct`: queued in
+    /// `lights` per light (their random numbers drawn here, in the recursion's order), the
+    /// node listed to be scaled after the level; its ambient term returned.
+    #[inline(always)]
+    fn queue_shadows(
+        &self,
+        (ray, hit, index): (&Ray, &Hit, usize),
+        (n_geom, n_shade): (Vec3, Vec3),
+        direct: &Direct,
+        rng: &mut SampleStream,
+        lights: &mut Lights,
+    ) -> Color {
+        let p = hit.surface.p;
         let origin = offset_ray_origin(p, n_geom);
         for (light, asked) in self.lights.iter().zip(lights.shadows.iter_mut()) {
             asked.push(&Shadow {
@@ -154,10 +188,10 @@ impl Tracer<'_> {
                 p,
                 origin,
                 n_geom,
-                n: at.n_shade,
-                view: -m.ray.dir,
-                time: m.ray.time,
-                u: light.draw(w.rng),
+                n: n_shade,
+                view: -ray.dir,
+                time: ray.time,
+                u: light.draw(rng),
                 brdf: direct.brdf,
             });
         }
