@@ -1,13 +1,15 @@
-//! The hits of one level of the waves, made in lanes: where `N` neighbouring rays all met
-//! the same sphere, quad or plane (as a tile's rays mostly do), their hit records, the
-//! radiance their surface emits where it is a light, and a dielectric's reflected and
-//! refracted directions and Fresnel reflectance are computed `N` at a time; other rays one
-//! by one. Either way each is what the scalar code gives, bit for bit.
+//! The hits of one level of the waves, made in lanes: where `N` neighbouring rays met the
+//! same sphere, quad or plane (as a tile's rays mostly do), or two or three of them, their
+//! hit records and the radiance their surface emits where it is a light are computed `N` at
+//! a time, and where all `N` met one dielectric, its reflected and refracted directions and
+//! Fresnel reflectance from the same lanes; other rays one by one, and the other hits on
+//! dielectrics split `N` at a time after. Either way each is what the scalar code gives,
+//! bit for bit.
 
 use super::wave::Node;
 use super::{Media, Tracer};
 use crate::geometry::PrimRef;
-use crate::material::{Split, split_lanes};
+use crate::material::{Dielectric, Split, split_lanes};
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
 use crate::math::{Color, Ray};
 use crate::scene::Hit;
@@ -54,15 +56,20 @@ impl Hits {
 
 /// The hits of a level's rays (none where the ray met nothing, or where `N` neighbours
 /// met one light, which needs no records), what each hit's surface emits (`None`: it is
-/// not a light), and which hits are on a dielectric (their places in the level, in
-/// order), from the nearest primitive and distance of each ray.
+/// not a light), from the nearest primitive and distance of each ray (the rays' nodes and
+/// media beside); and the hits on dielectrics: where `N` neighbours met one, their splits
+/// (`splits`, each with its place in the level), made from the same lanes as their
+/// records; the others' places, in order, for [`Splits`].
 pub(super) struct Surfaces<'a, 't> {
     pub(super) tracer: &'a Tracer<'t>,
     pub(super) rays: &'a RayColumns,
     pub(super) nearest: &'a [Option<(PrimRef, f32)>],
+    pub(super) nodes: &'a [Node],
+    pub(super) media: &'a [Media],
     pub(super) hits: &'a mut Hits,
     pub(super) emitted: &'a mut Vec<Option<Color>>,
     pub(super) on_dielectrics: &'a mut Vec<u32>,
+    pub(super) splits: &'a mut Vec<(u32, Split)>,
 }
 
 impl LaneKernel for Surfaces<'_, '_> {
@@ -73,13 +80,17 @@ impl LaneKernel for Surfaces<'_, '_> {
             tracer,
             rays,
             nearest,
+            nodes,
+            media,
             hits,
             emitted,
             on_dielectrics,
+            splits,
         } = self;
         hits.clear();
         emitted.clear();
         on_dielectrics.clear();
+        splits.clear();
         let materials = &tracer.materials;
         let dielectric = |m: u32| materials[m as usize].splitting().is_some();
         for (c, chunk) in nearest.chunks(N).enumerate() {
@@ -108,8 +119,12 @@ impl LaneKernel for Surfaces<'_, '_> {
                 let at = hits.records.len() as u32;
                 hits.records.extend((0..N).map(hit));
                 hits.of.extend(at..at + N as u32);
-                if dielectric(material) {
-                    on_dielectrics.extend(first as u32..(first + N) as u32);
+                if let Some(d) = materials[material as usize].splitting() {
+                    let made =
+                        tracer.split_in_lanes([d; N], ray_lanes.1, (lanes.n, lanes.n), |k| {
+                            (&media[nodes[first + k].media as usize], object)
+                        });
+                    splits.extend((first as u32..).zip(made));
                 }
                 emitted.extend(std::iter::repeat_n(None, N));
                 continue;
@@ -191,6 +206,28 @@ fn by_ray(
 }
 
 impl Tracer<'_> {
+    /// The splits of `N` hits on `dielectrics` (the rays' directions `dir`, the surfaces'
+    /// normals `n_geom` and `n_shade`), each ray's media and the object it met given by
+    /// `of_ray`: as `Arrival::at` and the scalar split make them, the normals turned to face
+    /// the ray, the index outside taken from the media.
+    #[inline(always)]
+    fn split_in_lanes<'d, 'm, const N: usize>(
+        &self,
+        dielectrics: [&'d Dielectric; N],
+        dir: V3<Lanes<N>>,
+        (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
+        of_ray: impl Fn(usize) -> (&'m Media, u32),
+    ) -> impl Iterator<Item = Split> + 'd {
+        let entering = dir.dot(n_geom).less(Lanes::splat(0.0));
+        let facing = |n: V3<Lanes<N>>| V3::select(entering, n, n.neg());
+        let outside_ior = Lanes::<N>::from_fn(|k| {
+            let (media, object) = of_ray(k);
+            self.ior_of(media.outside(entering.0[k] != 0, object), None)
+        });
+        let normals = (facing(n_geom), facing(n_shade));
+        split_lanes(dielectrics, dir, normals, entering, outside_ior)
+    }
+
     /// The hit of a ray that met `near` (its primitive, the ray, the distance), and the
     /// radiance its surface emits where it is a light.
     #[inline(always)]
@@ -202,9 +239,9 @@ impl Tracer<'_> {
     }
 }
 
-/// The split of every hit of a level on a dielectric into its reflected and refracted
-/// rays, with its place in the level, in the order of `on_dielectrics`: `N` at a time,
-/// gathered from wherever they are in the level.
+/// The split of each hit of a level on a dielectric that [`Surfaces`] did not split (the
+/// places `on_dielectrics` lists) into its reflected and refracted rays, with its place in
+/// the level, in that order: `N` at a time, gathered from wherever they are in the level.
 pub(super) struct Splits<'a, 't> {
     pub(super) tracer: &'a Tracer<'t>,
     pub(super) rays: &'a RayColumns,
@@ -244,20 +281,14 @@ impl LaneKernel for Splits<'_, '_> {
             let lane = |k: usize| lanes[k].unwrap_or(last);
             let at = |k: usize| lane(k).0 as usize;
             let hit = |k: usize| lane(k).1;
-            let dielectrics = std::array::from_fn(|k| lane(k).2);
+            let dielectrics: [_; N] = std::array::from_fn(|k| lane(k).2);
             let surface = |k: usize| hit(k).surface;
             let dir = V3::from_fn(|k| rays.get(at(k)).dir);
             let n_geom = V3::from_fn(|k| surface(k).n_geom);
             let n_shade = V3::from_fn(|k| surface(k).n_shade);
-            // As `Arrival::at`: the normals turned to face the ray.
-            let entering = dir.dot(n_geom).less(Lanes::splat(0.0));
-            let facing = |n: V3<Lanes<N>>| V3::select(entering, n, n.neg());
-            let outside_ior = Lanes::<N>::from_fn(|k| {
-                let m = &media[nodes[at(k)].media as usize];
-                tracer.ior_of(m.outside(entering.0[k] != 0, hit(k).object), None)
+            let made = tracer.split_in_lanes(dielectrics, dir, (n_geom, n_shade), |k| {
+                (&media[nodes[at(k)].media as usize], hit(k).object)
             });
-            let normals = (facing(n_geom), facing(n_shade));
-            let made = split_lanes(dielectrics, dir, normals, entering, outside_ior);
             let kept = lanes
                 .iter()
                 .zip(made)

@@ -172,6 +172,9 @@ pub struct Waves {
     seen: Vec<Option<(f32, Color)>>,
     emitted: Vec<Option<Color>>,
     on_dielectrics: Vec<u32>,
+    // The splits the hit records' lanes made (of `N` rays on one dielectric), and those
+    // made of the other hits on dielectrics, each with its place in the level.
+    lane_splits: Vec<(u32, Split)>,
     splits: Vec<(u32, Split)>,
     // Per light, the level's shadow rays towards it; what they gave; and the nodes whose
     // sum of lights is then scaled, with the scale.
@@ -335,6 +338,7 @@ impl Tracer<'_> {
             seen,
             emitted,
             on_dielectrics,
+            lane_splits,
             splits,
             shadows,
             lit,
@@ -361,9 +365,12 @@ impl Tracer<'_> {
                 tracer: self,
                 rays: &level.rays,
                 nearest,
+                nodes: &level.nodes,
+                media,
                 hits,
                 emitted,
                 on_dielectrics,
+                splits: lane_splits,
             });
             width.dispatch(Splits {
                 tracer: self,
@@ -389,15 +396,20 @@ impl Tracer<'_> {
                 children,
                 lights: Lights { shadows, scaled },
             };
-            // The splits, in the order of the hits on dielectrics.
+            // The splits, each list in the order of the level.
             let mut splits = splits.iter().peekable();
+            let mut lane_splits = lane_splits.iter().peekable();
             let surfaces = level
                 .nodes
                 .iter()
                 .zip(hits.iter().zip(nearest.iter()))
                 .zip(seen.iter().zip(emitted.iter()));
             for (i, ((node, (hit, near)), (&seen, &emitted))) in surfaces.enumerate() {
-                let split = splits.next_if(|(j, _)| *j as usize == i).map(|(_, s)| s);
+                // (Only a node with a hit record may have a split.)
+                let at_i = |(j, _): &&(u32, Split)| *j as usize == i;
+                let split = hit
+                    .and_then(|_| lane_splits.next_if(at_i).or_else(|| splits.next_if(at_i)))
+                    .map(|(_, s)| s);
                 let slot = &mut slots[node.slot as usize];
                 let surface = Surface {
                     hit,
