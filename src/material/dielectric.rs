@@ -238,24 +238,23 @@ pub(crate) struct Split {
 }
 
 impl Split {
-    /// The mirror direction, the refracted one (`None`: total internal reflection) and
-    /// the reflectance R: what [`Split::scatter`] makes its lobes of.
-    #[inline(always)]
-    pub(crate) fn parts(&self) -> (Vec3, Option<Vec3>, f32) {
-        (self.mirror, self.refracted, self.interface.r)
-    }
-
     /// The reflected ray of weight R and the refracted ray of weight 1 − R (under total
     /// internal reflection, R = 1 and no refracted ray).
+    #[inline(always)]
+    pub(crate) fn lobes(&self) -> [Option<Lobe>; 2] {
+        let r = self.interface.r;
+        [
+            Some(Lobe::delta(Side::Reflect, self.mirror, Color::splat(r))),
+            self.refracted
+                .map(|dir| Lobe::delta(Side::Transmit, dir, Color::splat(1.0 - r))),
+        ]
+    }
+
+    /// Its lobes ([`Split::lobes`]) and interface, as a scatter.
     #[inline]
     pub(crate) fn scatter(&self) -> Scatter {
-        let r = self.interface.r;
         Scatter {
-            lobes: [
-                Some(Lobe::delta(Side::Reflect, self.mirror, Color::splat(r))),
-                self.refracted
-                    .map(|dir| Lobe::delta(Side::Transmit, dir, Color::splat(1.0 - r))),
-            ],
+            lobes: self.lobes(),
             interface: Some(self.interface),
             total_internal_reflection: self.refracted.is_none(),
             ..Scatter::default()

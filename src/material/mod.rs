@@ -189,6 +189,22 @@ impl Material {
         }
     }
 
+    /// Its shading by the lights at surface coordinates `uv`, where that is all it does
+    /// (no child rays, no emission: a diffuse surface): what the waves shade from the hit
+    /// without building an [`Interaction`] or a [`Scatter`].
+    #[inline(always)]
+    pub(crate) fn direct_only(&self, uv: Vec2) -> Option<Direct> {
+        match self {
+            Material::Diffuse(d) => Some(d.direct(uv)),
+            Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Dielectric(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
     /// Its emission, if it is a light.
     #[inline(always)]
     fn light(&self) -> Option<&Emissive> {

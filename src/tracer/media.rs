@@ -1,6 +1,7 @@
 //! The media a ray travels through: the stack of dielectric objects it has entered,
 //! Beer–Lambert attenuation along a segment, and which side of a surface a ray arrives on.
 
+use crate::geometry::SurfaceHit;
 use crate::math::{Color, Vec3};
 use crate::scene::Hit;
 
@@ -112,18 +113,24 @@ pub(super) struct Arrival {
 
 impl Arrival {
     pub(super) fn at(dir: Vec3, hit: &Hit, media: &Media) -> Arrival {
-        let s = &hit.surface;
-        let entering = dir.dot(s.n_geom) < 0.0;
-        let (n_geom, n_shade) = if entering {
-            (s.n_geom, s.n_shade)
-        } else {
-            (-s.n_geom, -s.n_shade)
-        };
+        let (entering, n_geom, n_shade) = Arrival::facing(dir, &hit.surface);
         Arrival {
             entering,
             n_geom,
             n_shade,
             outside: media.outside(entering, hit.object),
+        }
+    }
+
+    /// Whether a ray along `dir` arrives from `s`'s outside (against its normal), and the
+    /// geometric and shading normals turned to face it.
+    #[inline(always)]
+    pub(super) fn facing(dir: Vec3, s: &SurfaceHit) -> (bool, Vec3, Vec3) {
+        let entering = dir.dot(s.n_geom) < 0.0;
+        if entering {
+            (entering, s.n_geom, s.n_shade)
+        } else {
+            (entering, -s.n_geom, -s.n_shade)
         }
     }
 }

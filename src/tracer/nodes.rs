@@ -4,12 +4,11 @@
 //! reflected and refracted children, queued as the next level's rays.
 
 use super::lights::Shadow;
-use super::media::transmittance;
+use super::media::{Arrival, transmittance};
 use super::shade::pick_lobe;
 use super::wave::{Child, Lights, Node, Queue, Slot, Surface, Value};
 use super::{Branch, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
-use crate::material::Split;
-use crate::material::{Direct, Interaction, Material, Scatter, Side};
+use crate::material::{Direct, Interaction, Lobe, Side, Split};
 use crate::math::lanes::RayColumns;
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::params::TreeMode;
@@ -84,19 +83,15 @@ impl Tracer<'_> {
             return value(Color::ZERO, Color::ONE, queue);
         }
         let material = &self.materials[hit.material as usize];
-        if let (Material::Diffuse(diffuse), None, true) = (material, sigma, self.shadows_in_lanes) {
-            // A diffuse surface's light is all it has: its shadow rays queued, no
-            // children, without an Interaction or a Scatter built for it. Its normals as
-            // `Arrival::at` turns them to face the ray.
-            let s = &hit.surface;
-            let (n_geom, n_shade) = if ray.dir.dot(s.n_geom) < 0.0 {
-                (s.n_geom, s.n_shade)
-            } else {
-                (-s.n_geom, -s.n_shade)
-            };
-            let direct = diffuse.direct(s.uv);
-            let normals = (n_geom, n_shade);
+        if sigma.is_none()
+            && self.shadows_in_lanes
+            && let Some(direct) = material.direct_only(hit.surface.uv)
+        {
+            // A surface whose light is all it has (diffuse): its shadow rays queued, no
+            // children, without an Interaction or a Scatter built for it.
+            let (_, n_geom, n_shade) = Arrival::facing(ray.dir, &hit.surface);
             let shadow = (ray, hit, index);
+            let normals = (n_geom, n_shade);
             let local =
                 self.queue_shadows(shadow, normals, &direct, &mut slot.rng, &mut queue.lights);
             return value(local, Color::ONE, queue);
@@ -140,7 +135,7 @@ impl Tracer<'_> {
             entering: at.entering,
             n_geom: at.n_geom,
         };
-        self.queue_children(&from, &scatter, weight, &mut w, queue);
+        self.queue_children(&from, &scatter.lobes, weight, &mut w, queue);
         slot.tree_rays = w.tree_rays;
         slot.rays += (w.stats.total_rays() - before) as u32;
         value(local, tr, queue)
@@ -199,7 +194,7 @@ impl Tracer<'_> {
         self.ambient(direct)
     }
 
-    /// The children of the node `from` along the lobes of `scatter` (its path weight
+    /// The children of the node `from` along `lobes` (a scatter's child rays; its path weight
     /// `weight`), as the recursion's `shade` traces them: one chosen by its weight in the
     /// stochastic tree (as `follow_one`), else every lobe of weight above 0; each listed in
     /// `queue.children`, and queued as a ray where the pruning rules let it be traced.
@@ -207,14 +202,14 @@ impl Tracer<'_> {
     fn queue_children(
         &self,
         from: &From,
-        scatter: &Scatter,
+        lobes: &[Option<Lobe>; 2],
         weight: f32,
         w: &mut Walk<NoRecorder>,
         queue: &mut Queue,
     ) {
-        let lobes = scatter.lobes().count();
-        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
-            let mut all = scatter.lobes();
+        let count = lobes.iter().flatten().count();
+        if self.params.tree == TreeMode::Stochastic && count > 1 {
+            let mut all = lobes.iter().flatten();
             let Some(first) = all.next() else {
                 return;
             };
@@ -245,7 +240,7 @@ impl Tracer<'_> {
                 };
             queue.children.push(Child { weight, node });
         } else {
-            for lobe in scatter.lobes() {
+            for lobe in lobes.iter().flatten() {
                 let factor = lobe.weight.max_element();
                 if factor > 0.0 {
                     let node = self.queue_child(
@@ -264,10 +259,10 @@ impl Tracer<'_> {
         }
     }
 
-    /// The children of a node on a dielectric whose split (`split`: its mirror and
-    /// refracted directions and R) the lanes made, where nothing absorbs, as
-    /// `queue_children` makes them of the split's scatter: R and 1 − R are each lobe's
-    /// weight, the first lobe the reflected ray. Returns the rays it queued.
+    /// The children of a node on a dielectric whose split the lanes made, where nothing
+    /// absorbs: its reflected and refracted lobes (R and 1 − R) queued as
+    /// `queue_children` queues any scatter's, without the scatter built. Returns the rays
+    /// it queued.
     #[inline(always)]
     fn split_children(
         &self,
@@ -278,14 +273,7 @@ impl Tracer<'_> {
         w: &mut Walk<NoRecorder>,
         queue: &mut Queue,
     ) -> u32 {
-        let (mirror, refracted, r) = split.parts();
-        // As `Arrival::at`: the normal turned to face the ray.
-        let entering = ray.dir.dot(hit.surface.n_geom) < 0.0;
-        let n_geom = if entering {
-            hit.surface.n_geom
-        } else {
-            -hit.surface.n_geom
-        };
+        let (entering, n_geom, _) = Arrival::facing(ray.dir, &hit.surface);
         let from = From {
             node,
             time: ray.time,
@@ -293,51 +281,12 @@ impl Tracer<'_> {
             entering,
             n_geom,
         };
+        let lobes = split.lobes();
+        if lobes[1].is_none() {
+            w.stats.tir_events += 1;
+        }
         let before = w.stats.total_rays();
-        let weight = node.weight;
-        let reflect = (Side::Reflect, mirror);
-        match refracted {
-            None => w.stats.tir_events += 1,
-            Some(dir) if self.params.tree == TreeMode::Stochastic => {
-                let refract = (Side::Transmit, dir);
-                let (tint, node) =
-                    if node.depth >= self.params.max_depth || weight < self.params.min_weight {
-                        let node = self.queue_child(&from, reflect, (1.0, weight), w, queue);
-                        (Color::ONE, node)
-                    } else {
-                        // As `pick_lobe`: the reflected ray with probability R.
-                        let u = w.rng.next_1d();
-                        let (chosen, p) = if u < r {
-                            (reflect, r)
-                        } else {
-                            (refract, 1.0 - r)
-                        };
-                        if p > 0.0 {
-                            let tint = Color::splat(p) / p;
-                            let f = tint.max_element();
-                            (
-                                tint,
-                                self.queue_child(&from, chosen, (f, weight * f), w, queue),
-                            )
-                        } else {
-                            (Color::ONE, None)
-                        }
-                    };
-                queue.children.push(Child { weight: tint, node });
-                return (w.stats.total_rays() - before) as u32;
-            }
-            Some(_) => {}
-        }
-        let refract = refracted.map(|dir| ((Side::Transmit, dir), 1.0 - r));
-        for (lobe, factor) in std::iter::once((reflect, r)).chain(refract) {
-            if factor > 0.0 {
-                let node = self.queue_child(&from, lobe, (factor, weight * factor), w, queue);
-                queue.children.push(Child {
-                    weight: Color::splat(factor),
-                    node,
-                });
-            }
-        }
+        self.queue_children(&from, &lobes, node.weight, w, queue);
         (w.stats.total_rays() - before) as u32
     }
 

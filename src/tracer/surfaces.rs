@@ -132,7 +132,7 @@ impl LaneKernel for Surfaces<'_, '_> {
             // A short chunk, and rays on many objects, are made ray by ray.
             let Some(objects) = full.then(|| objects_of::<MAX_OBJECTS>(chunk)).flatten() else {
                 by_ray(
-                    tracer,
+                    (tracer, &dielectric),
                     rays,
                     (first, chunk),
                     (hits, emitted, on_dielectrics),
@@ -186,10 +186,11 @@ impl LaneKernel for Surfaces<'_, '_> {
 }
 
 /// The hits of `chunk`'s rays (from ray `first` of the level) made one by one: the
-/// records, the lights' radiance, the hits on dielectrics.
+/// records, the lights' radiance, the hits on dielectrics (the materials `dielectric` says
+/// split).
 #[inline(always)]
 fn by_ray(
-    tracer: &Tracer,
+    (tracer, dielectric): (&Tracer, &impl Fn(u32) -> bool),
     rays: &RayColumns,
     (first, chunk): (usize, &[Option<(PrimRef, f32)>]),
     (hits, emitted, on_dielectrics): (&mut Hits, &mut Vec<Option<Color>>, &mut Vec<u32>),
@@ -198,7 +199,7 @@ fn by_ray(
         let near = near.map(|(prim, t)| (prim, rays.get(first + k), t));
         let (hit, light) = tracer.surface_at(near);
         emitted.push(light);
-        if hit.is_some_and(|h| tracer.materials[h.material as usize].splitting().is_some()) {
+        if hit.is_some_and(|h| dielectric(h.material)) {
             on_dielectrics.push((first + k) as u32);
         }
         hits.push(hit);
