@@ -9,8 +9,9 @@
 
 use crate::geometry::{Quad, Sphere};
 use crate::math::lanes::{Real, Vector};
+use crate::math::rng::Pair;
 use crate::math::sampling::{concentric_disk, to_world, uniform_cone};
-use crate::math::{Color, Ray, Vec3, orthonormal_basis};
+use crate::math::{Color, Ray, SampleStream, Uniform, Vec3, orthonormal_basis};
 use glam::Vec2;
 use std::f32::consts::PI;
 
@@ -189,15 +190,32 @@ impl PreparedLight {
     /// no extent (a point, or any shape scaled to nothing) uses none, and its dimension is
     /// skipped rather than computed (the image is the same: the pair would go unused).
     pub(crate) fn draw(&self, u: &mut impl crate::math::Uniform) -> Vec2 {
-        let extent = match &self.light.shape {
-            LightShape::Sphere { radius, .. } => radius * self.light.scale > 0.0,
-            _ => self.light.scale > 0.0,
-        };
-        if extent {
+        if self.has_extent() {
             u.next_2d()
         } else {
             u.skip(1);
             Vec2::ZERO
+        }
+    }
+
+    /// [`PreparedLight::draw`] from a sample's stream, the pair left to be drawn later in
+    /// lanes where the stream's pattern allows ([`SampleStream::next_2d_or_later`]).
+    #[inline(always)]
+    pub(crate) fn draw_or_later(&self, rng: &mut SampleStream) -> Pair {
+        if self.has_extent() {
+            rng.next_2d_or_later()
+        } else {
+            rng.skip(1);
+            Pair::Drawn(Vec2::ZERO)
+        }
+    }
+
+    /// Whether it has an extent to sample: not a point, nor a shape scaled to nothing.
+    #[inline(always)]
+    fn has_extent(&self) -> bool {
+        match &self.light.shape {
+            LightShape::Sphere { radius, .. } => radius * self.light.scale > 0.0,
+            _ => self.light.scale > 0.0,
         }
     }
 

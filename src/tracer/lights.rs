@@ -9,6 +9,7 @@ use super::shadow::SHADOW_REACH;
 use crate::geometry::PrimRef;
 use crate::material::Brdf;
 use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, Real, Vector};
+use crate::math::rng::{Pair, SobolDraw, sobol_pairs};
 use crate::math::{Color, Vec3};
 use glam::Vec2;
 
@@ -77,7 +78,7 @@ impl LaneKernel for Seen<'_, '_> {
 }
 
 /// A shadow ray a node of the level asks for: towards the point of one light drawn at
-/// `u`, from the hit `p` (leaving at `origin`, just off the surface), lit through `brdf`
+/// `u` (or to be drawn, in lanes, with the rest of the light's), from the hit `p` (leaving at `origin`, just off the surface), lit through `brdf`
 /// about the shading normal `n` and seen along `view`.
 #[derive(Clone, Copy)]
 pub(super) struct Shadow {
@@ -88,7 +89,7 @@ pub(super) struct Shadow {
     pub(super) n: Vec3,
     pub(super) view: Vec3,
     pub(super) time: f32,
-    pub(super) u: Vec2,
+    pub(super) u: Pair,
     pub(super) brdf: Brdf,
 }
 
@@ -109,6 +110,10 @@ pub(super) struct Asked {
     // store-to-load forwarding (measured: 8 % of the default scene).
     nodes: Vec<u32>,
     brdfs: Vec<Brdf>,
+    // The light's points still to be drawn, one a ray, where its Sobol pairs are drawn
+    // in lanes (then the columns' u is unused): a light's rays of one wave are all drawn
+    // one way, as the pattern and the light say.
+    later: Vec<SobolDraw>,
 }
 
 impl Asked {
@@ -116,16 +121,35 @@ impl Asked {
         self.columns.clear();
         self.nodes.clear();
         self.brdfs.clear();
+        self.later.clear();
     }
 
     pub(super) fn push(&mut self, s: &Shadow) {
         let [p, o, g, n, v] = [s.p, s.origin, s.n_geom, s.n, s.view];
+        let u = match s.u {
+            Pair::Drawn(u) => u,
+            Pair::Later(draw) => {
+                self.later.push(draw);
+                Vec2::ZERO
+            }
+        };
         self.columns.push([
-            p.x, p.y, p.z, o.x, o.y, o.z, g.x, g.y, g.z, n.x, n.y, n.z, v.x, v.y, v.z, s.time,
-            s.u.x, s.u.y,
+            p.x, p.y, p.z, o.x, o.y, o.z, g.x, g.y, g.z, n.x, n.y, n.z, v.x, v.y, v.z, s.time, u.x,
+            u.y,
         ]);
         self.nodes.push(s.node);
         self.brdfs.push(s.brdf);
+    }
+
+    /// The light's uniform pairs for rays `i..i + N`: drawn in lanes where they were left
+    /// to be, else as asked.
+    #[inline(always)]
+    fn u<const N: usize>(&self, i: usize) -> (Lanes<N>, Lanes<N>) {
+        debug_assert!(self.later.is_empty() || self.later.len() == self.nodes.len());
+        match self.later.get(i..) {
+            Some(later) if !later.is_empty() => sobol_pairs(&later[..later.len().min(N)]),
+            _ => (self.columns.lane(i, U), self.columns.lane(i, U + 1)),
+        }
     }
 }
 
@@ -157,7 +181,7 @@ impl LaneKernel for Shadows<'_, '_> {
             let chunks = asked.nodes.chunks(N).zip(asked.brdfs.chunks(N));
             for (k, (nodes, brdfs)) in chunks.enumerate() {
                 let i = k * N;
-                let u = (c.lane::<N>(i, U), c.lane(i, U + 1));
+                let u = asked.u::<N>(i);
                 // The waves ask only lights that aim at points (`Tracer::shadows_in_lanes`).
                 let Some(q) = light.point_of::<Lanes<N>>(u) else {
                     continue;

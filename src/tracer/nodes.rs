@@ -186,7 +186,7 @@ impl Tracer<'_> {
                 n: n_shade,
                 view: -ray.dir,
                 time: ray.time,
-                u: light.draw(rng),
+                u: light.draw_or_later(rng),
                 brdf: direct.brdf,
             });
         }

@@ -8,7 +8,7 @@
 
 mod sobol;
 
-pub(crate) use sobol::SobolLanes;
+pub(crate) use sobol::{Pair, SobolDraw, SobolLanes, sobol_pairs};
 pub use sobol::{owen_scramble, sobol_2d};
 use sobol::{sobol_first, sobol_pair};
 

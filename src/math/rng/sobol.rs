@@ -3,6 +3,7 @@
 //! several samples at once in SIMD lanes ([`SobolLanes`]).
 
 use super::{Pattern, SampleStream, dimension_key, mix64, pixel_key};
+use crate::math::lanes::Lanes;
 use glam::Vec2;
 
 /// The Laine–Karras permutation of the bits of `x` (least significant first): flipping
@@ -86,6 +87,61 @@ pub(super) fn sobol_pair(pixel_key: u64, sample_reversed: u32, dim: u32) -> Vec2
         fraction_to_f32(both as u32),
         fraction_to_f32((both >> 32) as u32),
     )
+}
+
+/// A Sobol pair a stream has passed over, to be drawn later with others of its kind `N` at
+/// a time in SIMD lanes ([`sobol_pairs`]): the inputs of [`sobol_pair`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct SobolDraw {
+    pixel_key: u64,
+    sample_reversed: u32,
+    dim: u32,
+}
+
+/// A stream's next pair ([`SampleStream::next_2d_or_later`]): drawn, or, with the Sobol
+/// pattern, left to be drawn in lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Pair {
+    /// The pair, drawn.
+    Drawn(Vec2),
+    /// What draws it: [`sobol_pairs`].
+    Later(SobolDraw),
+}
+
+/// The pairs of `draws` (up to `N`; lanes past the last repeat it) in lanes, x and y: each
+/// [`sobol_pair`]'s bit for bit. Only for use inside a
+/// [`crate::math::lanes::LaneKernel`], as [`SobolLanes`].
+#[inline(always)]
+pub(crate) fn sobol_pairs<const N: usize>(draws: &[SobolDraw]) -> (Lanes<N>, Lanes<N>) {
+    let last = draws.last().copied().unwrap_or_default();
+    let draw = |k: usize| draws.get(k).copied().unwrap_or(last);
+    let keys: [u64; N] = std::array::from_fn(|k| draw(k).pixel_key);
+    let revs: [u32; N] = std::array::from_fn(|k| draw(k).sample_reversed);
+    let dims: [u32; N] = std::array::from_fn(|k| draw(k).dim);
+    let (mut x, mut y) = ([0.0; N], [0.0; N]);
+    for k in 0..N {
+        let v = sobol_pair(keys[k], revs[k], dims[k]);
+        (x[k], y[k]) = (v.x, v.y);
+    }
+    (Lanes(x), Lanes(y))
+}
+
+impl SampleStream {
+    /// [`SampleStream::next_2d`], but with the Sobol pattern the pair is left to be drawn
+    /// later, `N` at a time ([`sobol_pairs`]); either way the stream moves past it.
+    #[inline(always)]
+    pub(crate) fn next_2d_or_later(&mut self) -> Pair {
+        if self.pattern != Pattern::Sobol {
+            return Pair::Drawn(self.next_2d());
+        }
+        let later = SobolDraw {
+            pixel_key: self.pixel_key,
+            sample_reversed: self.sample_reversed,
+            dim: self.dim,
+        };
+        self.dim += 1;
+        Pair::Later(later)
+    }
 }
 
 /// The Sobol streams of `N` samples begun together, their first draws made in SIMD lanes
@@ -175,6 +231,42 @@ mod tests {
             assert_eq!(y as f64 / 2f64.powi(32), *e, "index {i}");
             assert_eq!(x, (i as u32).reverse_bits());
         }
+    }
+
+    #[test]
+    fn pairs_left_for_later_are_the_pairs_drawn_now() {
+        // Streams of several pixels and samples, each at its own dimension; a short last
+        // group as well as a full one.
+        let mut now = Vec::new();
+        let mut later = Vec::new();
+        for k in 0..11u32 {
+            let mut st = SampleStream::with_pattern(Pattern::Sobol, 64, 5, k * 7, k * 13);
+            for _ in 0..k % 4 {
+                st.next_1d();
+            }
+            let mut twin = st.clone();
+            now.push(st.next_2d());
+            match twin.next_2d_or_later() {
+                Pair::Later(draw) => later.push(draw),
+                Pair::Drawn(_) => panic!("a Sobol pair is left for later"),
+            }
+            // The stream moves past the pair either way.
+            assert_eq!(twin.next_1d().to_bits(), st.next_1d().to_bits());
+        }
+        for group in [&later[..8], &later[8..]] {
+            let (x, y) = sobol_pairs::<8>(group);
+            let first = if group.len() == 8 { 0 } else { 8 };
+            for (k, v) in now[first..first + group.len()].iter().enumerate() {
+                assert_eq!(
+                    (x.0[k].to_bits(), y.0[k].to_bits()),
+                    (v.x.to_bits(), v.y.to_bits())
+                );
+            }
+        }
+        // Other patterns draw at once, as next_2d.
+        let mut st = SampleStream::with_pattern(Pattern::Jittered, 16, 5, 3, 2);
+        let mut twin = st.clone();
+        assert!(matches!(twin.next_2d_or_later(), Pair::Drawn(v) if v == st.next_2d()));
     }
 
     #[test]
