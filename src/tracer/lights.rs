@@ -78,8 +78,9 @@ impl LaneKernel for Seen<'_, '_> {
 }
 
 /// A shadow ray a node of the level asks for: towards the point of one light drawn at
-/// `u` (or to be drawn, in lanes, with the rest of the light's), from the hit `p` (leaving at `origin`, just off the surface), lit through `brdf`
-/// about the shading normal `n` and seen along `view`.
+/// `u` (or to be drawn, in lanes, with the rest of the light's), from the hit `p`
+/// (leaving at `origin`, just off the surface), lit through `brdf` about the shading
+/// normal `n` and seen along `view`.
 #[derive(Clone, Copy)]
 pub(super) struct Shadow {
     pub(super) node: u32,
