@@ -95,7 +95,8 @@ pub(super) struct Shadow {
 }
 
 /// The shadow rays asked of one light, as columns for the lanes to load (at these places:
-/// p, origin, n_geom, n, view, time, u), beside each one's node and BRDF.
+/// p, origin, n_geom, n, view, time, u, the BRDF's Phong exponent), beside each one's node
+/// and the BRDF's colours.
 const P: usize = 0;
 const ORIGIN: usize = 3;
 const N_GEOM: usize = 6;
@@ -103,14 +104,17 @@ const N_SHADE: usize = 9;
 const VIEW: usize = 12;
 const TIME: usize = 15;
 const U: usize = 16;
+const EXPONENT: usize = 18;
 
 #[derive(Default)]
 pub(super) struct Asked {
-    columns: Columns<18>,
+    columns: Columns<19>,
     // Apart: a (node, BRDF) pair built field by field and copied whole stalled on
-    // store-to-load forwarding (measured: 8 % of the default scene).
+    // store-to-load forwarding (measured: 8 % of the default scene); so did a BRDF copied
+    // whole, its exponent stored alone and loaded with the padding beside it (perf: most
+    // of `push` on the soft-shadow slide), so the exponent is a column.
     nodes: Vec<u32>,
-    brdfs: Vec<Brdf>,
+    colours: Vec<[Color; 2]>,
     // The light's points still to be drawn, one a ray, where its Sobol pairs are drawn
     // in lanes (then the columns' u is unused): a light's rays of one wave are all drawn
     // one way, as the pattern and the light say.
@@ -121,10 +125,11 @@ impl Asked {
     pub(super) fn clear(&mut self) {
         self.columns.clear();
         self.nodes.clear();
-        self.brdfs.clear();
+        self.colours.clear();
         self.later.clear();
     }
 
+    #[inline(always)]
     pub(super) fn push(&mut self, s: &Shadow) {
         let [p, o, g, n, v] = [s.p, s.origin, s.n_geom, s.n, s.view];
         let u = match s.u {
@@ -134,12 +139,13 @@ impl Asked {
                 Vec2::ZERO
             }
         };
+        let e = s.brdf.exponent;
         self.columns.push([
             p.x, p.y, p.z, o.x, o.y, o.z, g.x, g.y, g.z, n.x, n.y, n.z, v.x, v.y, v.z, s.time, u.x,
-            u.y,
+            u.y, e,
         ]);
         self.nodes.push(s.node);
-        self.brdfs.push(s.brdf);
+        self.colours.push([s.brdf.albedo, s.brdf.specular]);
     }
 
     /// The light's uniform pairs for rays `i..i + N`: drawn in lanes where they were left
@@ -179,8 +185,8 @@ impl LaneKernel for Shadows<'_, '_> {
         for (light, asked) in t.lights.iter().zip(self.asked) {
             let base = light.base();
             let c = &asked.columns;
-            let chunks = asked.nodes.chunks(N).zip(asked.brdfs.chunks(N));
-            for (k, (nodes, brdfs)) in chunks.enumerate() {
+            let chunks = asked.nodes.chunks(N).zip(asked.colours.chunks(N));
+            for (k, (nodes, colours)) in chunks.enumerate() {
                 let i = k * N;
                 let u = asked.u::<N>(i);
                 // The waves ask only lights that aim at points (`Tracer::shadows_in_lanes`).
@@ -200,18 +206,25 @@ impl LaneKernel for Shadows<'_, '_> {
                 } else {
                     !lit
                 };
-                let shadows = nodes.iter().zip(brdfs).enumerate();
-                self.out.extend(shadows.map(|(j, (&node, brdf))| {
-                    let light = (lit.0[j] != 0).then(|| {
-                        if blocked.0[j] != 0 {
-                            Color::ZERO
-                        } else {
-                            let f = brdf.eval(n.get(j), dir.get(j), view.get(j));
-                            f * (base * factor.0[j]) * cos.0[j]
-                        }
-                    });
-                    Lit { node, light }
-                }));
+                let exponent = c.lane::<N>(i, EXPONENT);
+                let shadows = nodes.iter().zip(colours).enumerate();
+                self.out
+                    .extend(shadows.map(|(j, (&node, &[albedo, specular]))| {
+                        let light = (lit.0[j] != 0).then(|| {
+                            if blocked.0[j] != 0 {
+                                Color::ZERO
+                            } else {
+                                let brdf = Brdf {
+                                    albedo,
+                                    specular,
+                                    exponent: exponent.0[j],
+                                };
+                                let f = brdf.eval(n.get(j), dir.get(j), view.get(j));
+                                f * (base * factor.0[j]) * cos.0[j]
+                            }
+                        });
+                        Lit { node, light }
+                    }));
             }
         }
     }
