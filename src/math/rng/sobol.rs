@@ -262,6 +262,11 @@ mod tests {
                     (v.x.to_bits(), v.y.to_bits())
                 );
             }
+            // Lanes past a short group's end repeat its last pair, as documented.
+            let last = group.len() - 1;
+            for k in group.len()..8 {
+                assert_eq!((x.0[k], y.0[k]), (x.0[last], y.0[last]));
+            }
         }
         // Other patterns draw at once, as next_2d.
         let mut st = SampleStream::with_pattern(Pattern::Jittered, 16, 5, 3, 2);
