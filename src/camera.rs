@@ -278,6 +278,19 @@ impl CameraFrame {
         (cos * x - sin * y).normalize_or(x)
     }
 
+    /// The lens centre: where pinhole rays start.
+    pub fn origin(&self) -> Vec3 {
+        self.origin
+    }
+
+    /// The image's rectangle on the plane `distance` in front of the lens, corner by
+    /// corner: top left, top right, bottom right, bottom left.
+    pub fn film_corners(&self, distance: f32) -> [Vec3; 4] {
+        let at =
+            |x: f32, y: f32| self.origin + distance * (self.forward + x * self.right + y * self.up);
+        [at(-1.0, 1.0), at(1.0, 1.0), at(1.0, -1.0), at(-1.0, -1.0)]
+    }
+
     /// The unit view direction.
     pub fn forward(&self) -> Vec3 {
         self.forward

@@ -33,6 +33,7 @@ pub mod optics;
 pub mod params;
 pub mod render;
 pub mod scene;
+pub mod section;
 pub mod tracer;
 
 /// The version of raylab, as written into snapshot sidecars.

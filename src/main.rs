@@ -33,6 +33,7 @@ mod cli;
 use cli::bench::{BenchArgs, bench_command};
 use cli::inspect::{InspectArgs, inspect_command};
 use cli::render::{RenderArgs, render_command};
+use cli::section::{SectionArgs, section_command};
 use cli::sweep::{SweepArgs, sweep_command};
 
 /// A failure while working (a file that cannot be written, threads that cannot start), as
@@ -107,6 +108,10 @@ enum Command {
     /// every reflected, refracted and shadow ray with the lecture's quantities where it
     /// meets a surface.
     Inspect(InspectArgs),
+    /// Draw the lecture's 2D diagram of one pixel's ray tree (the scene cut by the plane of
+    /// its camera ray and first normal, the angles and indices at each interface), or the
+    /// interface workbench at one angle (--angle), as an SVG or a PNG.
+    Section(SectionArgs),
 }
 
 #[derive(clap::Args)]
@@ -238,6 +243,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
+        Some(Command::Section(args)) => section_command(&args),
         Some(Command::Lecture { markdown: true }) => {
             say_raw!("{}", raylab::lecture::markdown()?);
             Ok(())

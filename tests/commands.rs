@@ -452,3 +452,58 @@ fn the_docs_name_every_subcommand_and_option_the_help_lists() {
         "docs/cli.md does not mention: {missing:?}"
     );
 }
+
+#[test]
+fn section_writes_a_pixels_tree_and_the_workbench_as_svg_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // The workbench at 30° from air into glass: θt = asin(sin 30° / 1.5) = 19.47°.
+    let o = raylab(&["section", "--angle", "30", "-o", "snell.svg"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(d.join("snell.svg")).unwrap();
+    assert!(svg.starts_with("<svg"), "{svg}");
+    for text in ["θi = 30.0°", "θt = 19.5°", "η1 = 1.0", "η2 = 1.5"] {
+        assert!(
+            svg.contains(&format!(">{text}</text>")),
+            "{text} in:\n{svg}"
+        );
+    }
+    let o = raylab(
+        &[
+            "section", "--n1", "1.5", "--n2", "1", "--angle", "50", "-o", "tir.svg",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(d.join("tir.svg")).unwrap();
+    assert!(svg.contains(">total internal reflection</text>"));
+    assert!(svg.contains(">critical angle 41.8°</text>"));
+    // A pixel's section, as a PNG of the size asked for.
+    let args = [
+        "section", "glass", "--pixel", "40,22", "--size", "80x45", "--figure", "480x360", "-o",
+        "tree.png",
+    ];
+    let o = raylab(&args, d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = image::open(d.join("tree.png")).unwrap();
+    assert_eq!((png.width(), png.height()), (480, 360));
+    fails(
+        &["section", "--angle", "30", "-o", "x.pdf"],
+        d,
+        "must end in .svg or .png",
+    );
+    fails(
+        &["section", "--angle", "95", "-o", "x.svg"],
+        d,
+        "out of range",
+    );
+    fails(&["section", "glass", "-o", "x.svg"], d, "--pixel");
+    fails(
+        &[
+            "section", "glass", "--pixel", "80,0", "--size", "80x45", "-o", "x.svg",
+        ],
+        d,
+        "outside the 80x45 image",
+    );
+    assert!(!d.join("x.svg").exists() && !d.join("x.pdf").exists());
+}

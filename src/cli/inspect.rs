@@ -6,6 +6,21 @@ use anyhow::{Context, Result, bail};
 use raylab::scene::Scene;
 use raylab::tracer::{RayTree, Tracer};
 
+/// Which sample of a pixel, in what image, with what parameters: what `inspect` traces and
+/// `section` draws.
+#[derive(clap::Args)]
+pub struct SampleArgs {
+    /// Which of the pixel's samples (0 is the first, the one the window inspects).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub sample: u32,
+    /// Image size in pixels [default: the scene's].
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    /// Set any parameter by name (repeatable), as for `render`.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+}
+
 #[derive(clap::Args)]
 pub struct InspectArgs {
     /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
@@ -14,22 +29,15 @@ pub struct InspectArgs {
     /// The pixel: X,Y from the top left of the image.
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pixel: (u32, u32),
-    /// Which of the pixel's samples (0 is the first, the one the window inspects).
-    #[arg(long, value_name = "N", default_value_t = 0)]
-    sample: u32,
-    /// Image size in pixels [default: the scene's].
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(u32, u32)>,
-    /// Set any parameter by name (repeatable), as for `render`.
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    set: Vec<String>,
+    #[command(flatten)]
+    sample: SampleArgs,
     /// Print the tree as JSON: every ray with its parent, kind, ray, hit and the lecture's
     /// quantities there, end, weights and radiance.
     #[arg(long)]
     json: bool,
 }
 
-fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+pub fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     let (x, y) = s
         .split_once(',')
         .ok_or_else(|| format!("`{s}` is not of the form X,Y, e.g. 480,270"))?;
@@ -41,26 +49,63 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     Ok((coordinate(x)?, coordinate(y)?))
 }
 
-pub fn inspect_command(args: &InspectArgs) -> Result<()> {
-    let scene = Scene::load(&args.scene)?;
+/// One sample's ray tree, traced as the inspector traces it.
+pub struct Traced {
+    /// The scene it was traced in.
+    pub scene: Scene,
+    /// The image size.
+    pub size: (u32, u32),
+    /// The tree.
+    pub tree: RayTree,
+    /// The radiance the sample returned.
+    pub radiance: raylab::math::Color,
+    /// The camera frame its camera ray came through.
+    pub frame: raylab::camera::CameraFrame,
+}
+
+/// Traces the sample `args` names of `pixel` in `scene` (a file or built-in name): the
+/// tree `inspect` prints and `section` draws.
+pub fn trace_pixel(scene: &str, args: &SampleArgs, (x, y): (u32, u32)) -> Result<Traced> {
+    let SampleArgs { sample, size, set } = args;
+    let sample = *sample;
+    let scene = Scene::load(scene)?;
     let mut params = scene.params.clone();
-    params.set_all(&args.set).context("--set")?;
-    let (width, height) = args.size.unwrap_or((scene.width, scene.height));
-    let (x, y) = args.pixel;
+    params.set_all(set).context("--set")?;
+    let (width, height) = size.unwrap_or((scene.width, scene.height));
     if x >= width || y >= height {
         bail!("--pixel {x},{y} is outside the {width}x{height} image");
     }
     let mut tracer = Tracer::new(&scene, &params, width, height);
     // The sample as its pass traces it (with its photons, where there are some).
-    tracer.prepare_photons(args.sample);
-    let (tree, radiance) = tracer.inspect(x, y, args.sample);
+    tracer.prepare_photons(sample);
+    let (tree, radiance) = tracer.inspect(x, y, sample);
+    let frame = tracer.frame().clone();
+    drop(tracer);
+    Ok(Traced {
+        scene,
+        size: (width, height),
+        tree,
+        radiance,
+        frame,
+    })
+}
+
+pub fn inspect_command(args: &InspectArgs) -> Result<()> {
+    let Traced {
+        scene,
+        size: (width, height),
+        tree,
+        radiance,
+        ..
+    } = trace_pixel(&args.scene, &args.sample, args.pixel)?;
+    let (x, y) = args.pixel;
     if args.json {
         let report = serde_json::json!({
             "scene": scene.name,
             "width": width,
             "height": height,
             "pixel": [x, y],
-            "sample": args.sample,
+            "sample": args.sample.sample,
             "radiance": [radiance.x, radiance.y, radiance.z],
             "rays": tree.nodes,
         });
@@ -70,7 +115,7 @@ pub fn inspect_command(args: &InspectArgs) -> Result<()> {
     say!(
         "{} {width}x{height}, pixel ({x}, {y}), sample {}: radiance ({:.3}, {:.3}, {:.3}), {} rays",
         scene.name,
-        args.sample,
+        args.sample.sample,
         radiance.x,
         radiance.y,
         radiance.z,

@@ -5,4 +5,5 @@ pub mod inspect;
 pub mod output;
 pub mod progress;
 pub mod render;
+pub mod section;
 pub mod sweep;

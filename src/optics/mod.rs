@@ -204,21 +204,24 @@ pub struct FresnelRow {
 pub fn fresnel_table(n1: f32, n2: f32, step: f64) -> Vec<FresnelRow> {
     table_angles(step)
         .into_iter()
-        .map(|theta| {
-            let cos_i = (theta.to_radians().cos() as f32).max(0.0);
-            let (f_s, f_p, r_exact) = fresnel_exact(cos_i, n1, n2);
-            FresnelRow {
-                theta_i: theta as f32,
-                theta_t: cos_transmitted(cos_i, n1, n2)
-                    .map(|c| (c as f64).acos().to_degrees() as f32),
-                f_s,
-                f_p,
-                r_exact,
-                r_schlick: schlick(cos_i, n1, n2),
-                r_schlick_naive: schlick_naive(cos_i, n1, n2),
-            }
-        })
+        .map(|theta| fresnel_row(n1, n2, theta))
         .collect()
+}
+
+/// The Fresnel curves' values from `n1` into `n2` at the angle of incidence `theta`
+/// (degrees): one row of [`fresnel_table`], and the interface workbench's numbers.
+pub fn fresnel_row(n1: f32, n2: f32, theta: f64) -> FresnelRow {
+    let cos_i = (theta.to_radians().cos() as f32).max(0.0);
+    let (f_s, f_p, r_exact) = fresnel_exact(cos_i, n1, n2);
+    FresnelRow {
+        theta_i: theta as f32,
+        theta_t: cos_transmitted(cos_i, n1, n2).map(|c| (c as f64).acos().to_degrees() as f32),
+        f_s,
+        f_p,
+        r_exact,
+        r_schlick: schlick(cos_i, n1, n2),
+        r_schlick_naive: schlick_naive(cos_i, n1, n2),
+    }
 }
 
 /// Every `step` degrees from 0 to 90, with 90 itself always included.

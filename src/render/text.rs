@@ -75,7 +75,7 @@ impl Clip {
     }
 }
 
-/// Draws `line` in white on `img` with its baseline at `baseline` and its left edge at
+/// Draws `line` in `colour` on `img` with its baseline at `baseline` and its left edge at
 /// `x`, blending by each pixel's coverage; what falls outside `clip` (and the image) is
 /// clipped.
 fn draw_line(
@@ -84,6 +84,7 @@ fn draw_line(
     line: &str,
     (x, baseline): (f32, f32),
     clip: Clip,
+    colour: [u8; 3],
 ) {
     let mut caret = x;
     let mut last = None;
@@ -109,9 +110,11 @@ fn draw_line(
             }
             let p = img.get_pixel_mut(px as u32, py as u32);
             let a = coverage.clamp(0.0, 1.0);
-            *p = Rgb(p
-                .0
-                .map(|v| (v as f32 + (255.0 - v as f32) * a).round() as u8));
+            let mut c = colour.into_iter();
+            *p = Rgb(p.0.map(|v| {
+                let to = c.next().unwrap_or(255) as f32;
+                (v as f32 + (to - v as f32) * a).round() as u8
+            }));
         });
     }
 }
@@ -133,7 +136,7 @@ pub fn with_caption(image: &RgbImage, caption: &str) -> RgbImage {
     let whole = Clip::whole(&out);
     for (i, line) in lines.iter().enumerate() {
         let baseline = image.height() as f32 + margin + font.ascent() + i as f32 * line_height;
-        draw_line(&mut out, &font, line, (margin, baseline), whole);
+        draw_line(&mut out, &font, line, (margin, baseline), whole, WHITE);
     }
     out
 }
@@ -162,7 +165,30 @@ pub(crate) fn draw_label(img: &mut RgbImage, (x, y, w, h): (u32, u32, u32, u32),
         label,
         (x as f32 + pad, baseline),
         Clip { x, y, w, h },
+        WHITE,
     );
+}
+
+const WHITE: [u8; 3] = [255, 255, 255];
+
+/// Draws one line of `text` on `img` in `colour`, `px` pixels per em, centred vertically on
+/// `y`; `align` places it across: 0 starts it at `x`, 0.5 centres it there, 1 ends it there.
+pub(crate) fn draw_text(
+    img: &mut RgbImage,
+    text: &str,
+    (x, y): (f32, f32),
+    px: f32,
+    colour: [u8; 3],
+    align: f32,
+) {
+    let Some(face) = typeface() else {
+        return;
+    };
+    let font = face.into_scaled(PxScale::from(px));
+    let left = x - align * line_width(&font, text);
+    let baseline = y + (font.ascent() + font.descent()) / 2.0;
+    let whole = Clip::whole(img);
+    draw_line(img, &font, text, (left, baseline), whole, colour);
 }
 
 #[cfg(test)]

@@ -224,6 +224,27 @@ impl<'a> Tracer<'a> {
         self.sample_recorded(x, y, sample, stats, &mut NoRecorder)
     }
 
+    /// The angle of incidence (degrees) at which the camera ray of sample `sample` of pixel
+    /// (x, y) first meets a dielectric (bare, or a glaze's coat), as [`Tracer::inspect`]
+    /// records it; `None` where it first meets anything else, a light, or nothing. The
+    /// interface workbench outlines the pixels at its angle by it.
+    pub fn first_incidence(&self, x: u32, y: u32, sample: u32) -> Option<f32> {
+        let (_, ray) = self.camera_sample(x, y, sample);
+        let hit = self.scene.intersect(&ray, f32::INFINITY)?;
+        let mut nearest = hit.surface.t;
+        if self.light_seen(&ray, &mut nearest).is_some() {
+            return None;
+        }
+        self.materials[hit.material as usize].dielectric()?;
+        let at = self.interaction(&ray, &hit, &Media::default(), None);
+        Some(at.cos_i().acos().to_degrees())
+    }
+
+    /// The camera's frame the tracer shoots its camera rays through.
+    pub fn frame(&self) -> &CameraFrame {
+        &self.frame
+    }
+
     /// The whole ray tree of sample `sample` of pixel (x, y), with the radiance it gives:
     /// exactly what [`Tracer::sample`] computes, recorded.
     pub fn inspect(&self, x: u32, y: u32, sample: u32) -> (RayTree, Color) {

@@ -77,6 +77,8 @@ pub struct NodeHit {
     pub material: u32,
     /// Where.
     pub point: Vec3,
+    /// The unit shading normal there, facing the side the ray came from.
+    pub normal: Vec3,
     /// Angle of incidence, degrees.
     pub theta_i: f32,
     /// At a dielectric: the angle of refraction (degrees), if it exists.
@@ -278,6 +280,7 @@ pub(super) fn record_hit<R: Recorder>(rec: &mut R, id: usize, hit: &Hit, at: &In
             object: hit.object,
             material: hit.material,
             point: hit.surface.p,
+            normal: at.n_shade,
             theta_i: at.cos_i().acos().to_degrees(),
             theta_t: None,
             n1_n2: None,
@@ -291,8 +294,8 @@ pub(super) fn record_hit<R: Recorder>(rec: &mut R, id: usize, hit: &Hit, at: &In
     }
 }
 
-/// The record of a shadow ray from node `parent`, reaching `dist` along `shadow`, with the
-/// light it brought.
+/// The record of a shadow ray from node `parent`, reaching `dist` along `shadow` (its
+/// light's point, or its blocker), with the light it brought.
 pub(super) fn shadow_node(
     parent: usize,
     shadow: &Ray,

@@ -75,8 +75,14 @@ impl Tracer<'_> {
                 }
             };
             sum += contribution;
-            w.rec
-                .ray(|| shadow_node(id, &shadow, ls.dist, blocked, contribution));
+            w.rec.ray(|| {
+                // A blocked ray's record stops at its blocker, where the diagrams draw it.
+                let end = match blocked {
+                    true => self.scene.intersect(&shadow, reach).map(|h| h.surface.t),
+                    false => None,
+                };
+                shadow_node(id, &shadow, end.unwrap_or(ls.dist), blocked, contribution)
+            });
         }
         sum
     }

@@ -1,0 +1,100 @@
+//! `raylab section`: the section view of one pixel's ray tree, or the interface
+//! workbench at one angle, as an SVG (for slides) or a PNG.
+
+use super::inspect::{SampleArgs, Traced, parse_pixel, trace_pixel};
+use super::output::check_folder;
+use crate::{parse_ior, parse_size};
+use anyhow::{Context, Result, bail};
+use raylab::section::{Theme, Workbench, section, text_size, to_png, to_svg};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct SectionArgs {
+    /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
+    #[arg(default_value = "default")]
+    scene: String,
+    /// The pixel whose ray tree to draw, X,Y from the top left of the image.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, required_unless_present = "angle")]
+    pixel: Option<(u32, u32)>,
+    #[command(flatten)]
+    sample: SampleArgs,
+    /// The interface workbench instead of a pixel: the angle of incidence, degrees from
+    /// the normal (0 to 89.9), between --n1 and --n2.
+    #[arg(long, value_name = "DEG", value_parser = parse_angle, conflicts_with_all = ["pixel", "set", "size"])]
+    angle: Option<f32>,
+    /// The workbench's index of refraction on the side the light comes from.
+    #[arg(long, default_value_t = 1.0, value_parser = parse_ior, requires = "angle")]
+    n1: f32,
+    /// The workbench's index of refraction on the other side.
+    #[arg(long, default_value_t = 1.5, value_parser = parse_ior, requires = "angle")]
+    n2: f32,
+    /// The file to write: .svg (text stays text, for slides) or .png.
+    #[arg(short, long, value_name = "FILE")]
+    output: PathBuf,
+    /// The picture's size in points (SVG) or pixels (PNG).
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "960x720")]
+    figure: (u32, u32),
+    /// Light marks on near-black, as the window draws them, instead of dark on white.
+    #[arg(long)]
+    dark: bool,
+}
+
+/// An angle of incidence in degrees, 0 to the workbench's largest.
+fn parse_angle(s: &str) -> Result<f32, String> {
+    let max = raylab::section::MAX_ANGLE;
+    match s.trim().parse::<f32>() {
+        Ok(a) if (0.0..=max).contains(&a) => Ok(a),
+        Ok(a) => Err(format!("{a} is out of range (0 to {max} degrees)")),
+        Err(_) => Err(format!("`{s}` is not a number")),
+    }
+}
+
+pub fn section_command(args: &SectionArgs) -> Result<()> {
+    let path = &args.output;
+    let svg = match raylab::scene::input::extension(path).as_deref() {
+        Some("svg") => true,
+        Some("png") => false,
+        _ => bail!("{}: the output must end in .svg or .png", path.display()),
+    };
+    check_folder(path)?;
+    let diagram = match (args.angle, args.pixel) {
+        (Some(theta_i), _) => Workbench {
+            n1: args.n1,
+            n2: args.n2,
+            theta_i,
+        }
+        .diagram(),
+        (None, Some(pixel)) => {
+            let Traced {
+                scene, tree, frame, ..
+            } = trace_pixel(&args.scene, &args.sample, pixel)?;
+            let (w, h) = args.figure;
+            let canvas = (glam::Vec2::new(w as f32, h as f32), text_size(w, h));
+            let mut d = section(&scene, &frame, &tree, pixel, canvas)
+                .context("the pixel's sample traced no ray")?;
+            d.title = format!(
+                "{}: section through pixel ({}, {}), sample {}",
+                scene.name, pixel.0, pixel.1, args.sample.sample
+            );
+            d
+        }
+        (None, None) => {
+            bail!("give --pixel X,Y (a pixel's ray tree) or --angle DEG (the workbench)")
+        }
+    };
+    let theme = if args.dark { Theme::Dark } else { Theme::Light };
+    let (w, h) = args.figure;
+    let written = if svg {
+        raylab::render::output::write_atomic(path, to_svg(&diagram, w, h, theme).as_bytes())
+            .map_err(anyhow::Error::from)
+    } else {
+        let img = to_png(&diagram, w, h, theme).context("an empty picture")?;
+        raylab::render::output::save_image(&img, path, image::ImageFormat::Png)
+            .map_err(anyhow::Error::from)
+    };
+    written
+        .with_context(|| format!("cannot write {}", path.display()))
+        .map_err(crate::runtime)?;
+    say!("{}", path.display());
+    Ok(())
+}

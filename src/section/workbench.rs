@@ -1,0 +1,244 @@
+//! The interface workbench: the lecture's Snell and Fresnel figure, live. One flat
+//! interface between η1 (above) and η2 (below), one ray arriving at θi, and what the
+//! interface does with it: the reflected and refracted rays with widths R and T = 1 − R,
+//! the angles, F_s and F_p, exact R and Schlick's, the critical and Brewster angles.
+
+use super::{Anchor, Dash, Diagram, Ink, Item, Label, RayLine, angle_marks, degrees, index};
+use crate::optics::{FresnelRow, brewster_angle, critical_angle, fresnel_row};
+use crate::tracer::{End, RayKind};
+use glam::Vec2;
+
+/// One interface, one incoming ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Workbench {
+    /// The index of refraction the ray comes from (above the interface).
+    pub n1: f32,
+    /// The index of refraction beyond it (below).
+    pub n2: f32,
+    /// The angle of incidence, degrees from the normal, 0 to 90.
+    pub theta_i: f32,
+}
+
+/// The largest angle of incidence the workbench takes: at 90° the ray runs along the
+/// interface and never meets it.
+pub const MAX_ANGLE: f32 = 89.9;
+
+impl Workbench {
+    /// The numbers at this angle: θt, F_s, F_p, exact R and Schlick's, exactly as
+    /// `raylab fresnel` prints them.
+    pub fn row(&self) -> FresnelRow {
+        fresnel_row(self.n1, self.n2, self.theta_i as f64)
+    }
+
+    /// The critical angle in degrees, past which light is totally reflected; `None` when
+    /// η1 ≤ η2.
+    pub fn critical_angle(&self) -> Option<f32> {
+        critical_angle(self.n1, self.n2).map(f32::to_degrees)
+    }
+
+    /// Brewster's angle in degrees, where R_p = 0.
+    pub fn brewster_angle(&self) -> f32 {
+        brewster_angle(self.n1, self.n2).to_degrees()
+    }
+
+    /// The same interface seen from the other side: η1 and η2 swapped.
+    pub fn swapped(self) -> Workbench {
+        Workbench {
+            n1: self.n2,
+            n2: self.n1,
+            ..self
+        }
+    }
+
+    /// The angle of incidence of a ray arriving from the diagram's point `p` (the pointer
+    /// dragging it), 0 to [`MAX_ANGLE`]: from above the interface, on either side of the
+    /// normal.
+    pub fn angle_at(p: Vec2) -> f32 {
+        let theta = p.x.abs().atan2(p.y.max(0.0)).to_degrees();
+        theta.clamp(0.0, MAX_ANGLE)
+    }
+
+    /// The figure: the interface and its normal, the denser medium shaded, the three rays
+    /// with widths 1, R and T, the angles as arcs with their values, the critical and
+    /// Brewster angles as dotted guides, and the numbers beneath.
+    pub fn diagram(&self) -> Diagram {
+        let row = self.row();
+        let theta = self.theta_i.to_radians();
+        let (sin, cos) = theta.sin_cos();
+        let from = Vec2::new(-sin, cos);
+        let mut d = Diagram {
+            title: format!(
+                "Interface: η1 = {} above, η2 = {} below",
+                index(self.n1),
+                index(self.n2)
+            ),
+            view: (Vec2::new(-1.3, -1.1), Vec2::new(1.3, 1.2)),
+            ..Default::default()
+        };
+        let (lo, hi) = d.view;
+        // The denser medium shaded, up to the view's edge.
+        let denser = if self.n2 >= self.n1 { lo.y } else { hi.y };
+        d.items.push(Item::Region {
+            points: vec![
+                Vec2::new(lo.x, 0.0),
+                Vec2::new(hi.x, 0.0),
+                Vec2::new(hi.x, denser),
+                Vec2::new(lo.x, denser),
+            ],
+            ink: Ink::Glass,
+        });
+        let line = |a, b, ink, width, dash| Item::Line {
+            a,
+            b,
+            ink,
+            width,
+            dash,
+        };
+        d.items.push(line(
+            Vec2::new(lo.x, 0.0),
+            Vec2::new(hi.x, 0.0),
+            Ink::Glass,
+            2.5,
+            Dash::Solid,
+        ));
+        d.items.push(line(
+            Vec2::new(0.0, -1.05),
+            Vec2::new(0.0, 1.05),
+            Ink::Normal,
+            1.3,
+            Dash::Dashed,
+        ));
+        // The guides, in the incoming ray's quarter, of two lengths so that their labels
+        // stay apart when the angles are close.
+        let mut guide = |angle: f32, length: f32, text: String| {
+            let dir = length * Vec2::new(-angle.to_radians().sin(), angle.to_radians().cos());
+            d.items
+                .push(line(Vec2::ZERO, dir, Ink::Guide, 1.5, Dash::Dotted));
+            d.labels
+                .push(plain(dir, Vec2::new(-6.0, -8.0), text, Anchor::End));
+        };
+        if let Some(c) = self.critical_angle() {
+            guide(c, 1.05, format!("critical angle {}", degrees(c)));
+        }
+        let b = self.brewster_angle();
+        guide(b, 0.75, format!("Brewster's angle {}", degrees(b)));
+
+        let r = row.r_exact;
+        let ray = |to: Vec2, kind, weight, start: bool| {
+            let (a, b) = if start {
+                (to, Vec2::ZERO)
+            } else {
+                (Vec2::ZERO, to)
+            };
+            Item::Ray(RayLine {
+                a,
+                b,
+                kind,
+                weight,
+                node: None,
+                projected: false,
+                end: if start { End::Split } else { End::Miss },
+            })
+        };
+        d.items.push(ray(from, RayKind::Camera, 1.0, true));
+        let reflected = Vec2::new(sin, cos);
+        d.items.push(ray(reflected, RayKind::Reflect, r, false));
+        let mut angle = |from: Vec2, to: Vec2, text: String| {
+            let (arc, label) = angle_marks(Vec2::ZERO, from, to, text, None);
+            d.items.push(arc);
+            d.labels.push(label);
+        };
+        angle(Vec2::Y, from, format!("θi = {}", degrees(self.theta_i)));
+        angle(
+            Vec2::Y,
+            reflected,
+            format!("θr = {}", degrees(self.theta_i)),
+        );
+        match row.theta_t {
+            Some(t) => {
+                let t_rad = t.to_radians();
+                let to = Vec2::new(t_rad.sin(), -t_rad.cos());
+                angle(-Vec2::Y, to, format!("θt = {}", degrees(t)));
+                d.items.push(ray(to, RayKind::Refract, 1.0 - r, false));
+            }
+            None => d.labels.push(Label {
+                ink: Ink::Stop,
+                ..plain(
+                    Vec2::new(0.45, -0.45),
+                    Vec2::ZERO,
+                    "total internal reflection".into(),
+                    Anchor::Middle,
+                )
+            }),
+        }
+        d.labels.push(plain(
+            Vec2::new(1.25, 0.0),
+            Vec2::new(0.0, -14.0),
+            format!("η1 = {}", index(self.n1)),
+            Anchor::End,
+        ));
+        d.labels.push(plain(
+            Vec2::new(1.25, 0.0),
+            Vec2::new(0.0, 14.0),
+            format!("η2 = {}", index(self.n2)),
+            Anchor::End,
+        ));
+        d.notes = self.notes(&row);
+        d
+    }
+
+    /// The numbers, a line each.
+    fn notes(&self, row: &FresnelRow) -> Vec<String> {
+        let t = row
+            .theta_t
+            .map_or("none: total internal reflection".into(), degrees);
+        let critical = self
+            .critical_angle()
+            .map_or("none (η1 ≤ η2)".into(), degrees);
+        vec![
+            format!("θi = {}, θt = {t}", degrees(row.theta_i)),
+            format!(
+                "R = {:.4} (Schlick {:.4}), T = 1 − R = {:.4}",
+                row.r_exact,
+                row.r_schlick,
+                1.0 - row.r_exact
+            ),
+            format!(
+                "F_s = {:.4}, F_p = {:.4}: R_s = {:.4}, R_p = {:.4}",
+                row.f_s,
+                row.f_p,
+                row.f_s * row.f_s,
+                row.f_p * row.f_p
+            ),
+            format!(
+                "critical angle {critical}, Brewster's angle {}",
+                degrees(self.brewster_angle())
+            ),
+        ]
+    }
+}
+
+fn plain(at: Vec2, offset: Vec2, text: String, anchor: Anchor) -> Label {
+    Label {
+        at,
+        offset,
+        text,
+        ink: Ink::Text,
+        anchor,
+        node: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dragging_above_the_interface_sets_the_angle_from_the_normal() {
+        assert!((Workbench::angle_at(Vec2::new(-1.0, 1.0)) - 45.0).abs() < 1e-4);
+        assert!((Workbench::angle_at(Vec2::new(1.0, 1.0)) - 45.0).abs() < 1e-4);
+        assert_eq!(Workbench::angle_at(Vec2::new(0.0, 1.0)), 0.0);
+        // Below the interface: as far as the workbench goes.
+        assert_eq!(Workbench::angle_at(Vec2::new(-1.0, -1.0)), MAX_ANGLE);
+    }
+}
