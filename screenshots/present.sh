@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Screenshots of presentation mode, as a hall sees it: the window under Xvfb at 1920x1080
-# (a projector) and at 1280x720 (a laptop), F5, then Page Down to six slides, each shot
+# (a projector) and at 1280x720 (a laptop), F5, then Page Down to nine slides, each shot
 # 12 s after it opens (on 2 cores most reach their target by then; soft shadows' 256 spp
-# at the display's size do not, and look clean at about 60 to 70). Writes screenshots/present-{1080,720}-{snell,ray-tree,schlick,
-# sampling,soft-shadows,polarization}.png.
+# at the display's size do not, and look clean at about 60 to 70). Writes
+# screenshots/present-{1080,720}-{snell,ray-tree,tir,pruning,reflectance,schlick,sampling,
+# soft-shadows,polarization}.png.
 # Needs: apt-get install xvfb xdotool imagemagick
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 # Slide numbers and names, in the lecture's order (raylab lecture lists them).
-slides=(2:snell 3:ray-tree 8:schlick 11:sampling 13:soft-shadows 17:polarization)
+slides=(2:snell 3:ray-tree 4:tir 5:pruning 6:reflectance 8:schlick 11:sampling 13:soft-shadows 17:polarization)
 display=${RAYLAB_DISPLAY:-96}
 for size in 1920x1080 1280x720; do
   w=${size%x*}; h=${size#*x}

@@ -10,7 +10,7 @@ use egui_kittest::kittest::{NodeT, Queryable};
 use raylab::app::RaylabApp;
 use raylab::optics::FresnelMode;
 use raylab::render::to_srgba8;
-use window::{app, click_at, step_until};
+use window::{app, click_at, glass_sphere, step_until};
 
 #[test]
 fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
@@ -25,16 +25,7 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     h.run_steps(3);
     h.key_press(egui::Key::Escape);
     h.run_steps(3);
-    // Click the glass sphere: a little left of the image's centre, above the middle. The
-    // image lies between the controls and the instruments' dock.
-    // The controls panel is 320 points wide; the dock starts left of its heading.
-    let left = 320.0;
-    let right = h.get_by_label("Ray-tree inspector").rect().min.x - 8.0;
-    let shown_width = right - left;
-    let centre = egui::pos2(
-        (left + right) / 2.0 - 0.05 * shown_width,
-        800.0 / 2.0 - 0.11 * shown_width * 9.0 / 16.0,
-    );
+    let centre = glass_sphere(&h, "Ray-tree inspector");
     click_at(&mut h, centre);
     h.run_steps(1);
     let tree = h.state().inspected_tree().expect("a tree");

@@ -11,7 +11,7 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raylab::app::RaylabApp;
-use raylab::lecture::{Comparison, LECTURE};
+use raylab::lecture::{Comparison, Instrument, LECTURE};
 use raylab::params::{Kind, TABLE, spec};
 use window::{app, app_sized, choose_from_menu, step_until};
 
@@ -178,12 +178,37 @@ fn every_slide_loads_and_its_caption_names_only_controls_in_view() {
                 );
             }
         }
-        // The slide about the tree opens the inspector on its pixel; no other.
+        // The slides about the tree and its section open the inspector on their pixel; no
+        // other. The section's slides show it, the workbench's the workbench.
+        let pixel = slide
+            .instruments
+            .iter()
+            .any(|i| matches!(i, Instrument::RayTree { .. } | Instrument::Section { .. }));
         assert_eq!(
             h.state().inspected_tree().is_some(),
-            title == "The ray tree",
+            pixel,
             "{title}: the inspector as the slide needs"
         );
+        for (instrument, label) in [
+            ("section", "Section diagram"),
+            ("workbench", "Workbench diagram"),
+        ] {
+            let opens = slide.instruments.iter().any(|i| match i {
+                Instrument::Section { .. } => instrument == "section",
+                Instrument::Workbench { .. } => instrument == "workbench",
+                _ => false,
+            });
+            let shown = h.query_by_label(label);
+            assert_eq!(shown.is_some(), opens, "{title}: the {instrument}");
+            // Beside the image, never over it.
+            if let Some(node) = shown {
+                let image = h.get_by_label("Image").rect();
+                assert!(
+                    node.rect().left() >= image.right(),
+                    "{title}: {label} beside the image"
+                );
+            }
+        }
         let caption = h.state().caption().unwrap();
         for spec in raylab::params::TABLE {
             if names(&caption, spec.label) {

@@ -8,7 +8,7 @@ use raylab::optics::{critical_angle, fresnel_table};
 use raylab::params::Params;
 use raylab::render::{INCIDENCE_BAND, incidence_band, incidence_map};
 use raylab::scene::Scene;
-use raylab::section::{Item, SectionPlane, Theme, Workbench, section, text_size, to_svg};
+use raylab::section::{Item, Room, SectionPlane, Theme, Workbench, section, text_size, to_svg};
 use raylab::tracer::{End, RayKind, RayTree, Tracer};
 
 const SIZE: (u32, u32) = (192, 108);
@@ -42,11 +42,12 @@ fn glass_tree(angle: f32) -> (Scene, Params, RayTree, (u32, u32)) {
     (scene, params, tree, (x, y))
 }
 
-fn canvas() -> (Vec2, f32) {
-    (
-        Vec2::new(FIGURE.0 as f32, FIGURE.1 as f32),
-        text_size(FIGURE.0, FIGURE.1),
-    )
+fn canvas() -> Room {
+    Room {
+        size: Vec2::new(FIGURE.0 as f32, FIGURE.1 as f32),
+        text: text_size(FIGURE.0, FIGURE.1),
+        zoom: 1.0,
+    }
 }
 
 #[test]

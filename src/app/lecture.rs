@@ -3,6 +3,7 @@
 
 use super::RaylabApp;
 use super::compare::CompareKind;
+use super::instruments::SectionMode;
 use crate::lecture::{Instrument, LECTURE, Shown, Slide};
 use crate::params::Params;
 use crate::scene::Scene;
@@ -89,14 +90,33 @@ impl RaylabApp {
             Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
         }
         self.compare = None;
-        let fresnel_metal = match slide.instrument {
-            Some(Instrument::FresnelPlot { metal }) => Some(metal),
-            Some(Instrument::RayTree { .. }) | None => None,
-        };
-        self.instruments.show_fresnel = fresnel_metal.is_some();
-        self.instruments.fresnel_metal = fresnel_metal
+        let fresnel_metal = slide.instruments.iter().find_map(|i| match i {
+            Instrument::FresnelPlot { metal } => Some(*metal),
+            _ => None,
+        });
+        let i = &mut self.instruments;
+        i.show_fresnel = fresnel_metal.is_some();
+        i.fresnel_metal = fresnel_metal
             .flatten()
             .and_then(|name| crate::material::METALS.iter().position(|m| m.name == name));
+        i.show_section = false;
+        for instrument in slide.instruments {
+            match *instrument {
+                Instrument::Section { zoom, .. } => {
+                    i.show_section = true;
+                    i.section.mode = SectionMode::Pixel;
+                    let size = super::render_size(&self.scene, self.settings.resolution);
+                    i.section.zoom_on(slide.inspected_pixel(size), zoom);
+                }
+                Instrument::Workbench { angle, out } => {
+                    i.show_section = true;
+                    i.section.mode = SectionMode::Workbench;
+                    i.section.angle = angle;
+                    i.section.out = out;
+                }
+                Instrument::FresnelPlot { .. } | Instrument::RayTree { .. } => {}
+            }
+        }
     }
 
     /// Once `slide`'s scene is shown: its A/B view and the pixel its inspector shows.

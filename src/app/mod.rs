@@ -296,6 +296,28 @@ impl RaylabApp {
         self.instruments.tree()
     }
 
+    /// The inspected pixel, if any.
+    pub fn inspected_pixel(&self) -> Option<(u32, u32)> {
+        self.instruments.inspection.as_ref().map(|i| i.pixel)
+    }
+
+    /// The ray of the inspected tree the pointer is over, in the section view, the tree
+    /// list or the image's overlay (all three highlight it).
+    pub fn hovered_ray(&self) -> Option<usize> {
+        self.instruments.hover
+    }
+
+    /// The interface workbench's angle of incidence, degrees.
+    pub fn workbench_angle(&self) -> f32 {
+        self.instruments.section.angle
+    }
+
+    /// How many pixels of the image the workbench outlines at its angle, once their angles
+    /// are computed.
+    pub fn outlined_pixels(&self) -> Option<usize> {
+        self.instruments.section.outlined()
+    }
+
     /// Whether presentation mode is on.
     pub fn presenting(&self) -> bool {
         self.hall.presenting
@@ -500,11 +522,11 @@ impl eframe::App for RaylabApp {
         self.history.observe(&self.settings.params, held);
         if self.hall.presenting {
             self.hall_style_ui(&ctx);
-            self.instruments_dock_ui(ui);
             self.presentation_ui(ui);
             // Clear of the caption strip along the bottom.
             self.toasts.ui(&ctx, Some(0.0));
             self.help_ui(&ctx);
+            self.instruments.end_frame(&ctx);
             if self.settings != before {
                 self.sync_engines();
                 ctx.request_repaint();
@@ -533,6 +555,7 @@ impl eframe::App for RaylabApp {
             .then_some(toolbar.response.rect.max.y);
         self.toasts.ui(&ctx, top);
         self.help_ui(&ctx);
+        self.instruments.end_frame(&ctx);
         // What the controls changed reaches the engines now, not in the next frame: the
         // first preview (a millisecond's work) is there for the next frame to show.
         if self.settings != before {

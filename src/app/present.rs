@@ -223,7 +223,8 @@ impl RaylabApp {
 
     /// Presentation mode's view: along the bottom a strip of its own (so it covers
     /// nothing) with the slide's number and title, its progress, the controls its caption
-    /// asks for and the caption, all at the caption's size; the image above.
+    /// asks for and the caption, all at the caption's size; the image above, the
+    /// instruments' dock beside it.
     pub(super) fn presentation_ui(&mut self, ui: &mut egui::Ui) {
         let size = caption_size(ui.ctx().content_rect().height());
         let caption = self.caption();
@@ -265,6 +266,9 @@ impl RaylabApp {
                     caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
                 ui.label(RichText::new(text).size(size).color(Color32::WHITE));
             });
+        // The instruments above the strip, beside the image: the caption keeps the
+        // screen's whole width.
+        self.instruments_dock_ui(ui);
         egui::CentralPanel::default()
             .frame(egui::Frame::new().fill(Color32::BLACK))
             .show(ui, |ui| self.image_panel_ui(ui));

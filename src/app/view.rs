@@ -173,16 +173,35 @@ impl RaylabApp {
         let aspect = size.0 as f32 / size.1 as f32;
         let (events, image_rect) = image_ui(ui, &mut self.view, self.main.texture(), size);
         self.compare_overlay_ui(ui, image_rect);
+        let ctx = ui.ctx().clone();
+        let s = &self.settings;
+        if let Some(outline) =
+            self.instruments
+                .section
+                .outline_texture(&ctx, &self.scene, &s.camera, &s.params, size)
+        {
+            let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
+            ui.painter_at(image_rect.intersect(ui.min_rect())).image(
+                outline.id(),
+                image_rect,
+                whole,
+                Color32::WHITE,
+            );
+        }
         if let Some(i) = &self.instruments.inspection {
             // Clipped to the image: rays leaving it stop at its edge, off the caption and
             // the status bar.
             let painter = ui.painter_at(image_rect.intersect(ui.min_rect()));
-            instruments::draw_tree_overlay(
+            let pointer = ui.input(|i| i.pointer.hover_pos());
+            let hovered = instruments::draw_tree_overlay(
                 &painter,
                 image_rect,
                 &i.camera.pinhole(aspect),
                 &i.tree,
+                self.instruments.hover,
+                pointer.filter(|p| image_rect.contains(*p)),
             );
+            self.instruments.hovered(hovered);
         }
         if let Some(scale) = self
             .instruments

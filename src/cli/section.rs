@@ -5,7 +5,7 @@ use super::inspect::{SampleArgs, Traced, parse_pixel, trace_pixel};
 use super::output::check_folder;
 use crate::{parse_ior, parse_size};
 use anyhow::{Context, Result, bail};
-use raylab::section::{Theme, Workbench, section, text_size, to_png, to_svg};
+use raylab::section::{Room, Theme, Workbench, section, text_size, to_png, to_svg};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -37,14 +37,27 @@ pub struct SectionArgs {
     /// Light marks on near-black, as the window draws them, instead of dark on white.
     #[arg(long)]
     dark: bool,
+    /// Zoom in on where the pixel's camera ray first meets a surface: 1 shows the whole
+    /// tree, up to 50.
+    #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = parse_zoom, conflicts_with = "angle")]
+    zoom: f32,
+}
+
+/// A zoom factor, 1 to the section's deepest.
+fn parse_zoom(s: &str) -> Result<f32, String> {
+    number_in(s, 1.0, raylab::section::MAX_ZOOM, "")
 }
 
 /// An angle of incidence in degrees, 0 to the workbench's largest.
 fn parse_angle(s: &str) -> Result<f32, String> {
-    let max = raylab::section::MAX_ANGLE;
+    number_in(s, 0.0, raylab::section::MAX_ANGLE, " degrees")
+}
+
+/// `s` as a number from `lo` to `hi` (in `unit`), or why not.
+fn number_in(s: &str, lo: f32, hi: f32, unit: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
-        Ok(a) if (0.0..=max).contains(&a) => Ok(a),
-        Ok(a) => Err(format!("{a} is out of range (0 to {max} degrees)")),
+        Ok(v) if (lo..=hi).contains(&v) => Ok(v),
+        Ok(v) => Err(format!("{v} is out of range ({lo} to {hi}{unit})")),
         Err(_) => Err(format!("`{s}` is not a number")),
     }
 }
@@ -69,8 +82,12 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
                 scene, tree, frame, ..
             } = trace_pixel(&args.scene, &args.sample, pixel)?;
             let (w, h) = args.figure;
-            let canvas = (glam::Vec2::new(w as f32, h as f32), text_size(w, h));
-            let mut d = section(&scene, &frame, &tree, pixel, canvas)
+            let room = Room {
+                size: glam::Vec2::new(w as f32, h as f32),
+                text: text_size(w, h),
+                zoom: args.zoom,
+            };
+            let mut d = section(&scene, &frame, &tree, pixel, room)
                 .context("the pixel's sample traced no ray")?;
             d.title = format!(
                 "{}: section through pixel ({}, {}), sample {}",

@@ -35,6 +35,48 @@ pub enum Instrument {
         /// Down, 0 to 1.
         y: f32,
     },
+    /// The inspector and the section view on one pixel (as for [`Instrument::RayTree`]):
+    /// its ray tree drawn in its own plane, with the angles at each interface.
+    Section {
+        /// Across, 0 to 1.
+        x: f32,
+        /// Down, 0 to 1.
+        y: f32,
+        /// How far the section is zoomed in on the first hit (1: the whole tree).
+        zoom: f32,
+    },
+    /// The interface workbench: one flat interface between the scene's medium and the
+    /// IOR, one ray at `angle` degrees.
+    Workbench {
+        /// The angle of incidence, degrees.
+        angle: f32,
+        /// Seen from inside: from the material out to the medium.
+        out: bool,
+    },
+}
+
+impl Instrument {
+    /// What a slide's notes say it opens.
+    fn describe(&self) -> String {
+        match self {
+            Instrument::FresnelPlot { metal: None } => "the Fresnel plot".into(),
+            Instrument::FresnelPlot { metal: Some(m) } => format!("the Fresnel plot with {m}"),
+            Instrument::RayTree { .. } => "the ray-tree inspector on a pixel".into(),
+            Instrument::Section { .. } => "the section view of a pixel's ray tree".into(),
+            Instrument::Workbench { angle, out } => format!(
+                "the interface workbench at {angle}°{}",
+                if *out { ", from inside" } else { "" }
+            ),
+        }
+    }
+
+    /// The pixel it inspects, as fractions of the image's width and height.
+    fn pixel(&self) -> Option<(f32, f32)> {
+        match *self {
+            Instrument::RayTree { x, y } | Instrument::Section { x, y, .. } => Some((x, y)),
+            Instrument::FresnelPlot { .. } | Instrument::Workbench { .. } => None,
+        }
+    }
 }
 
 /// What a caption reads: what is shown as it is now.
@@ -76,8 +118,8 @@ pub struct Slide {
     /// Where the A/B view's divider starts between two sides, across the image (0: all
     /// B, 1: all A); three sides start evenly spaced ([`Comparison::dividers`]).
     pub divider: f32,
-    /// The instrument it opens, if any.
-    pub instrument: Option<Instrument>,
+    /// The instruments it opens.
+    pub instruments: &'static [Instrument],
     /// The parameters its caption asks the lecturer to change: the window shows their
     /// controls.
     pub controls: &'static [&'static str],
@@ -94,7 +136,7 @@ pub const fn slide(title: &'static str, scene: &'static str) -> Slide {
         params: &[],
         compare: None,
         divider: 0.5,
-        instrument: None,
+        instruments: &[],
         controls: &[],
         caption: Caption::Fixed(""),
     }
@@ -119,10 +161,10 @@ impl Slide {
         Slide { divider, ..self }
     }
 
-    /// Opening `instrument`.
-    pub const fn open(self, instrument: Instrument) -> Slide {
+    /// Opening `instruments`.
+    pub const fn open(self, instruments: &'static [Instrument]) -> Slide {
         Slide {
-            instrument: Some(instrument),
+            instruments,
             ..self
         }
     }
@@ -180,9 +222,7 @@ impl Slide {
 
     /// The pixel the slide's inspector opens on, in an image of `size`.
     pub fn inspected_pixel(&self, size: (u32, u32)) -> Option<(u32, u32)> {
-        let Some(Instrument::RayTree { x, y }) = self.instrument else {
-            return None;
-        };
+        let (x, y) = self.instruments.iter().find_map(Instrument::pixel)?;
         let at = |f: f32, n: u32| ((f * n as f32) as u32).min(n.max(1) - 1);
         Some((at(x, size.0), at(y, size.1)))
     }
@@ -285,17 +325,9 @@ pub fn markdown() -> Result<String, SlideError> {
         if let Some(c) = s.compare {
             facts.push(format!("A/B view, {}", c.labels().join(" | ")));
         }
-        match s.instrument {
-            Some(Instrument::FresnelPlot { metal: None }) => {
-                facts.push("opens the Fresnel plot".into())
-            }
-            Some(Instrument::FresnelPlot { metal: Some(m) }) => {
-                facts.push(format!("opens the Fresnel plot with {m}"))
-            }
-            Some(Instrument::RayTree { .. }) => {
-                facts.push("opens the ray-tree inspector on a pixel".into())
-            }
-            None => {}
+        if !s.instruments.is_empty() {
+            let opens: Vec<String> = s.instruments.iter().map(Instrument::describe).collect();
+            facts.push(format!("opens {}", opens.join(" and ")));
         }
         if !s.controls.is_empty() {
             let asks: Vec<String> = s.controls.iter().map(|n| format!("`{n}`")).collect();
@@ -341,14 +373,22 @@ mod tests {
                     "slide `{t}` asks for `{name}`, which is no parameter"
                 );
             }
-            if let Some(Instrument::FresnelPlot { metal: Some(m) }) = s.instrument {
-                assert!(
-                    crate::material::metal(m).is_some(),
-                    "slide `{t}`: metal {m}"
-                );
-            }
-            if let Some(Instrument::RayTree { x, y }) = s.instrument {
-                assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y), "{t}");
+            for i in s.instruments {
+                if let Instrument::FresnelPlot { metal: Some(m) } = i {
+                    assert!(
+                        crate::material::metal(m).is_some(),
+                        "slide `{t}`: metal {m}"
+                    );
+                }
+                if let Some((x, y)) = i.pixel() {
+                    assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y), "{t}");
+                }
+                if let Instrument::Workbench { angle, .. } = i {
+                    assert!((0.0..=crate::section::MAX_ANGLE).contains(angle), "{t}");
+                }
+                if let Instrument::Section { zoom, .. } = i {
+                    assert!((1.0..=crate::section::MAX_ZOOM).contains(zoom), "{t}");
+                }
             }
             for b in s.others(&p) {
                 assert_ne!(p, b, "slide `{t}`: its sides differ");

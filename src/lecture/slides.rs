@@ -10,17 +10,28 @@ pub const LECTURE: &[Slide] = &[
         .says(
             "Left: dielectrics. The black glaze and the glass reflect 4% head-on and 100% only at grazing. Right: silver, gold and copper (measured η + iκ) reflect 80–97% at every angle, coloured: it depends on angle, but not much. The next slide plots both against the angle.",
         ),
+    // A pixel whose ray meets the sphere at 42°: the bend in and out is plain to see,
+    // zoomed in on the sphere (the floor and the camera are far).
     slide("Snell's law", "glass")
         .set(&[("spp", "128")])
+        .open(&[Instrument::Section {
+            x: 0.334,
+            y: 0.482,
+            zoom: 3.0,
+        }])
         .asks(&["ior"])
         .says(
-            "n1 sin θi = n2 sin θt: the refracted rays bend towards the normal going in and away coming out, so the sphere is a lens and shows the floor upside down. Drag the IOR.",
+            "n1 sin θi = n2 sin θt. Beside the image, the marked pixel's section: its ray bends towards the normal going into the glass and away coming out, θ written at both surfaces. So the sphere is a lens: the floor upside down. Drag the IOR.",
         ),
     slide("The ray tree", "ray-tree")
         .set(&[("spp", "32")])
-        .open(Instrument::RayTree { x: 0.42, y: 0.5 })
+        .open(&[Instrument::Section {
+            x: 0.42,
+            y: 0.5,
+            zoom: 1.5,
+        }])
         .follows(|s| {
-            let tree = "Each hit on glass spawns a reflected ray (R) and a refracted one (1 − R): a tree per pixel.";
+            let tree = "Each hit on glass spawns a reflected ray (R) and a refracted one (1 − R): a tree per pixel, its section beside the image.";
             match inspected_object(s) {
                 Some(Some("front sphere")) => format!(
                     "{tree} Drawn: the marked pixel's, off and through the front sphere. Click another pixel."
@@ -36,19 +47,28 @@ pub const LECTURE: &[Slide] = &[
         }),
     slide("Total internal reflection", "tir")
         .set(&[("spp", "32")])
+        .open(&[Instrument::Workbench {
+            angle: 45.0,
+            out: true,
+        }])
         .asks(&["ior"])
         .says(
-            "Inside the prism light meets the back faces at 45°, beyond the critical angle asin(1/n) for n > 1.41: a perfect mirror. Set the IOR below 1.41 and the red wall appears. In the water tank, the air bubble's silver rim is the same: light in the water grazing it beyond 48.8°.",
+            "Inside the prism light meets the back faces at 45°, past the critical angle asin(1/n) for n > 1.41: no refracted ray (the workbench), a perfect mirror. Set the IOR below 1.41: the red wall appears. The air bubble in water has the same silver rim, beyond 48.8°.",
         ),
     slide("Pruning the ray tree", "ray-tree")
         .set(&[("max_depth", "2"), ("spp", "64")])
+        .open(&[Instrument::Section {
+            x: 0.42,
+            y: 0.5,
+            zoom: 1.5,
+        }])
         .asks(&["max_depth", "min_weight"])
         .follows(|s| {
             let p = s.params;
             let d = p.max_depth;
             if d <= 3 {
                 format!(
-                    "Every hit on glass spawns a reflected and a refracted ray. Cut at depth {d}: through the front glass the spheres behind turn dark where the tree stops. Raise Max depth, or prune by Min weight instead."
+                    "Every hit on glass spawns a reflected and a refracted ray. Cut at depth {d}: through the front glass the spheres behind turn dark, and the section crosses out each cut branch. Raise Max depth, or prune by Min weight instead."
                 )
             } else {
                 format!(
@@ -59,9 +79,17 @@ pub const LECTURE: &[Slide] = &[
         }),
     slide("Reflectance against angle: metal and glass", "metals")
         .set(&[("spp", "32")])
-        .open(Instrument::FresnelPlot { metal: Some("gold") })
+        .open(&[
+            Instrument::FresnelPlot {
+                metal: Some("gold"),
+            },
+            Instrument::Workbench {
+                angle: 60.0,
+                out: false,
+            },
+        ])
         .says(
-            "Gold reflects 97% of red and 32% of blue head-on, more as the angle grows: it is there from the start. Glass (metal: none) reflects 4%, rising to 100% only at grazing.",
+            "Gold reflects 97% of red and 32% of blue head-on, more as the angle grows. Glass (metal: none) reflects 4%, rising to 100% only at grazing: on the workbench its reflected ray is as wide as R; drag the angle towards 90°.",
         ),
     slide("Fresnel reflection on the black glazed sphere", "glazed")
         .set(&[("spp", "32"), ("constant_reflectance", "0.1")])
@@ -71,9 +99,15 @@ pub const LECTURE: &[Slide] = &[
         ),
     slide("Fresnel's formulas and Schlick's approximation", "glazed")
         .compare(Comparison::SchlickExact)
-        .open(Instrument::FresnelPlot { metal: None })
+        .open(&[
+            Instrument::FresnelPlot { metal: None },
+            Instrument::Workbench {
+                angle: 80.0,
+                out: false,
+            },
+        ])
         .says(
-            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: exact (Fs² + Fp²)/2. For n = 1.5 they differ by under 0.01 up to 47°, 0.036 at most (85°), on the bright rims.",
+            "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: exact (Fs² + Fp²)/2. For n = 1.5 they differ by under 0.01 up to 47°, 0.036 at most (85°), on the bright rims. The workbench writes both at its angle.",
         ),
     slide("The basic ray tracer", "default")
         .set(&[("spp", "1"), ("pattern", "regular")])

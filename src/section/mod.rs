@@ -16,7 +16,7 @@ mod workbench;
 pub use paint::{Canvas, Fit, Stroke, paint, room};
 pub use raster::to_png;
 pub use svg::{text_size, to_svg};
-pub use tree::{SectionPlane, section};
+pub use tree::{MAX_ZOOM, Room, SectionPlane, section};
 pub use workbench::{MAX_ANGLE, Workbench};
 
 use crate::tracer::{End, RayKind};
@@ -396,6 +396,37 @@ mod tests {
         assert_eq!(index(1.333), "1.333");
         assert_eq!(index(2.42), "2.42");
         assert_eq!(degrees(19.471), "19.5°");
+    }
+
+    #[test]
+    fn every_character_the_diagrams_write_is_in_the_typeface() {
+        use ab_glyph::Font;
+        let font = ab_glyph::FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).unwrap();
+        let mut diagrams: Vec<Diagram> = [(1.0, 1.5, 30.0), (1.5, 1.0, 60.0)]
+            .into_iter()
+            .map(|(n1, n2, theta_i)| Workbench { n1, n2, theta_i }.diagram())
+            .collect();
+        let scene = crate::scene::Scene::load("ray-tree").unwrap();
+        let params = crate::params::Params {
+            max_depth: 2,
+            ..scene.params.clone()
+        };
+        let tracer = crate::tracer::Tracer::new(&scene, &params, 96, 54);
+        let (tree, _) = tracer.inspect(40, 27, 0);
+        let room = Room {
+            size: Vec2::new(640.0, 480.0),
+            text: 15.0,
+            zoom: 1.0,
+        };
+        diagrams.push(section(&scene, tracer.frame(), &tree, (40, 27), room).unwrap());
+        for d in &diagrams {
+            let texts = d.labels.iter().map(|l| &l.text).chain(&d.notes);
+            for text in texts.chain([&d.title]) {
+                for c in text.chars().filter(|c| !c.is_whitespace()) {
+                    assert_ne!(font.glyph_id(c).0, 0, "`{c}` in `{text}`");
+                }
+            }
+        }
     }
 
     #[test]

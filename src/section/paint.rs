@@ -59,11 +59,11 @@ const NOMINAL_TEXT: f32 = 15.0;
 
 /// The room the view of a diagram gets on a canvas of `size` with text `text` high, and
 /// the heights of the bands above and below it: for the title (if there is one) and for
-/// `notes` lines of notes.
-pub fn room(size: Vec2, text: f32, title: bool, notes: usize) -> (Vec2, (f32, f32)) {
+/// `notes`, wrapped to the canvas's width.
+pub fn room(size: Vec2, text: f32, title: bool, notes: &[String]) -> (Vec2, (f32, f32)) {
     let line = 1.35 * text;
     let top = if title { 1.6 } else { 0.5 } * line;
-    let bottom = (notes as f32 + 0.5) * line;
+    let bottom = (wrap(notes, size.x, text).len() as f32 + 0.5) * line;
     let margin = 0.5 * text;
     let room = Vec2::new(
         (size.x - 2.0 * margin).max(1.0),
@@ -77,7 +77,7 @@ impl Fit {
     /// `text` points high.
     pub fn new(diagram: &Diagram, top_left: Vec2, size: Vec2, text: f32) -> Fit {
         let title = !diagram.title.is_empty();
-        let (room, (top, bottom)) = room(size, text, title, diagram.notes.len());
+        let (room, (top, bottom)) = room(size, text, title, &diagram.notes);
         let margin = 0.5 * text;
         let (lo, hi) = diagram.view;
         let extent = (hi - lo).max(Vec2::splat(1e-6));
@@ -252,11 +252,33 @@ pub fn paint(
         let at = Vec2::new(left, top_left.y + 0.8 * line);
         canvas.text(at, &diagram.title, fit.text, text, Anchor::Start);
     }
-    let n = diagram.notes.len();
-    for (i, note) in diagram.notes.iter().enumerate() {
+    let notes = wrap(&diagram.notes, size.x, fit.text);
+    let n = notes.len();
+    for (i, note) in notes.iter().enumerate() {
         let y = top_left.y + size.y - (n - i) as f32 * line;
         canvas.text(Vec2::new(left, y), note, fit.text, text, Anchor::Start);
     }
+}
+
+/// `notes` broken at spaces into lines that fit a canvas `width` wide at text `text`
+/// high (by the estimate of [`TEXT_WIDTH`]).
+fn wrap(notes: &[String], width: f32, text: f32) -> Vec<String> {
+    let room = ((width - text) / (TEXT_WIDTH * text)).max(10.0) as usize;
+    let mut lines = Vec::new();
+    for note in notes {
+        let mut line = String::new();
+        for word in note.split_whitespace() {
+            if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > room {
+                lines.push(std::mem::take(&mut line));
+            }
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+        lines.push(line);
+    }
+    lines
 }
 
 /// `c` with its alpha set to `a`.

@@ -79,6 +79,20 @@ impl SectionPlane {
     }
 }
 
+/// The canvas a section is drawn for, and how far it is zoomed in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Room {
+    /// The canvas's size, in points.
+    pub size: Vec2,
+    /// Its text height, in points.
+    pub text: f32,
+    /// 1 shows the whole tree; more zooms in on the first hit, up to [`MAX_ZOOM`].
+    pub zoom: f32,
+}
+
+/// The deepest zoom into a section.
+pub const MAX_ZOOM: f32 = 50.0;
+
 /// Interfaces are labelled where the ray meeting them carries at least this much of its
 /// sample (the camera ray carries 1): the faint internal bounces would bury the rest.
 pub const LABEL_WEIGHT: f32 = 0.1;
@@ -90,14 +104,15 @@ pub const LABEL_WEIGHT: f32 = 0.1;
 /// the lights marked, and at each interface the normal, θi, θr, θt and η1, η2. `None` for
 /// an empty tree.
 ///
-/// The view is shaped to fill a canvas of `canvas` points with text `text` high (as
-/// [`super::Fit`] places it there), so that what reaches the canvas's edge is cut there.
+/// The view is shaped to fill the canvas `on` describes (as [`super::Fit`] places it
+/// there), so that what reaches the canvas's edge is cut there, and zoomed in on the
+/// first hit by its `zoom`.
 pub fn section(
     scene: &Scene,
     frame: &CameraFrame,
     tree: &RayTree,
     pixel: (u32, u32),
-    (canvas, text): (Vec2, f32),
+    on: Room,
 ) -> Option<Diagram> {
     let corners = frame.film_corners(1.0);
     let up = (corners[0] - corners[3]).normalize_or(Vec3::Y);
@@ -139,8 +154,17 @@ pub fn section(
     let notes = vec![
         "Width: the ray's weight. Dashed: shadow rays. Dotted: rays that leave this plane, drawn projected onto it.".to_string(),
     ];
-    let (room, _) = super::paint::room(canvas, text, true, notes.len());
+    let (room, _) = super::paint::room(on.size, on.text, true, &notes);
     let view = view_of(shown.into_iter(), room.x / room.y);
+    // Zoomed about a point that moves from the view's centre to the first hit.
+    let zoom = on.zoom.clamp(1.0, MAX_ZOOM);
+    let first_2d = plane.to_plane(root.hit.map_or(eye, |h| h.point));
+    let centre = 0.5 * (view.0 + view.1);
+    let about = centre + (1.0 - 1.0 / zoom) * (first_2d - centre);
+    let view = (
+        about + (view.0 - centre) / zoom,
+        about + (view.1 - centre) / zoom,
+    );
     let mut d = Diagram {
         title: format!("Section through pixel ({}, {}), sample 0", pixel.0, pixel.1),
         view,

@@ -114,8 +114,9 @@ impl Workbench {
             let dir = length * Vec2::new(-angle.to_radians().sin(), angle.to_radians().cos());
             d.items
                 .push(line(Vec2::ZERO, dir, Ink::Guide, 1.5, Dash::Dotted));
+            // Above its end and to the right, clear of the guide running down to the hit.
             d.labels
-                .push(plain(dir, Vec2::new(-6.0, -8.0), text, Anchor::End));
+                .push(plain(dir, Vec2::new(4.0, -12.0), text, Anchor::Start));
         };
         if let Some(c) = self.critical_angle() {
             guide(c, 1.05, format!("critical angle {}", degrees(c)));

@@ -81,3 +81,16 @@ pub fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
         h.run_steps(2);
     }
 }
+
+/// Where the glass scene's glass sphere is in an 800-point-high window: a little left of
+/// the image's centre, above the middle. The image lies between the controls (320 points
+/// wide) and the instruments' dock, whose first heading is `dock_heading`.
+pub fn glass_sphere(h: &Harness<'static, RaylabApp>, dock_heading: &str) -> egui::Pos2 {
+    let left = 320.0;
+    let right = h.get_by_label(dock_heading).rect().min.x - 8.0;
+    let shown_width = right - left;
+    egui::pos2(
+        (left + right) / 2.0 - 0.05 * shown_width,
+        800.0 / 2.0 - 0.11 * shown_width * 9.0 / 16.0,
+    )
+}

@@ -17,23 +17,25 @@ pub(crate) struct Inspection {
     pub radiance: crate::math::Color,
 }
 
+/// A ray's colour by its kind: the section view's palette, so that the overlay, the list
+/// and the section agree.
 fn kind_color(kind: crate::tracer::RayKind) -> egui::Color32 {
-    use crate::tracer::RayKind::*;
-    match kind {
-        Camera => egui::Color32::WHITE,
-        Reflect => egui::Color32::from_rgb(90, 200, 255),
-        Refract => egui::Color32::from_rgb(255, 170, 60),
-        Shadow => egui::Color32::from_rgb(240, 230, 90),
-    }
+    let [r, g, b, a] = crate::section::Ink::Ray(kind).rgba(crate::section::Theme::Dark);
+    egui::Color32::from_rgba_unmultiplied(r, g, b, a)
 }
 
-/// Draws the recorded rays over the image: each segment projected through the camera.
+/// Draws the recorded rays over the image: each segment projected through the camera,
+/// ray `highlight` (hovered here, in the section view or in the list) with a halo. Returns
+/// the ray the pointer at `pointer` is over, if any.
 pub(crate) fn draw_tree_overlay(
     painter: &egui::Painter,
     image: egui::Rect,
     frame: &crate::camera::CameraFrame,
     tree: &crate::tracer::RayTree,
-) {
+    highlight: Option<usize>,
+    pointer: Option<egui::Pos2>,
+) -> Option<usize> {
+    let mut hovered: Option<(usize, f32)> = None;
     let to_screen = |p: crate::math::Vec3| {
         frame
             .project(p)
@@ -42,7 +44,8 @@ pub(crate) fn draw_tree_overlay(
     // Widths grow with the image: 2-point rays on a 540-point image, thicker on a
     // projector's full-screen image, where 1 px lines vanish from the back of the hall.
     let u = (image.height() / 540.0).max(1.0);
-    for n in &tree.nodes {
+    for (i, n) in tree.nodes.iter().enumerate() {
+        let lit = highlight == Some(i);
         // The camera ray runs along the line of sight: it would project to a dot. A ring
         // marks where it meets the scene instead.
         if n.kind == crate::tracer::RayKind::Camera {
@@ -63,20 +66,40 @@ pub(crate) fn draw_tree_overlay(
         } else {
             2.0 * u
         };
+        if lit {
+            let halo = egui::Stroke::new(width + 6.0 * u, egui::Color32::from_white_alpha(110));
+            painter.line_segment([a, b], halo);
+        }
         painter.line_segment([a, b], egui::Stroke::new(width, kind_color(n.kind)));
+        if let Some(p) = pointer {
+            let d = distance_to_segment(p, a, b);
+            if d <= 6.0 * u && hovered.is_none_or(|(_, best)| d < best) {
+                hovered = Some((i, d));
+            }
+        }
         if n.hit.is_some() {
             painter.circle_filled(b, 3.0 * u, kind_color(n.kind));
         }
     }
+    hovered.map(|(i, _)| i)
+}
+
+/// The distance from `p` to the segment from `a` to `b`, in points.
+fn distance_to_segment(p: egui::Pos2, a: egui::Pos2, b: egui::Pos2) -> f32 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_sq().max(1e-9)).clamp(0.0, 1.0);
+    p.distance(a + t * ab)
 }
 
 /// The inspector: the tree as nested sections, each ray with the lecture's quantities.
+/// Returns the ray whose entry the pointer hovers; ray `highlight`'s entry stands out.
 pub(crate) fn inspector_ui(
     ui: &mut egui::Ui,
     inspection: &Inspection,
     names: &[String],
     materials: &[String],
-) {
+    highlight: Option<usize>,
+) -> Option<usize> {
     let c = inspection.radiance;
     ui.label(format!(
         "Pixel ({}, {}), sample 0: radiance ({:.3}, {:.3}, {:.3}), {} rays",
@@ -88,24 +111,40 @@ pub(crate) fn inspector_ui(
         inspection.tree.nodes.len()
     ));
     ui.label("White: camera ray. Blue: reflected. Orange: refracted. Yellow: shadow rays.");
+    let mut hovered = None;
     egui::ScrollArea::vertical()
         .max_height(460.0)
         .show(ui, |ui| {
-            node_ui(ui, inspection, 0, names, materials);
+            let list = List {
+                inspection,
+                names,
+                materials,
+                highlight,
+            };
+            node_ui(ui, &list, 0, &mut hovered);
         });
+    hovered
 }
 
-fn node_ui(
-    ui: &mut egui::Ui,
-    inspection: &Inspection,
-    id: usize,
-    names: &[String],
-    materials: &[String],
-) {
-    let tree = &inspection.tree;
+/// What the tree list draws from.
+struct List<'a> {
+    inspection: &'a Inspection,
+    names: &'a [String],
+    materials: &'a [String],
+    highlight: Option<usize>,
+}
+
+fn node_ui(ui: &mut egui::Ui, list: &List, id: usize, hovered: &mut Option<usize>) {
+    let tree = &list.inspection.tree;
     let Some(n) = tree.nodes.get(id) else { return };
-    let title = n.title(names, materials);
-    egui::CollapsingHeader::new(egui::RichText::new(title).color(kind_color(n.kind)))
+    let title = n.title(list.names, list.materials);
+    let mut text = egui::RichText::new(title).color(kind_color(n.kind));
+    if list.highlight == Some(id) {
+        text = text
+            .strong()
+            .background_color(egui::Color32::from_white_alpha(40));
+    }
+    let header = egui::CollapsingHeader::new(text)
         .id_salt(("ray-node", id))
         .default_open(n.depth < 3)
         .show(ui, |ui| {
@@ -122,7 +161,10 @@ fn node_ui(
                     }
                 });
             for (child, _) in tree.children(id) {
-                node_ui(ui, inspection, child, names, materials);
+                node_ui(ui, list, child, hovered);
             }
         });
+    if header.header_response.hovered() {
+        *hovered = Some(id);
+    }
 }

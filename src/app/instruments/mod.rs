@@ -5,6 +5,7 @@ mod fresnel;
 mod heat;
 mod inspector;
 mod patterns;
+mod section;
 
 pub(crate) use heat::{cost_range, draw_colour_bar, heat_map_rgba};
 pub(crate) use inspector::draw_tree_overlay;
@@ -12,6 +13,7 @@ pub(crate) use inspector::draw_tree_overlay;
 use super::RaylabApp;
 use crate::tracer::{RayTree, Tracer};
 use inspector::Inspection;
+pub(crate) use section::{SectionMode, SectionState};
 
 /// Which instruments are on, and the inspected tree.
 pub(crate) struct Instruments {
@@ -28,6 +30,14 @@ pub(crate) struct Instruments {
     pub(crate) cost_top: Option<f32>,
     /// The next click on the image sets the focus distance.
     pub(crate) click_to_focus: bool,
+    /// The section view (a pixel's tree in its plane, or the interface workbench) is open.
+    pub(crate) show_section: bool,
+    pub(crate) section: SectionState,
+    /// The ray of the inspected tree the pointer is over (in the section view, the list or
+    /// the image's overlay): all three highlight it.
+    pub(crate) hover: Option<usize>,
+    // Whether anything reported a hovered ray this frame.
+    hover_seen: bool,
 }
 
 /// The heat map's scales offered: its top in rays per sample.
@@ -44,6 +54,10 @@ impl Default for Instruments {
             show_cost: false,
             cost_top: Some(32.0),
             click_to_focus: false,
+            show_section: false,
+            section: SectionState::default(),
+            hover: None,
+            hover_seen: false,
         }
     }
 }
@@ -52,6 +66,27 @@ impl Instruments {
     /// The inspected ray tree, if any.
     pub(crate) fn tree(&self) -> Option<&RayTree> {
         self.inspection.as_ref().map(|i| &i.tree)
+    }
+
+    /// Ray `node` is under the pointer (`None`: this instrument's part has none).
+    pub(crate) fn hovered(&mut self, node: Option<usize>) {
+        if let Some(n) = node {
+            self.hover = Some(n);
+            self.hover_seen = true;
+        }
+    }
+
+    /// At the end of a frame: nothing hovered it, so no ray is highlighted; a change is
+    /// drawn at once (the instruments drawn before the one hovered see it next frame).
+    pub(crate) fn end_frame(&mut self, ctx: &egui::Context) {
+        let before = self.hover;
+        if !self.hover_seen {
+            self.hover = None;
+        }
+        self.hover_seen = false;
+        if self.hover != before {
+            ctx.request_repaint();
+        }
     }
 }
 
@@ -64,6 +99,15 @@ impl RaylabApp {
         );
         ui.checkbox(&mut i.inspect_mode, "Ray-tree inspector: click a pixel")
             .on_hover_text("Click a pixel to see the whole ray tree of its first sample, drawn over the image.");
+        if ui
+            .checkbox(&mut i.show_section, "Section view and interface workbench")
+            .on_hover_text("The lecture's 2D diagram: the clicked pixel's ray tree in its own plane, with the angles and indices at each interface; or one interface and one ray, its angle dragged.")
+            .changed()
+            && i.show_section
+        {
+            // A section is of a clicked pixel.
+            i.inspect_mode = true;
+        }
         ui.checkbox(&mut i.show_cost, "Cost heat map")
             .on_hover_text("Rays traced per sample in each pixel, black (few) to yellow (many): where the ray tree is deep. Compare pruning by depth and by weight.");
         ui.horizontal(|ui| {
@@ -130,8 +174,8 @@ impl RaylabApp {
     pub(super) fn instruments_dock_ui(&mut self, ui: &mut egui::Ui) {
         let i = &self.instruments;
         let sheet = self.sheet.is_some();
-        if !(i.show_fresnel || i.inspect_mode || i.inspection.is_some() || i.show_patterns || sheet)
-        {
+        let open = i.show_fresnel || i.show_section || i.show_patterns || sheet;
+        if !(open || i.inspect_mode || i.inspection.is_some()) {
             return;
         }
         // In a hall the image keeps two thirds of the width, whatever the text's size.
@@ -155,15 +199,15 @@ impl RaylabApp {
     /// Each open instrument under its heading, with a button that closes it.
     fn instruments_ui(&mut self, ui: &mut egui::Ui) {
         let params = &self.settings.params;
+        // The IOR the `ior` parameter sets, or the scene's first that it would replace.
+        let ior = params.ior.or_else(|| {
+            self.scene
+                .materials
+                .iter()
+                .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
+        });
         let i = &mut self.instruments;
         if i.show_fresnel {
-            // The IOR the `ior` parameter sets, or the scene's first that it would replace.
-            let ior = params.ior.or_else(|| {
-                self.scene
-                    .materials
-                    .iter()
-                    .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
-            });
             // The inspected ray's angle, where it meets a dielectric interface (a diffuse
             // floor has no reflectance curve to mark).
             let marker = i
@@ -178,23 +222,41 @@ impl RaylabApp {
             fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal, hall);
             ui.separator();
         }
+        if i.show_section {
+            if !heading(ui, "Section view") {
+                i.show_section = false;
+            }
+            let hovered = section::section_ui(
+                ui,
+                &mut i.section,
+                i.inspection.as_ref(),
+                &self.scene,
+                ior.unwrap_or(1.5),
+                i.hover,
+            );
+            i.hovered(hovered);
+            ui.separator();
+        }
         if i.inspect_mode || i.inspection.is_some() {
             if !heading(ui, "Ray-tree inspector") {
                 i.inspect_mode = false;
                 i.inspection = None;
             }
             ui.checkbox(&mut i.inspect_mode, "Clicking the image inspects a pixel");
-            match &i.inspection {
+            let hovered = match &i.inspection {
                 Some(inspection) => inspector::inspector_ui(
                     ui,
                     inspection,
                     &self.scene.object_names,
                     &self.scene.material_names,
+                    i.hover,
                 ),
                 None => {
                     ui.label("Click a pixel of the image.");
+                    None
                 }
-            }
+            };
+            i.hovered(hovered);
             ui.separator();
         }
         if i.show_patterns {

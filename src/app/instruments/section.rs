@@ -1,0 +1,372 @@
+//! The section view and the interface workbench in the dock: the library's diagrams
+//! ([`crate::section`]) painted with egui, the hovered ray linked to the image's overlay
+//! and the tree list, the workbench's angle dragged with the mouse, and the pixels that
+//! meet glass at that angle outlined in the image.
+
+use super::inspector::Inspection;
+use crate::camera::Camera;
+use crate::params::Params;
+use crate::scene::Scene;
+use crate::section::{
+    Anchor, Canvas, Dash, Diagram, Fit, MAX_ZOOM, Room, Stroke, Theme, Workbench, section,
+};
+use egui::{Color32, Pos2, Sense, pos2};
+use glam::Vec2;
+use std::sync::Arc;
+use std::thread::JoinHandle;
+
+/// Which diagram the section view shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SectionMode {
+    /// The inspected pixel's ray tree in its plane.
+    Pixel,
+    /// One flat interface and one ray: the lecture's Snell and Fresnel figure.
+    Workbench,
+}
+
+/// The section view's state.
+pub(crate) struct SectionState {
+    pub(crate) mode: SectionMode,
+    /// The workbench's angle of incidence, degrees.
+    pub(crate) angle: f32,
+    /// The workbench seen from inside: from the material out to the scene's medium.
+    pub(crate) out: bool,
+    /// Outline the image's pixels that meet a dielectric at the workbench's angle.
+    pub(crate) outline: bool,
+    /// How far the pixel's section is zoomed in on its first hit, and for which pixel
+    /// (another pixel starts whole again).
+    zoom: (f32, Option<(u32, u32)>),
+    incidence: Option<Incidence>,
+}
+
+impl Default for SectionState {
+    fn default() -> Self {
+        SectionState {
+            mode: SectionMode::Pixel,
+            angle: 30.0,
+            out: false,
+            outline: true,
+            zoom: (1.0, None),
+            incidence: None,
+        }
+    }
+}
+
+/// What the incidence map was computed for.
+#[derive(Clone, PartialEq)]
+struct IncidenceKey {
+    scene: usize,
+    camera: Camera,
+    params: Params,
+    size: (u32, u32),
+}
+
+/// The image's first-hit angles (computed off the UI thread) and the outline drawn from
+/// them at one angle.
+struct Incidence {
+    key: IncidenceKey,
+    job: Option<JoinHandle<Vec<Option<f32>>>>,
+    map: Option<Vec<Option<f32>>>,
+    texture: Option<(f32, egui::TextureHandle)>,
+}
+
+impl SectionState {
+    /// How many pixels the outline covers at the workbench's angle, once the angles are
+    /// computed.
+    pub(crate) fn outlined(&self) -> Option<usize> {
+        let map = self.incidence.as_ref()?.map.as_ref()?;
+        let band = crate::render::incidence_band(map, self.angle);
+        Some(band.iter().filter(|&&b| b).count())
+    }
+
+    /// The section of `pixel` zoomed in `zoom` times on its first hit.
+    pub(crate) fn zoom_on(&mut self, pixel: Option<(u32, u32)>, zoom: f32) {
+        self.zoom = (zoom, pixel);
+    }
+
+    /// The outline of the pixels that meet a dielectric within the band of the workbench's
+    /// angle, for the image of `size` seen through `camera` with `params`: a texture to lay
+    /// over the image, once the angles are computed (on a thread of its own, started here
+    /// the first time they are asked for).
+    pub(crate) fn outline_texture(
+        &mut self,
+        ctx: &egui::Context,
+        scene: &Arc<Scene>,
+        camera: &Camera,
+        params: &Params,
+        size: (u32, u32),
+    ) -> Option<&egui::TextureHandle> {
+        if !(self.outline && self.mode == SectionMode::Workbench) {
+            return None;
+        }
+        let key = IncidenceKey {
+            scene: Arc::as_ptr(scene) as usize,
+            camera: camera.clone(),
+            params: params.clone(),
+            size,
+        };
+        // One computation at a time: while the controls move, the outline waits for the
+        // one running and then starts on what they show by then.
+        let stale = self.incidence.as_ref().is_none_or(|i| i.key != key);
+        let running = self.incidence.as_ref().is_some_and(|i| i.job.is_some());
+        if stale && !running {
+            let (scene, camera, params) = (scene.clone(), camera.clone(), params.clone());
+            let job = std::thread::spawn(move || {
+                crate::render::incidence_map(&scene, &camera, &params, size.0, size.1)
+            });
+            // The outline shown so far stays until the new one is ready.
+            let (map, texture) = match self.incidence.take() {
+                Some(i) => (i.map, i.texture),
+                None => (None, None),
+            };
+            self.incidence = Some(Incidence {
+                key,
+                job: Some(job),
+                map,
+                texture,
+            });
+        }
+        let angle = self.angle;
+        let i = self.incidence.as_mut()?;
+        if i.job.as_ref().is_some_and(|j| j.is_finished()) {
+            i.map = i.job.take().and_then(|j| j.join().ok());
+            i.texture = None;
+        } else if i.job.is_some() || stale {
+            ctx.request_repaint_after(std::time::Duration::from_millis(50));
+        }
+        let map = i.map.as_ref()?;
+        if i.texture.as_ref().is_none_or(|(a, _)| *a != angle) {
+            let band = crate::render::incidence_band(map, angle);
+            let pixels = band
+                .iter()
+                .map(|&b| match b {
+                    true => Color32::from_rgb(255, 0, 220),
+                    false => Color32::TRANSPARENT,
+                })
+                .collect();
+            let image = egui::ColorImage::new([size.0 as usize, size.1 as usize], pixels);
+            let texture = ctx.load_texture("incidence-band", image, egui::TextureOptions::NEAREST);
+            i.texture = Some((angle, texture));
+        }
+        i.texture.as_ref().map(|(_, t)| t)
+    }
+}
+
+/// The section view: a toggle between the pixel's section and the workbench, then the
+/// diagram. Returns the tree node whose ray the pointer hovers in it.
+pub(crate) fn section_ui(
+    ui: &mut egui::Ui,
+    state: &mut SectionState,
+    inspection: Option<&Inspection>,
+    scene: &Scene,
+    ior: f32,
+    highlight: Option<usize>,
+) -> Option<usize> {
+    ui.horizontal(|ui| {
+        ui.selectable_value(&mut state.mode, SectionMode::Pixel, "Pixel's section")
+            .on_hover_text("The inspected pixel's ray tree, in the plane of its camera ray and the normal where it first meets a surface.");
+        ui.selectable_value(&mut state.mode, SectionMode::Workbench, "Interface workbench")
+            .on_hover_text("One flat interface, one ray: drag the angle.");
+    });
+    match state.mode {
+        SectionMode::Pixel => match inspection {
+            Some(i) => pixel_ui(ui, i, scene, highlight, &mut state.zoom),
+            None => {
+                ui.label(
+                    "Click a pixel of the image: its ray tree is drawn here in its own plane.",
+                );
+                None
+            }
+        },
+        SectionMode::Workbench => {
+            workbench_ui(ui, state, scene.medium_ior, ior);
+            None
+        }
+    }
+}
+
+/// The canvas's text height: the window's body text (the caption's size in a hall).
+fn text_height(ui: &egui::Ui) -> f32 {
+    egui::TextStyle::Body.resolve(ui.style()).size
+}
+
+/// A canvas as wide as the dock and a little less tall, labelled `name` for assistive
+/// tools.
+fn canvas(ui: &mut egui::Ui, name: &str, sense: Sense) -> (egui::Response, egui::Painter) {
+    let width = ui.available_width().max(200.0);
+    let height = width.min(0.65 * ui.ctx().content_rect().height());
+    let (response, painter) = ui.allocate_painter(egui::vec2(width, height), sense);
+    let name = name.to_string();
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, &name));
+    (response, painter)
+}
+
+/// The inspected pixel's section, zoomed by the wheel about its first hit (a double click
+/// shows it whole again).
+fn pixel_ui(
+    ui: &mut egui::Ui,
+    inspection: &Inspection,
+    scene: &Scene,
+    highlight: Option<usize>,
+    zoom: &mut (f32, Option<(u32, u32)>),
+) -> Option<usize> {
+    if zoom.1 != Some(inspection.pixel) {
+        *zoom = (1.0, Some(inspection.pixel));
+    }
+    ui.label("Wheel: zoom in on the first hit. Double click: the whole tree.");
+    let (response, painter) = canvas(ui, "Section diagram", Sense::click());
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        zoom.0 = (zoom.0 * (scroll * 0.004).exp()).clamp(1.0, MAX_ZOOM);
+    }
+    if response.double_clicked() {
+        zoom.0 = 1.0;
+    }
+    let rect = response.rect;
+    let room = Room {
+        size: Vec2::new(rect.width(), rect.height()),
+        text: text_height(ui),
+        zoom: zoom.0,
+    };
+    let (size, text) = (room.size, room.text);
+    let (w, h) = inspection.size;
+    let frame = inspection.camera.frame(
+        w as f32 / h as f32,
+        inspection.camera.exposure(&inspection.params),
+    );
+    let diagram = section(scene, &frame, &inspection.tree, inspection.pixel, room)?;
+    let fit = Fit::new(&diagram, Vec2::new(rect.min.x, rect.min.y), size, text);
+    let hovered = response
+        .hover_pos()
+        .and_then(|p| diagram.ray_near(fit.to_plane(Vec2::new(p.x, p.y)), 8.0 / fit.scale()));
+    paint_on(&painter, &diagram, &fit, hovered.or(highlight));
+    hovered
+}
+
+fn workbench_ui(ui: &mut egui::Ui, state: &mut SectionState, medium: f32, ior: f32) {
+    let (n1, n2) = if state.out {
+        (ior, medium)
+    } else {
+        (medium, ior)
+    };
+    ui.horizontal(|ui| {
+        ui.label(format!("η1 = {}, η2 = {}", crate::section::index(n1), crate::section::index(n2)));
+        if ui
+            .button("Swap sides")
+            .on_hover_text("The same interface seen from the other side: light going out of the material, where total internal reflection can happen.")
+            .clicked()
+        {
+            state.out = !state.out;
+        }
+    });
+    ui.add(
+        egui::Slider::new(&mut state.angle, 0.0..=crate::section::MAX_ANGLE)
+            .text("Angle of incidence")
+            .suffix("°")
+            .fixed_decimals(1),
+    );
+    ui.checkbox(&mut state.outline, "Outline where the image meets glass at this angle")
+        .on_hover_text(format!(
+            "Pixels whose camera ray first meets a dielectric at this angle of incidence, ±{}°, outlined in magenta on the image.",
+            crate::render::INCIDENCE_BAND
+        ));
+    let bench = Workbench {
+        n1,
+        n2,
+        theta_i: state.angle,
+    };
+    let (response, painter) = canvas(ui, "Workbench diagram", Sense::click_and_drag());
+    let rect = response.rect;
+    let size = Vec2::new(rect.width(), rect.height());
+    let text = text_height(ui);
+    let diagram = bench.diagram();
+    let fit = Fit::new(&diagram, Vec2::new(rect.min.x, rect.min.y), size, text);
+    if let Some(p) = response
+        .interact_pointer_pos()
+        .filter(|_| response.is_pointer_button_down_on() || response.clicked())
+    {
+        state.angle = Workbench::angle_at(fit.to_plane(Vec2::new(p.x, p.y)));
+    }
+    let diagram = Workbench {
+        theta_i: state.angle,
+        ..bench
+    }
+    .diagram();
+    paint_on(&painter, &diagram, &fit, None);
+}
+
+/// Paints `diagram` as `fit` places it, in the window's dark colours.
+fn paint_on(painter: &egui::Painter, diagram: &Diagram, fit: &Fit, highlight: Option<usize>) {
+    let mut canvas = EguiCanvas { painter };
+    crate::section::paint(diagram, &mut canvas, fit, Theme::Dark, highlight);
+}
+
+struct EguiCanvas<'p> {
+    painter: &'p egui::Painter,
+}
+
+fn colour(c: [u8; 4]) -> Color32 {
+    Color32::from_rgba_unmultiplied(c[0], c[1], c[2], c[3])
+}
+
+fn at(v: Vec2) -> Pos2 {
+    pos2(v.x, v.y)
+}
+
+impl Canvas for EguiCanvas<'_> {
+    fn polyline(&mut self, points: &[Vec2], stroke: Stroke) {
+        let points: Vec<Pos2> = points.iter().map(|p| at(*p)).collect();
+        let line = egui::Stroke::new(stroke.width, colour(stroke.colour));
+        match stroke.dash {
+            Dash::Solid => {
+                self.painter.line(points, line);
+            }
+            Dash::Dashed => {
+                let gap = 0.7 * stroke.period;
+                self.painter
+                    .extend(egui::Shape::dashed_line(&points, line, stroke.period, gap));
+            }
+            Dash::Dotted => {
+                let radius = 0.5 * stroke.width;
+                self.painter.extend(egui::Shape::dotted_line(
+                    &points,
+                    line.color,
+                    stroke.period,
+                    radius,
+                ));
+            }
+        }
+    }
+
+    fn circle(&mut self, c: Vec2, r: f32, fill: Option<[u8; 4]>, stroke: Option<Stroke>) {
+        let fill = fill.map_or(Color32::TRANSPARENT, colour);
+        let stroke = stroke.map_or(egui::Stroke::NONE, |s| {
+            egui::Stroke::new(s.width, colour(s.colour))
+        });
+        self.painter.circle(at(c), r, fill, stroke);
+    }
+
+    fn polygon(&mut self, points: &[Vec2], fill: [u8; 4]) {
+        let points = points.iter().map(|p| at(*p)).collect();
+        self.painter.add(egui::Shape::convex_polygon(
+            points,
+            colour(fill),
+            egui::Stroke::NONE,
+        ));
+    }
+
+    fn text(&mut self, p: Vec2, text: &str, size: f32, c: [u8; 4], anchor: Anchor) {
+        let align = match anchor {
+            Anchor::Start => egui::Align2::LEFT_CENTER,
+            Anchor::Middle => egui::Align2::CENTER_CENTER,
+            Anchor::End => egui::Align2::RIGHT_CENTER,
+        };
+        self.painter.text(
+            at(p),
+            align,
+            text,
+            egui::FontId::proportional(size),
+            colour(c),
+        );
+    }
+}
