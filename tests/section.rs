@@ -47,6 +47,7 @@ fn canvas() -> Room {
         size: Vec2::new(FIGURE.0 as f32, FIGURE.1 as f32),
         text: text_size(FIGURE.0, FIGURE.1),
         zoom: 1.0,
+        titled: true,
     }
 }
 

@@ -80,6 +80,7 @@ fn a_picked_pixels_section_links_its_rays_to_the_tree_list() {
         size: Vec2::new(canvas.width(), canvas.height()),
         text: body_text(&h),
         zoom: 1.0,
+        titled: true,
     };
     let inspected = h
         .state()
@@ -161,4 +162,48 @@ fn dragging_the_workbench_sets_the_angle_and_outlines_the_image() {
         grazing < outlined,
         "{grazing} at grazing, {outlined} at 60°"
     );
+}
+
+#[test]
+fn in_a_hall_the_dock_shows_one_instrument_and_a_tab_for_each() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = window::app_sized("default", dir.path(), (1920.0, 1080.0));
+    h.step();
+    let slide = "6. Reflectance against angle: metal and glass";
+    window::choose_from_menu(&mut h, "Lecture", slide);
+    step_until(&mut h, "the slide", |a| {
+        a.slide() == Some(5) && a.caption().is_some() && !a.is_loading()
+    });
+    h.key_press(egui::Key::F5);
+    h.run_steps(3);
+    assert!(h.state().presenting());
+    // The plot first; the workbench behind its tab, drawn once the tab is picked.
+    h.get_by_label("Fresnel plot");
+    assert!(h.query_by_label("Workbench diagram").is_none());
+    h.get_by_label("Section view").click();
+    h.run_steps(3);
+    let canvas = h.get_by_label("Workbench diagram").rect();
+    let image = h.get_by_label("Image").rect();
+    assert!(
+        canvas.left() >= image.right(),
+        "beside the image, not over it"
+    );
+    assert!(canvas.height() > 200.0, "room to draw: {canvas:?}");
+    assert!(h.query_by_label("Compare with a metal:").is_none());
+}
+
+#[test]
+fn snells_slide_opens_the_section_zoomed_on_its_pixels_sphere() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    window::choose_from_menu(&mut h, "Lecture", "2. Snell's law");
+    step_until(&mut h, "the slide", |a| {
+        a.slide() == Some(1) && a.caption().is_some() && !a.is_loading()
+    });
+    h.run_steps(3);
+    h.get_by_label("Section diagram");
+    let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
+    assert_eq!(hit.n1_n2, Some((1.0, 1.5)), "the pixel meets the glass");
+    assert_eq!(h.state().section_zoom(), 3.0);
 }

@@ -100,13 +100,13 @@ impl RaylabApp {
             .flatten()
             .and_then(|name| crate::material::METALS.iter().position(|m| m.name == name));
         i.show_section = false;
+        i.hall_tab = None;
         for instrument in slide.instruments {
             match *instrument {
                 Instrument::Section { zoom, .. } => {
                     i.show_section = true;
                     i.section.mode = SectionMode::Pixel;
-                    let size = super::render_size(&self.scene, self.settings.resolution);
-                    i.section.zoom_on(slide.inspected_pixel(size), zoom);
+                    i.section.zoom_to(zoom);
                 }
                 Instrument::Workbench { angle, out } => {
                     i.show_section = true;

@@ -205,6 +205,10 @@ impl RaylabApp {
             }
             self.keep_side_a();
             self.instruments.inspection = None;
+            if slide.is_none() {
+                // A slide zooms its section as it needs; any other scene starts whole.
+                self.instruments.section.zoom_to(1.0);
+            }
             self.error = None;
             self.view.fit();
             self.loader.watch(&scene);

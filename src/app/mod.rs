@@ -307,6 +307,11 @@ impl RaylabApp {
         self.instruments.hover
     }
 
+    /// How far the section view is zoomed in on the inspected pixel's first hit.
+    pub fn section_zoom(&self) -> f32 {
+        self.instruments.section.zoom()
+    }
+
     /// The interface workbench's angle of incidence, degrees.
     pub fn workbench_angle(&self) -> f32 {
         self.instruments.section.angle

@@ -86,6 +86,7 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
                 size: glam::Vec2::new(w as f32, h as f32),
                 text: text_size(w, h),
                 zoom: args.zoom,
+                titled: true,
             };
             let mut d = section(&scene, &frame, &tree, pixel, room)
                 .context("the pixel's sample traced no ray")?;

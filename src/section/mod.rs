@@ -417,6 +417,7 @@ mod tests {
             size: Vec2::new(640.0, 480.0),
             text: 15.0,
             zoom: 1.0,
+            titled: true,
         };
         diagrams.push(section(&scene, tracer.frame(), &tree, (40, 27), room).unwrap());
         for d in &diagrams {

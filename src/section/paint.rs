@@ -225,6 +225,9 @@ pub fn paint(
             Anchor::Middle => at.x - 0.5 * width,
             Anchor::End => at.x - width,
         };
+        // Kept inside the canvas: a label near its edge is moved in, not cut.
+        let shift = (top_left.x - left).max(0.0) - (left + width - top_left.x - size.x).max(0.0);
+        let (left, at) = (left + shift, at + Vec2::new(shift, 0.0));
         let rect = (
             Vec2::new(left, at.y - 0.6 * fit.text),
             Vec2::new(left + width, at.y + 0.6 * fit.text),

@@ -88,6 +88,8 @@ pub struct Room {
     pub text: f32,
     /// 1 shows the whole tree; more zooms in on the first hit, up to [`MAX_ZOOM`].
     pub zoom: f32,
+    /// With its title and legend (a hall's dock has no room for them: its tab names it).
+    pub titled: bool,
 }
 
 /// The deepest zoom into a section.
@@ -151,10 +153,13 @@ pub fn section(
     if shown.len() < 3 {
         shown.extend([lo - Vec2::splat(0.2 * room), hi + Vec2::splat(0.2 * room)]);
     }
-    let notes = vec![
-        "Width: the ray's weight. Dashed: shadow rays. Dotted: rays that leave this plane, drawn projected onto it.".to_string(),
-    ];
-    let (room, _) = super::paint::room(on.size, on.text, true, &notes);
+    let notes = match on.titled {
+        true => vec![
+            "Width: the ray's weight. Dashed: shadow rays. Dotted: rays that leave this plane, drawn projected onto it.".to_string(),
+        ],
+        false => Vec::new(),
+    };
+    let (room, _) = super::paint::room(on.size, on.text, on.titled, &notes);
     let view = view_of(shown.into_iter(), room.x / room.y);
     // Zoomed about a point that moves from the view's centre to the first hit.
     let zoom = on.zoom.clamp(1.0, MAX_ZOOM);
@@ -166,7 +171,10 @@ pub fn section(
         about + (view.1 - centre) / zoom,
     );
     let mut d = Diagram {
-        title: format!("Section through pixel ({}, {}), sample 0", pixel.0, pixel.1),
+        title: match on.titled {
+            true => format!("Section through pixel ({}, {}), sample 0", pixel.0, pixel.1),
+            false => String::new(),
+        },
         view,
         notes,
         ..Default::default()

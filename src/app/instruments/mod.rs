@@ -36,8 +36,33 @@ pub(crate) struct Instruments {
     /// The ray of the inspected tree the pointer is over (in the section view, the list or
     /// the image's overlay): all three highlight it.
     pub(crate) hover: Option<usize>,
+    /// In a hall, the one instrument the dock shows of those open (`None`: the first).
+    pub(crate) hall_tab: Option<Tab>,
     // Whether anything reported a hovered ray this frame.
     hover_seen: bool,
+}
+
+/// An instrument of the dock. In a hall its text is too large for two at once: the dock
+/// shows one, with a tab for each open.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Tab {
+    Fresnel,
+    Section,
+    Inspector,
+    Patterns,
+    Sheet,
+}
+
+impl Tab {
+    fn title(self) -> &'static str {
+        match self {
+            Tab::Fresnel => "Fresnel plot",
+            Tab::Section => "Section view",
+            Tab::Inspector => "Ray-tree inspector",
+            Tab::Patterns => "Sample patterns",
+            Tab::Sheet => "Contact sheet",
+        }
+    }
 }
 
 /// The heat map's scales offered: its top in rays per sample.
@@ -57,6 +82,7 @@ impl Default for Instruments {
             show_section: false,
             section: SectionState::default(),
             hover: None,
+            hall_tab: None,
             hover_seen: false,
         }
     }
@@ -196,8 +222,55 @@ impl RaylabApp {
             });
     }
 
-    /// Each open instrument under its heading, with a button that closes it.
+    /// The instruments open, in the dock's order. In a hall the section view shows the
+    /// inspected tree: the inspector's list, too long for a hall, goes.
+    fn open_tabs(&self) -> Vec<Tab> {
+        let i = &self.instruments;
+        let listed = !(self.hall.presenting && i.show_section);
+        [
+            (i.show_fresnel, Tab::Fresnel),
+            (i.show_section, Tab::Section),
+            (
+                listed && (i.inspect_mode || i.inspection.is_some()),
+                Tab::Inspector,
+            ),
+            (i.show_patterns, Tab::Patterns),
+            (self.sheet.is_some(), Tab::Sheet),
+        ]
+        .into_iter()
+        .filter_map(|(open, tab)| open.then_some(tab))
+        .collect()
+    }
+
+    /// Each open instrument under its heading, with a button that closes it; in a hall,
+    /// where there is room for one, the one its tab picks.
     fn instruments_ui(&mut self, ui: &mut egui::Ui) {
+        let tabs = self.open_tabs();
+        let hall = self.hall.presenting;
+        let current = (hall && tabs.len() > 1).then(|| {
+            let chosen = self.instruments.hall_tab.filter(|t| tabs.contains(t));
+            chosen.unwrap_or(tabs[0])
+        });
+        let mut close = None;
+        if let Some(mut chosen) = current {
+            ui.horizontal_wrapped(|ui| {
+                for t in &tabs {
+                    ui.selectable_value(&mut chosen, *t, t.title());
+                }
+                if ui.button("Close").clicked() {
+                    close = Some(chosen);
+                }
+            });
+            self.instruments.hall_tab = Some(chosen);
+            ui.separator();
+        }
+        let current = current.map(|_| self.instruments.hall_tab);
+        // Whether to draw `tab`, and under a heading (false once closed).
+        let shows = |tab: Tab| current.is_none_or(|c| c == Some(tab));
+        let head = |ui: &mut egui::Ui, tab: Tab| match current {
+            Some(_) => close != Some(tab),
+            None => heading(ui, tab.title()),
+        };
         let params = &self.settings.params;
         // The IOR the `ior` parameter sets, or the scene's first that it would replace.
         let ior = params.ior.or_else(|| {
@@ -207,7 +280,7 @@ impl RaylabApp {
                 .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
         });
         let i = &mut self.instruments;
-        if i.show_fresnel {
+        if i.show_fresnel && shows(Tab::Fresnel) {
             // The inspected ray's angle, where it meets a dielectric interface (a diffuse
             // floor has no reflectance curve to mark).
             let marker = i
@@ -215,30 +288,29 @@ impl RaylabApp {
                 .and_then(|t| t.nodes.first())
                 .and_then(|n| n.hit)
                 .and_then(|h| h.n1_n2.map(|(n1, n2)| (h.theta_i, n1 <= n2)));
-            if !heading(ui, "Fresnel plot") {
+            if !head(ui, Tab::Fresnel) {
                 i.show_fresnel = false;
             }
-            let hall = self.hall.presenting;
             fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal, hall);
             ui.separator();
         }
-        if i.show_section {
-            if !heading(ui, "Section view") {
+        if i.show_section && shows(Tab::Section) {
+            if !head(ui, Tab::Section) {
                 i.show_section = false;
             }
             let hovered = section::section_ui(
                 ui,
                 &mut i.section,
                 i.inspection.as_ref(),
-                &self.scene,
-                ior.unwrap_or(1.5),
+                (&self.scene, ior.unwrap_or(1.5)),
                 i.hover,
+                hall,
             );
             i.hovered(hovered);
             ui.separator();
         }
-        if i.inspect_mode || i.inspection.is_some() {
-            if !heading(ui, "Ray-tree inspector") {
+        if tabs.contains(&Tab::Inspector) && shows(Tab::Inspector) {
+            if !head(ui, Tab::Inspector) {
                 i.inspect_mode = false;
                 i.inspection = None;
             }
@@ -259,15 +331,15 @@ impl RaylabApp {
             i.hovered(hovered);
             ui.separator();
         }
-        if i.show_patterns {
-            if !heading(ui, "Sample patterns") {
+        if i.show_patterns && shows(Tab::Patterns) {
+            if !head(ui, Tab::Patterns) {
                 i.show_patterns = false;
             }
             patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
             ui.separator();
         }
-        if self.sheet.is_some() {
-            let open = heading(ui, "Contact sheet");
+        if self.sheet.is_some() && shows(Tab::Sheet) {
+            let open = head(ui, Tab::Sheet);
             self.sheet_form_ui(ui, open);
         }
     }

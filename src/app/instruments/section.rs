@@ -33,9 +33,9 @@ pub(crate) struct SectionState {
     pub(crate) out: bool,
     /// Outline the image's pixels that meet a dielectric at the workbench's angle.
     pub(crate) outline: bool,
-    /// How far the pixel's section is zoomed in on its first hit, and for which pixel
-    /// (another pixel starts whole again).
-    zoom: (f32, Option<(u32, u32)>),
+    /// How far the pixel's section is zoomed in on its first hit (a click on another
+    /// pixel shows the whole tree again).
+    zoom: f32,
     incidence: Option<Incidence>,
 }
 
@@ -46,7 +46,7 @@ impl Default for SectionState {
             angle: 30.0,
             out: false,
             outline: true,
-            zoom: (1.0, None),
+            zoom: 1.0,
             incidence: None,
         }
     }
@@ -79,9 +79,14 @@ impl SectionState {
         Some(band.iter().filter(|&&b| b).count())
     }
 
-    /// The section of `pixel` zoomed in `zoom` times on its first hit.
-    pub(crate) fn zoom_on(&mut self, pixel: Option<(u32, u32)>, zoom: f32) {
-        self.zoom = (zoom, pixel);
+    /// How far the pixel's section is zoomed in on its first hit.
+    pub(crate) fn zoom(&self) -> f32 {
+        self.zoom
+    }
+
+    /// Zooms the pixel's section `zoom` times in on its first hit (1: the whole tree).
+    pub(crate) fn zoom_to(&mut self, zoom: f32) {
+        self.zoom = zoom;
     }
 
     /// The outline of the pixels that meet a dielectric within the band of the workbench's
@@ -154,23 +159,28 @@ impl SectionState {
 
 /// The section view: a toggle between the pixel's section and the workbench, then the
 /// diagram. Returns the tree node whose ray the pointer hovers in it.
+/// In a `hall` the diagrams go without their title, notes and hints: the tab names them,
+/// and every line of text is large.
 pub(crate) fn section_ui(
     ui: &mut egui::Ui,
     state: &mut SectionState,
     inspection: Option<&Inspection>,
-    scene: &Scene,
-    ior: f32,
+    (scene, ior): (&Scene, f32),
     highlight: Option<usize>,
+    hall: bool,
 ) -> Option<usize> {
-    ui.horizontal(|ui| {
+    // A slide picks the mode in a hall, where every row is dear.
+    if !hall {
+        ui.horizontal(|ui| {
         ui.selectable_value(&mut state.mode, SectionMode::Pixel, "Pixel's section")
             .on_hover_text("The inspected pixel's ray tree, in the plane of its camera ray and the normal where it first meets a surface.");
         ui.selectable_value(&mut state.mode, SectionMode::Workbench, "Interface workbench")
             .on_hover_text("One flat interface, one ray: drag the angle.");
-    });
+        });
+    }
     match state.mode {
         SectionMode::Pixel => match inspection {
-            Some(i) => pixel_ui(ui, i, scene, highlight, &mut state.zoom),
+            Some(i) => pixel_ui(ui, i, scene, highlight, &mut state.zoom, hall),
             None => {
                 ui.label(
                     "Click a pixel of the image: its ray tree is drawn here in its own plane.",
@@ -179,7 +189,7 @@ pub(crate) fn section_ui(
             }
         },
         SectionMode::Workbench => {
-            workbench_ui(ui, state, scene.medium_ior, ior);
+            workbench_ui(ui, state, (scene.medium_ior, ior), hall);
             None
         }
     }
@@ -193,8 +203,12 @@ fn text_height(ui: &egui::Ui) -> f32 {
 /// A canvas as wide as the dock and a little less tall, labelled `name` for assistive
 /// tools.
 fn canvas(ui: &mut egui::Ui, name: &str, sense: Sense) -> (egui::Response, egui::Painter) {
-    let width = ui.available_width().max(200.0);
-    let height = width.min(0.65 * ui.ctx().content_rect().height());
+    // As wide as the dock shows (a hall's wide rows widen what scrolls), square or as
+    // tall as the dock still shows.
+    let shown = ui.clip_rect().right() - ui.cursor().left();
+    let width = ui.available_width().min(shown).max(200.0);
+    let visible = ui.clip_rect().bottom() - ui.cursor().top();
+    let height = width.min(visible.max(200.0));
     let (response, painter) = ui.allocate_painter(egui::vec2(width, height), sense);
     let name = name.to_string();
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, &name));
@@ -208,25 +222,26 @@ fn pixel_ui(
     inspection: &Inspection,
     scene: &Scene,
     highlight: Option<usize>,
-    zoom: &mut (f32, Option<(u32, u32)>),
+    zoom: &mut f32,
+    hall: bool,
 ) -> Option<usize> {
-    if zoom.1 != Some(inspection.pixel) {
-        *zoom = (1.0, Some(inspection.pixel));
+    if !hall {
+        ui.label("Wheel: zoom in on the first hit. Double click: the whole tree.");
     }
-    ui.label("Wheel: zoom in on the first hit. Double click: the whole tree.");
     let (response, painter) = canvas(ui, "Section diagram", Sense::click());
     if response.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-        zoom.0 = (zoom.0 * (scroll * 0.004).exp()).clamp(1.0, MAX_ZOOM);
+        *zoom = (*zoom * (scroll * 0.004).exp()).clamp(1.0, MAX_ZOOM);
     }
     if response.double_clicked() {
-        zoom.0 = 1.0;
+        *zoom = 1.0;
     }
     let rect = response.rect;
     let room = Room {
         size: Vec2::new(rect.width(), rect.height()),
         text: text_height(ui),
-        zoom: zoom.0,
+        zoom: *zoom,
+        titled: !hall,
     };
     let (size, text) = (room.size, room.text);
     let (w, h) = inspection.size;
@@ -243,7 +258,12 @@ fn pixel_ui(
     hovered
 }
 
-fn workbench_ui(ui: &mut egui::Ui, state: &mut SectionState, medium: f32, ior: f32) {
+fn workbench_ui(
+    ui: &mut egui::Ui,
+    state: &mut SectionState,
+    (medium, ior): (f32, f32),
+    hall: bool,
+) {
     let (n1, n2) = if state.out {
         (ior, medium)
     } else {
@@ -265,7 +285,7 @@ fn workbench_ui(ui: &mut egui::Ui, state: &mut SectionState, medium: f32, ior: f
             .suffix("°")
             .fixed_decimals(1),
     );
-    ui.checkbox(&mut state.outline, "Outline where the image meets glass at this angle")
+    ui.checkbox(&mut state.outline, "Outline this angle in the image")
         .on_hover_text(format!(
             "Pixels whose camera ray first meets a dielectric at this angle of incidence, ±{}°, outlined in magenta on the image.",
             crate::render::INCIDENCE_BAND
@@ -279,20 +299,29 @@ fn workbench_ui(ui: &mut egui::Ui, state: &mut SectionState, medium: f32, ior: f
     let rect = response.rect;
     let size = Vec2::new(rect.width(), rect.height());
     let text = text_height(ui);
-    let diagram = bench.diagram();
-    let fit = Fit::new(&diagram, Vec2::new(rect.min.x, rect.min.y), size, text);
+    // In a hall the drawing alone, at the caption's size: its angles, the rays' widths
+    // and the guides say what the notes would.
+    let diagram = |theta_i| {
+        let mut d = Workbench { theta_i, ..bench }.diagram();
+        if hall {
+            d.title.clear();
+            d.notes.clear();
+        }
+        d
+    };
+    let fit = Fit::new(
+        &diagram(state.angle),
+        Vec2::new(rect.min.x, rect.min.y),
+        size,
+        text,
+    );
     if let Some(p) = response
         .interact_pointer_pos()
         .filter(|_| response.is_pointer_button_down_on() || response.clicked())
     {
         state.angle = Workbench::angle_at(fit.to_plane(Vec2::new(p.x, p.y)));
     }
-    let diagram = Workbench {
-        theta_i: state.angle,
-        ..bench
-    }
-    .diagram();
-    paint_on(&painter, &diagram, &fit, None);
+    paint_on(&painter, &diagram(state.angle), &fit, None);
 }
 
 /// Paints `diagram` as `fit` places it, in the window's dark colours.
