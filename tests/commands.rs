@@ -507,3 +507,32 @@ fn section_writes_a_pixels_tree_and_the_workbench_as_svg_and_png() {
     );
     assert!(!d.join("x.svg").exists() && !d.join("x.pdf").exists());
 }
+
+#[test]
+fn the_workbench_shows_what_raylab_fresnel_prints_at_every_angle() {
+    for (n1, n2) in [("1.0", "1.5"), ("1.5", "1.0"), ("1.0", "2.42")] {
+        let rows = fresnel_rows(&["fresnel", "--n1", n1, "--n2", n2, "--step", "0.5"]);
+        assert_eq!(rows.len(), 181);
+        for row in rows {
+            let theta_i: f32 = row[0].parse().unwrap();
+            if theta_i > raylab::section::MAX_ANGLE {
+                continue;
+            }
+            let bench = raylab::section::Workbench {
+                n1: n1.parse().unwrap(),
+                n2: n2.parse().unwrap(),
+                theta_i,
+            };
+            let r = bench.row();
+            let theta_t = r.theta_t.map(|t| format!("{t:.4}")).unwrap_or_default();
+            let mine = [
+                theta_t,
+                format!("{:.6}", r.f_s),
+                format!("{:.6}", r.f_p),
+                format!("{:.6}", r.r_exact),
+                format!("{:.6}", r.r_schlick),
+            ];
+            assert_eq!(&row[1..6], &mine[..], "{n1} -> {n2} at {theta_i}°");
+        }
+    }
+}
