@@ -138,8 +138,8 @@ pub fn section(
         }
     }
     let (lo, hi) = bounds(core.iter().copied());
-    let room = ((hi - lo).max_element()).max(0.4 * reach);
-    let near = |p: Vec2| p.distance(0.5 * (lo + hi)) < 1.5 * room;
+    let extent = ((hi - lo).max_element()).max(0.4 * reach);
+    let near = |p: Vec2| p.distance(0.5 * (lo + hi)) < 1.5 * extent;
     let at_eye = plane.to_plane(eye);
     let lights: Vec<Vec3> = scene.lights.iter().map(|l| l.center()).collect();
     let mut shown = core.clone();
@@ -149,9 +149,12 @@ pub fn section(
             .chain(lights.iter().map(|c| plane.to_plane(*c)))
             .filter(|p| near(*p)),
     );
-    // Room around a single hit: as much again as the camera ray's length.
+    // Room around a lone hit: at least 0.4 of the camera ray's length, and a margin.
     if shown.len() < 3 {
-        shown.extend([lo - Vec2::splat(0.2 * room), hi + Vec2::splat(0.2 * room)]);
+        shown.extend([
+            lo - Vec2::splat(0.2 * extent),
+            hi + Vec2::splat(0.2 * extent),
+        ]);
     }
     let notes = match on.titled {
         true => vec![
@@ -163,9 +166,9 @@ pub fn section(
     let view = view_of(shown.into_iter(), room.x / room.y);
     // Zoomed about a point that moves from the view's centre to the first hit.
     let zoom = on.zoom.clamp(1.0, MAX_ZOOM);
-    let first_2d = plane.to_plane(root.hit.map_or(eye, |h| h.point));
+    let first = plane.to_plane(root.hit.map_or(eye, |h| h.point));
     let centre = 0.5 * (view.0 + view.1);
-    let about = centre + (1.0 - 1.0 / zoom) * (first_2d - centre);
+    let about = centre + (1.0 - 1.0 / zoom) * (first - centre);
     let view = (
         about + (view.0 - centre) / zoom,
         about + (view.1 - centre) / zoom,
@@ -182,7 +185,6 @@ pub fn section(
     scene_cut(&mut d, scene, &plane, root.ray.time);
     let look = frame.forward();
     let look = Vec2::new(look.dot(plane.x), look.dot(plane.y));
-    let first = plane.to_plane(root.hit.map_or(eye, |h| h.point));
     place(
         &mut d,
         first,
