@@ -226,8 +226,15 @@ pub fn paint(
             Anchor::End => at.x - width,
         };
         // Kept inside the canvas: a label near its edge is moved in, not cut.
-        let shift = (top_left.x - left).max(0.0) - (left + width - top_left.x - size.x).max(0.0);
-        let (left, at) = (left + shift, at + Vec2::new(shift, 0.0));
+        let inside = |lo: f32, extent: f32, from: f32, to: f32| {
+            (from - lo).max(0.0) - (lo + extent - to).max(0.0)
+        };
+        let half = 0.6 * fit.text;
+        let shift = Vec2::new(
+            inside(left, width, top_left.x, top_left.x + size.x),
+            inside(at.y - half, 2.0 * half, top_left.y, top_left.y + size.y),
+        );
+        let (left, at) = (left + shift.x, at + shift);
         let rect = (
             Vec2::new(left, at.y - 0.6 * fit.text),
             Vec2::new(left + width, at.y + 0.6 * fit.text),
