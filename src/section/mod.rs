@@ -347,8 +347,9 @@ fn angle_marks(
     (arc, label)
 }
 
-/// The distance from `p` to the segment from `a` to `b`.
-fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
+/// The distance from `p` to the segment from `a` to `b` (the hover tests of the diagrams
+/// and of the image's overlay).
+pub(crate) fn distance_to_segment(p: Vec2, a: Vec2, b: Vec2) -> f32 {
     let ab = b - a;
     let t = if ab.length_squared() > 0.0 {
         ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)

@@ -37,12 +37,17 @@ struct Svg {
     group: Option<usize>,
 }
 
-fn colour(c: [u8; 4]) -> String {
+/// `c` as the value of `attribute` (`fill` or `stroke`), with its opacity where it has
+/// one: `fill="#rrggbb" fill-opacity="0.5"`.
+fn colour(attribute: &str, c: [u8; 4]) -> String {
     let opacity = match c[3] {
         255 => String::new(),
-        a => format!(" opacity=\"{:.3}\"", a as f32 / 255.0),
+        a => format!(" {attribute}-opacity=\"{:.3}\"", a as f32 / 255.0),
     };
-    format!("\"#{:02x}{:02x}{:02x}\"{opacity}", c[0], c[1], c[2])
+    format!(
+        "{attribute}=\"#{:02x}{:02x}{:02x}\"{opacity}",
+        c[0], c[1], c[2]
+    )
 }
 
 fn escape(text: &str) -> String {
@@ -69,27 +74,25 @@ impl Canvas for Svg {
         };
         let _ = writeln!(
             self.out,
-            "<polyline points=\"{}\" fill=\"none\" stroke={} stroke-width=\"{:.2}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"{dash}/>",
+            "<polyline points=\"{}\" fill=\"none\" {} stroke-width=\"{:.2}\" stroke-linecap=\"round\" stroke-linejoin=\"round\"{dash}/>",
             list.trim_end(),
-            colour(stroke.colour).replace("opacity", "stroke-opacity"),
+            colour("stroke", stroke.colour),
             stroke.width
         );
     }
 
     fn circle(&mut self, c: Vec2, r: f32, fill: Option<[u8; 4]>, stroke: Option<Stroke>) {
-        let fill = fill.map_or("\"none\"".into(), |f| {
-            colour(f).replace("opacity", "fill-opacity")
-        });
+        let fill = fill.map_or("fill=\"none\"".into(), |f| colour("fill", f));
         let stroke = stroke.map_or(String::new(), |s| {
             format!(
-                " stroke={} stroke-width=\"{:.2}\"",
-                colour(s.colour).replace("opacity", "stroke-opacity"),
+                " {} stroke-width=\"{:.2}\"",
+                colour("stroke", s.colour),
                 s.width
             )
         });
         let _ = writeln!(
             self.out,
-            "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{:.2}\" fill={fill}{stroke}/>",
+            "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"{:.2}\" {fill}{stroke}/>",
             c.x, c.y, r
         );
     }
@@ -101,9 +104,9 @@ impl Canvas for Svg {
         }
         let _ = writeln!(
             self.out,
-            "<polygon points=\"{}\" fill={}/>",
+            "<polygon points=\"{}\" {}/>",
             list.trim_end(),
-            colour(fill).replace("opacity", "fill-opacity")
+            colour("fill", fill)
         );
     }
 
@@ -115,11 +118,11 @@ impl Canvas for Svg {
         };
         let _ = writeln!(
             self.out,
-            "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"{:.1}\" fill={} text-anchor=\"{anchor}\" dominant-baseline=\"central\">{}</text>",
+            "<text x=\"{:.2}\" y=\"{:.2}\" font-size=\"{:.1}\" {} text-anchor=\"{anchor}\" dominant-baseline=\"central\">{}</text>",
             at.x,
             at.y,
             size,
-            colour(c).replace("opacity", "fill-opacity"),
+            colour("fill", c),
             escape(text)
         );
     }

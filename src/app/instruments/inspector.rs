@@ -72,7 +72,8 @@ pub(crate) fn draw_tree_overlay(
         }
         painter.line_segment([a, b], egui::Stroke::new(width, kind_color(n.kind)));
         if let Some(p) = pointer {
-            let d = distance_to_segment(p, a, b);
+            let v = |q: egui::Pos2| glam::Vec2::new(q.x, q.y);
+            let d = crate::section::distance_to_segment(v(p), v(a), v(b));
             if d <= 6.0 * u && hovered.is_none_or(|(_, best)| d < best) {
                 hovered = Some((i, d));
             }
@@ -82,13 +83,6 @@ pub(crate) fn draw_tree_overlay(
         }
     }
     hovered.map(|(i, _)| i)
-}
-
-/// The distance from `p` to the segment from `a` to `b`, in points.
-fn distance_to_segment(p: egui::Pos2, a: egui::Pos2, b: egui::Pos2) -> f32 {
-    let ab = b - a;
-    let t = ((p - a).dot(ab) / ab.length_sq().max(1e-9)).clamp(0.0, 1.0);
-    p.distance(a + t * ab)
 }
 
 /// The inspector: the tree as nested sections, each ray with the lecture's quantities.

@@ -247,26 +247,26 @@ impl RaylabApp {
     fn instruments_ui(&mut self, ui: &mut egui::Ui) {
         let tabs = self.open_tabs();
         let hall = self.hall.presenting;
-        let current = (hall && tabs.len() > 1).then(|| {
+        // The tab shown, where the dock shows one instrument.
+        let mut current = (hall && tabs.len() > 1).then(|| {
             let chosen = self.instruments.hall_tab.filter(|t| tabs.contains(t));
             chosen.unwrap_or(tabs[0])
         });
         let mut close = None;
-        if let Some(mut chosen) = current {
+        if let Some(chosen) = &mut current {
             ui.horizontal_wrapped(|ui| {
                 for t in &tabs {
-                    ui.selectable_value(&mut chosen, *t, t.title());
+                    ui.selectable_value(chosen, *t, t.title());
                 }
                 if ui.button("Close").clicked() {
-                    close = Some(chosen);
+                    close = Some(*chosen);
                 }
             });
-            self.instruments.hall_tab = Some(chosen);
+            self.instruments.hall_tab = Some(*chosen);
             ui.separator();
         }
-        let current = current.map(|_| self.instruments.hall_tab);
         // Whether to draw `tab`, and under a heading (false once closed).
-        let shows = |tab: Tab| current.is_none_or(|c| c == Some(tab));
+        let shows = |tab: Tab| current.is_none_or(|c| c == tab);
         let head = |ui: &mut egui::Ui, tab: Tab| match current {
             Some(_) => close != Some(tab),
             None => heading(ui, tab.title()),
