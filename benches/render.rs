@@ -78,6 +78,7 @@ fn mesh_scene(mesh: Mesh) -> SceneDesc {
         width: WIDTH,
         height: HEIGHT,
         params: Params::default(),
+        warnings: Vec::new(),
         materials: vec![
             ("floor".into(), diffuse(Color::splat(0.7))),
             ("blob".into(), diffuse(Color::new(0.7, 0.4, 0.2))),

@@ -8,24 +8,25 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Writes a line to stdout. When the reader has gone (`raylab params | head`), the program
-/// ends quietly instead of panicking on the closed pipe.
+/// ends quietly; when the write fails otherwise (a full disk), with status 1 and a message.
 macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        if writeln!(std::io::stdout(), $($arg)*).is_err() {
-            std::process::exit(0);
-        }
-    }};
+    ($($arg:tt)*) => {
+        $crate::cli::streams::out(format_args!("{}\n", format_args!($($arg)*)))
+    };
 }
 
 /// Like `say!`, without the newline.
 macro_rules! say_raw {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        if write!(std::io::stdout(), $($arg)*).is_err() {
-            std::process::exit(0);
-        }
-    }};
+    ($($arg:tt)*) => {
+        $crate::cli::streams::out(format_args!($($arg)*))
+    };
+}
+
+/// One line to stderr (a message, a warning, a summary), never panicking.
+macro_rules! tell {
+    ($($arg:tt)*) => {
+        $crate::cli::streams::tell(format_args!($($arg)*))
+    };
 }
 
 mod cli;
@@ -68,7 +69,7 @@ struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
     /// The scene to open in the window: a scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
-    scene: Option<String>,
+    scene: Option<std::ffi::OsString>,
     /// Worker threads for the window [default: all cores but one].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
@@ -175,7 +176,7 @@ fn parse_step(s: &str) -> Result<f64, String> {
     }
 }
 
-fn window(scene: Option<String>, threads: Option<u32>) -> Result<()> {
+fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()> {
     let close_after = match std::env::var("RAYLAB_CLOSE_AFTER") {
         Ok(v) => Some(
             v.trim()
@@ -239,7 +240,10 @@ fn run(cli: Cli) -> Result<()> {
             );
             Ok(())
         }
-        Some(Command::Fresnel(args)) => fresnel_command(&args),
+        Some(Command::Fresnel(args)) => fresnel_command(&args).map_err(|e| match e.downcast() {
+            Ok(io) => cli::streams::stdout_failed(io),
+            Err(e) => e,
+        }),
         Some(Command::Bench(args)) => bench_command(&args),
         Some(Command::Sweep(args)) => sweep_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
@@ -264,6 +268,8 @@ fn run(cli: Cli) -> Result<()> {
 
 fn exit_code(result: Result<()>) -> ExitCode {
     match result {
+        // The work is done, but what it had to say was lost.
+        Ok(()) if cli::streams::stderr_lost() => ExitCode::FAILURE,
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output has gone (`raylab fresnel | head`): nothing went wrong.
         Err(e)
@@ -274,7 +280,7 @@ fn exit_code(result: Result<()>) -> ExitCode {
         }
         // Bad input exits 2 (as clap does for bad options); a failure while working, 1.
         Err(e) => {
-            eprintln!("error: {e:#}");
+            tell!("error: {e:#}");
             ExitCode::from(if e.downcast_ref::<Runtime>().is_some() {
                 1
             } else {

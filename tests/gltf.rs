@@ -43,7 +43,7 @@ fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
 fn bunny_glb() -> Vec<u8> {
     let obj = std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/models/bunny.obj"))
         .unwrap();
-    let parts = load_obj(&obj, "bunny.obj", &|_| None).unwrap();
+    let parts = load_obj(&obj, "bunny.obj", &|_| None).unwrap().parts;
     assert_eq!(parts.len(), 1);
     let mesh = &parts[0].mesh;
     let (positions, normals, indices) = (mesh.positions(), mesh.normals().unwrap(), mesh.indices());
@@ -108,8 +108,8 @@ fn the_bunny_as_glb_renders_as_its_obj_does() {
     )
     .unwrap();
     // Opened on its own: the same framing, floor and light as an OBJ gets.
-    let from_glb = Scene::load(&d.join("bunny.glb").to_string_lossy()).unwrap();
-    let from_obj = Scene::load(&d.join("bunny.obj").to_string_lossy()).unwrap();
+    let from_glb = Scene::load(d.join("bunny.glb")).unwrap();
+    let from_obj = Scene::load(d.join("bunny.obj")).unwrap();
     assert_eq!(from_glb.camera, from_obj.camera);
     let params = Params {
         spp: 2,
@@ -210,7 +210,7 @@ fn nodes_place_meshes_and_materials_map_to_the_closest_kind() {
         triangles_gltf(&data_uri(&triangle_bytes())),
     )
     .unwrap();
-    let scene = Scene::load(&d.join("t.gltf").to_string_lossy()).unwrap();
+    let scene = Scene::load(d.join("t.gltf")).unwrap();
     let material_of = |name: &str| {
         let i = scene
             .object_names

@@ -243,24 +243,31 @@ fn a_conductor_is_a_named_metal_or_its_own_index_and_nothing_in_between() {
         exponent: None,
     });
     assert_eq!(load("metal = \"Gold\"\n").unwrap().materials[0], expected);
-    // Every refusal names the material's table.
-    for (keys, words) in [
-        ("eta = [0.18, 0.42, 1.37]\n", "or both `eta` and `k`"),
+    // A refusal of the keys together names the material's table; of one value, the value.
+    for (keys, at, words) in [
+        (
+            "eta = [0.18, 0.42, 1.37]\n",
+            "t.toml:4:1",
+            "or both `eta` and `k`",
+        ),
         (
             "",
+            "t.toml:4:1",
             "a conductor needs `metal` (gold, silver, copper, aluminium",
         ),
         (
             "metal = \"brass\"\n",
+            "t.toml:6:9",
             "unknown metal `brass` (known: gold, silver",
         ),
         (
             "metal = \"gold\"\nk = [1, 1, 1]\n",
+            "t.toml:4:1",
             "either `metal` or `eta` and `k`",
         ),
     ] {
         let e = err(&format!("{CAMERA}{metal}{keys}{sphere}"));
-        assert_at(&e, "t.toml:4:1", words);
+        assert_at(&e, at, words);
     }
 }
 
@@ -272,9 +279,8 @@ fn a_checkers_scale_is_a_positive_number_or_two() {
              checker = {{ color = [0, 0, 0], scale = {scale} }}\n"
         ))
     };
-    // Values inside a material's table are located at its header, as every material
-    // value's error is today.
-    let at = "t.toml:4:1";
+    // Located at the checker's value, not at the material's header.
+    let at = "t.toml:7:11";
     assert_at(&with("[16, 0]"), at, "must be greater than 0, got 0");
     assert_at(&with("[16]"), at, "[along u, along v]: two numbers");
     assert_at(&with("[1, 2, 3]"), at, "[along u, along v]: two numbers");

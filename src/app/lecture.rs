@@ -78,7 +78,7 @@ impl RaylabApp {
         let slide = &LECTURE[i];
         self.lecture.pending = Some(slide);
         self.lecture.current = Some(i);
-        self.open_scene(&slide.reference());
+        self.open_scene(slide.reference());
     }
 
     /// `slide`'s scene has arrived with its parameters `base`: the controls take the

@@ -87,7 +87,7 @@ impl Loader {
     }
 
     /// Loads a scene file, built-in name or model file on a thread of its own.
-    pub(crate) fn load(&mut self, reference: String, purpose: LoadPurpose) {
+    pub(crate) fn load(&mut self, reference: std::ffi::OsString, purpose: LoadPurpose) {
         if purpose == LoadPurpose::Open {
             self.opening = Some(PathBuf::from(&reference)).filter(|p| p.is_file());
             self.opens += 1;
@@ -99,7 +99,7 @@ impl Loader {
         std::thread::spawn(move || {
             let result = crate::guard::caught(|| Scene::load(&reference)).unwrap_or_else(|e| {
                 Err(crate::scene::SceneError::new(
-                    crate::scene::Location::file(&reference),
+                    crate::scene::Location::file(reference.to_string_lossy()),
                     e,
                 ))
             });
@@ -132,7 +132,7 @@ impl Loader {
     /// Starts a load for each change the watcher saw.
     pub(crate) fn poll(&mut self) {
         while let Ok((path, purpose)) = self.changed.try_recv() {
-            self.load(path.display().to_string(), purpose);
+            self.load(path.into_os_string(), purpose);
         }
     }
 
@@ -158,8 +158,9 @@ impl Loader {
 
 impl RaylabApp {
     /// Loads a scene file, built-in name or model file; it replaces the scene when loaded.
-    pub fn open_scene(&mut self, reference: &str) {
-        self.loader.load(reference.to_string(), LoadPurpose::Open);
+    pub fn open_scene(&mut self, reference: impl AsRef<std::ffi::OsStr>) {
+        self.loader
+            .load(reference.as_ref().to_os_string(), LoadPurpose::Open);
     }
 
     /// Takes the scenes that finished loading: a good one replaces the scene shown, a bad
@@ -202,6 +203,10 @@ impl RaylabApp {
             // A slide in presentation mode says what it is in its own title.
             if !(self.hall.presenting && slide.is_some()) {
                 self.toasts.info(format!("{verb} {}", scene.name));
+            }
+            // Shown as long as a failure: something the user's files lack.
+            for warning in &scene.warnings {
+                self.toasts.error(format!("Warning: {warning}"));
             }
             self.keep_side_a();
             self.instruments.inspection = None;

@@ -52,7 +52,7 @@ use view::ViewState;
 #[derive(Clone, Debug)]
 pub struct AppOptions {
     /// The scene to open (a file or built-in name); `None` reopens the last one.
-    pub scene: Option<String>,
+    pub scene: Option<std::ffi::OsString>,
     /// Where snapshots go (the pictures folder's `raylab` unless told; Save as… changes it,
     /// and the window remembers the folder where `persist` is on).
     pub snapshot_dir: PathBuf,
@@ -179,7 +179,7 @@ impl RaylabApp {
         let wanted = options
             .scene
             .clone()
-            .or_else(|| remembered.as_ref().map(|r| r.scene.clone()));
+            .or_else(|| remembered.as_ref().map(|r| r.scene.clone().into()));
         let scene = match wanted.as_deref().map(Scene::load) {
             Some(Ok(scene)) => scene,
             Some(Err(e)) => {

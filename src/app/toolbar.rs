@@ -283,7 +283,7 @@ impl RaylabApp {
             Choice::File(path) => {
                 self.dialog = None;
                 match purpose {
-                    Purpose::Open => self.open_scene(&path.display().to_string()),
+                    Purpose::Open => self.open_scene(&path),
                     Purpose::SaveAs => {
                         // Snapshots go where the user last saved from now on.
                         if self.report_save(&path)
@@ -308,7 +308,7 @@ impl RaylabApp {
         });
         for path in dropped {
             if crate::scene::opens(&path) {
-                self.open_scene(&path.display().to_string());
+                self.open_scene(&path);
             } else {
                 self.toasts.error(format!(
                     "{}: drop a scene (.toml) or a model (.obj, .gltf, .glb)",

@@ -10,7 +10,7 @@ use std::time::Instant;
 pub struct BenchArgs {
     /// A scene file or built-in name.
     #[arg(default_value = "default")]
-    scene: String,
+    scene: std::ffi::OsString,
     /// Image size.
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "960x540")]
     size: (u32, u32),
@@ -27,6 +27,7 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
     use std::sync::Arc;
     use std::time::Duration;
     let scene = Arc::new(Scene::load(&args.scene)?);
+    crate::cli::streams::warn(&scene);
     let (width, height) = args.size;
     let config = match args.threads {
         Some(t) => EngineConfig {

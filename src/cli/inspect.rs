@@ -25,7 +25,7 @@ pub struct SampleArgs {
 pub struct InspectArgs {
     /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
     #[arg(default_value = "default")]
-    scene: String,
+    scene: std::ffi::OsString,
     /// The pixel: X,Y from the top left of the image.
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pixel: (u32, u32),
@@ -65,10 +65,15 @@ pub struct Traced {
 
 /// Traces the sample `args` names of `pixel` in `scene` (a file or built-in name): the
 /// tree `inspect` prints and `section` draws.
-pub fn trace_pixel(scene: &str, args: &SampleArgs, (x, y): (u32, u32)) -> Result<Traced> {
+pub fn trace_pixel(
+    scene: &std::ffi::OsStr,
+    args: &SampleArgs,
+    (x, y): (u32, u32),
+) -> Result<Traced> {
     let SampleArgs { sample, size, set } = args;
     let sample = *sample;
     let scene = Scene::load(scene)?;
+    crate::cli::streams::warn(&scene);
     let mut params = scene.params.clone();
     params.set_all(set).context("--set")?;
     let (width, height) = size.unwrap_or((scene.width, scene.height));

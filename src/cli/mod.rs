@@ -6,4 +6,5 @@ pub mod output;
 pub mod progress;
 pub mod render;
 pub mod section;
+pub mod streams;
 pub mod sweep;

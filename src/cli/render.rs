@@ -18,7 +18,7 @@ pub struct RenderArgs {
     /// A scene file (.toml), a model shown on a floor under a light (.obj, .gltf, .glb)
     /// or the name of a built-in scene [default: the default scene, or the scene of
     /// --params].
-    scene: Option<String>,
+    scene: Option<std::ffi::OsString>,
     /// The image to write: .png (8-bit sRGB) or .exr (linear radiance) [default:
     /// SCENE.png, or slide-N.png, in the current folder; SCENE-2.png and so on if taken:
     /// a default never replaces a file].
@@ -82,10 +82,13 @@ impl Job {
             None => {
                 let scene_ref = match (&args.scene, &sidecar) {
                     (Some(s), _) => s.clone(),
-                    (None, Some(sc)) => sc.scene.clone(),
-                    (None, None) => BUILTIN_SCENES[0].name.to_string(),
+                    (None, Some(sc)) => sc.scene.clone().into(),
+                    (None, None) => BUILTIN_SCENES[0].name.into(),
                 };
                 let scene = Scene::load(&scene_ref)?;
+                if !args.quiet {
+                    crate::cli::streams::warn(&scene);
+                }
                 let params = match &sidecar {
                     Some(sc) => sc.params.clone(),
                     None => scene.params.clone(),
@@ -224,7 +227,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     }
     let Some(sidecar) = sidecar else {
         if !args.quiet {
-            eprintln!(
+            tell!(
                 "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
                 args.slide.unwrap_or(0),
                 output.display()
@@ -234,7 +237,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     };
     sidecar.write(&json).map_err(runtime)?;
     if !args.quiet {
-        eprintln!(
+        tell!(
             "{} wrote {}{replaced} and {}",
             summary(&job, &film, &stats, seconds),
             output.display(),

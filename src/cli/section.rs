@@ -12,7 +12,7 @@ use std::path::PathBuf;
 pub struct SectionArgs {
     /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
     #[arg(default_value = "default")]
-    scene: String,
+    scene: std::ffi::OsString,
     /// The pixel whose ray tree to draw, X,Y from the top left of the image.
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, required_unless_present = "angle")]
     pixel: Option<(u32, u32)>,

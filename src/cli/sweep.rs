@@ -13,7 +13,7 @@ use std::time::Instant;
 #[derive(clap::Args)]
 pub struct SweepArgs {
     /// A scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
-    scene: String,
+    scene: std::ffi::OsString,
     /// The parameter and its values, e.g. spp=1,4,16 or fresnel=schlick,exact.
     #[arg(long, value_name = "NAME=V1,V2,...")]
     param: String,
@@ -46,6 +46,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     let sweep = raylab::render::parse_sweep(&args.param).context("--param")?;
     let (name, values) = (&sweep.name, &sweep.values);
     let scene = Scene::load(&args.scene)?;
+    crate::cli::streams::warn(&scene);
     let mut params = scene.params.clone();
     if let Some(spp) = args.spp {
         params.set("spp", &spp.to_string()).context("--spp")?;
@@ -92,7 +93,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
         .with_context(|| format!("{}: cannot write the sweep", output.display()))
         .map_err(runtime)?;
     if !args.quiet {
-        eprintln!(
+        tell!(
             "{}: {} images of {w}x{h} across {name} in {:.2} s; wrote {}",
             scene.name,
             values.len(),

@@ -294,7 +294,7 @@ pub fn slide_setup(number: usize) -> Result<SlideSetup, SlideError> {
         .checked_sub(1)
         .and_then(|i| LECTURE.get(i))
         .ok_or(SlideError::NoSuchSlide(number, LECTURE.len()))?;
-    let scene = Scene::load(&slide.reference())?;
+    let scene = Scene::load(slide.reference())?;
     let params = slide.params_on(&scene.params)?;
     Ok(SlideSetup {
         slide,
@@ -359,7 +359,7 @@ mod tests {
                 "slide `{t}`: no built-in scene `{}`",
                 s.scene
             );
-            let scene = Scene::load(&s.reference()).unwrap();
+            let scene = Scene::load(s.reference()).unwrap();
             let set = s
                 .set_on(&scene.params)
                 .unwrap_or_else(|e| panic!("slide `{t}`: {e}"));
@@ -422,7 +422,7 @@ mod tests {
             .iter()
             .find(|s| s.title == "Pruning the ray tree")
             .unwrap();
-        let scene = Scene::load(&slide.reference()).unwrap();
+        let scene = Scene::load(slide.reference()).unwrap();
         let at = |max_depth| {
             let params = Params {
                 max_depth,
@@ -494,7 +494,7 @@ mod tests {
     #[test]
     fn the_ray_tree_caption_names_what_the_inspected_pixel_meets() {
         let slide = slide_titled("The ray tree");
-        let scene = Scene::load(&slide.reference()).unwrap();
+        let scene = Scene::load(slide.reference()).unwrap();
         let caption = |inspected| {
             slide.caption(&Shown {
                 params: &scene.params,

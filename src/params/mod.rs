@@ -66,17 +66,21 @@ pub struct Params {
     pub seed: u64,
     /// Index of refraction of every dielectric and glazed material (except those with
     /// `ior_fixed`); `None` keeps each material's own. 1.0 to 3.0.
+    #[serde(deserialize_with = "real::optional")]
     pub ior: Option<f32>,
     /// Abbe number V_d of every dielectric (except those with `ior_fixed`): 0 is no
     /// dispersion; `None` keeps each material's own. 0 to 100.
+    #[serde(deserialize_with = "real::optional")]
     pub abbe: Option<f32>,
     /// Reflectance model of every dielectric and glazed material; `None` keeps each
     /// material's own.
     pub fresnel: Option<FresnelMode>,
     /// The constant reflectance k of the `constant` Fresnel mode; `None` keeps each
     /// material's own.
+    #[serde(deserialize_with = "real::optional")]
     pub constant_reflectance: Option<f32>,
     /// Multiplies the absorption coefficient σ of every dielectric (0: all clear).
+    #[serde(deserialize_with = "real::required")]
     pub absorption_scale: f32,
     /// Split (the full ray tree) or stochastic (one branch per hit).
     pub tree: TreeMode,
@@ -87,38 +91,82 @@ pub struct Params {
     pub max_depth: u32,
     /// Pruning by attenuation: a branch whose path weight (the product of the
     /// reflectances above it, largest channel) falls below this is not traced.
+    #[serde(deserialize_with = "real::required")]
     pub min_weight: f32,
     /// Scale of every area light (1: as in the scene; 0: a point light, hard shadows).
     /// Each light keeps its power: a larger light is dimmer per unit area.
+    #[serde(deserialize_with = "real::required")]
     pub light_size: f32,
     /// Phong exponent of every glossy material: higher is sharper; `None` keeps each
     /// material's own.
+    #[serde(deserialize_with = "real::optional")]
     pub phong_exponent: Option<f32>,
     /// Lens radius of the thin-lens camera, in scene units; 0 is a pinhole.
+    #[serde(deserialize_with = "real::required")]
     pub aperture: f32,
     /// Distance from the lens to the plane in focus; `None` focuses on the camera's
     /// `look_at` point.
+    #[serde(deserialize_with = "real::optional")]
     pub focus_distance: Option<f32>,
     /// When the shutter opens, in frame time (objects move over the frame, time 0 to 1).
+    #[serde(deserialize_with = "real::required")]
     pub shutter_open: f32,
     /// How long the shutter stays open, in frame time; 0 freezes motion.
+    #[serde(deserialize_with = "real::required")]
     pub shutter: f32,
     /// A linear polariser in front of the lens, its transmission axis at this angle
     /// (degrees) from the image's horizontal; `None`: no polariser. 0 to 180.
     #[serde(with = "polarizer_value")]
     pub polarizer: Option<f32>,
     /// Display exposure in stops: pixel values are scaled by 2^exposure before display.
+    #[serde(deserialize_with = "real::required")]
     pub exposure: f32,
+}
+
+/// Real parameters as read from any file or option: a number an f32 holds. A number
+/// beyond f32's range (`1e39`) would otherwise become infinity silently, pass the range
+/// checks (which see it written back as `null`) and render something else than was asked.
+mod real {
+    use serde::{Deserialize, Deserializer};
+
+    /// `x` as an f32, if it is finite there.
+    pub fn narrow<E: serde::de::Error>(x: f64) -> Result<f32, E> {
+        let narrow = x as f32;
+        if narrow.is_finite() {
+            Ok(narrow)
+        } else {
+            Err(E::custom(format!(
+                "must be a finite number of at most {:e} in size, got {x:e}",
+                f32::MAX
+            )))
+        }
+    }
+
+    pub fn required<'de, D: Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+        narrow(f64::deserialize(d)?)
+    }
+
+    pub fn optional<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
+        Option::<f64>::deserialize(d)?.map(narrow).transpose()
+    }
 }
 
 /// `polarizer` in files and on the command line: `"none"` or an angle.
 mod polarizer_value {
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    #[derive(Serialize, Deserialize)]
+    // Written as f32 (its shortest form), read as f64 (checked as every real is).
+    #[derive(Serialize)]
     #[serde(untagged)]
     enum Value {
         Angle(f32),
+        Word(String),
+    }
+
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Read {
+        Angle(f64),
         Word(String),
     }
 
@@ -131,11 +179,11 @@ mod polarizer_value {
     }
 
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
-        match Option::<Value>::deserialize(d)? {
-            Some(Value::Angle(a)) => Ok(Some(a)),
-            Some(Value::Word(w)) if w == "none" => Ok(None),
+        match Option::<Read>::deserialize(d)? {
+            Some(Read::Angle(a)) => super::real::narrow(a).map(Some),
+            Some(Read::Word(w)) if w == "none" => Ok(None),
             None => Ok(None),
-            Some(Value::Word(w)) => Err(serde::de::Error::custom(format!(
+            Some(Read::Word(w)) => Err(serde::de::Error::custom(format!(
                 "must be none or an angle in degrees, got \"{w}\""
             ))),
         }
@@ -247,29 +295,47 @@ impl Params {
         Ok(())
     }
 
-    /// These parameters with `values` set, checked once all are in place.
+    /// The defaults with every parameter of `given` (a sidecar's `params` object) set, each
+    /// checked as `--set` checks it: a value out of range or beyond f32 is named by its
+    /// parameter, with the table's range.
+    pub fn from_json(
+        given: &serde_json::Map<String, serde_json::Value>,
+    ) -> Result<Params, ParamError> {
+        Params::default().with_values(given.iter().map(|(k, v)| (k.as_str(), v.clone())))
+    }
+
+    /// These parameters with `values` set, checked once all are in place. Each value is
+    /// checked against its own entry in the table first, so an error names the parameter
+    /// whose value it is, whatever else is set with it.
     fn with_values<'n>(
         &self,
         values: impl IntoIterator<Item = (&'n str, serde_json::Value)>,
     ) -> Result<Params, ParamError> {
         let mut map = self.to_map();
-        let mut last = String::new();
         for (name, value) in values {
-            match map.get_mut(name) {
-                Some(slot) => *slot = value,
-                None => {
-                    return Err(ParamError::Unknown {
-                        name: name.to_string(),
-                        known: Params::names().join(", "),
-                    });
-                }
-            }
-            last = name.to_string();
+            let (Some(slot), Some(spec)) = (map.get_mut(name), spec(name)) else {
+                return Err(ParamError::Unknown {
+                    name: name.to_string(),
+                    known: Params::names().join(", "),
+                });
+            };
+            let invalid = |message| ParamError::Invalid {
+                name: name.to_string(),
+                message,
+            };
+            spec.check(&value).map_err(invalid)?;
+            // Through the field's own type: a value the table allows but the field cannot
+            // hold (`null` for a parameter the scene has no value of) is refused here.
+            let mut alone = serde_json::Map::new();
+            alone.insert(name.to_string(), value.clone());
+            serde_json::from_value::<Params>(serde_json::Value::Object(alone))
+                .map_err(|e| invalid(e.to_string()))?;
+            *slot = value;
         }
         let updated: Params =
             serde_json::from_value(serde_json::Value::Object(map)).map_err(|e| {
                 ParamError::Invalid {
-                    name: last,
+                    name: "params".into(),
                     message: e.to_string(),
                 }
             })?;

@@ -515,7 +515,9 @@ impl Spec {
                 max,
                 open_min: true,
             } => format!("greater than {min} and at most {max}{unit}"),
-            Kind::Count { max, min } if max == u64::MAX => format!("at least {min}"),
+            Kind::Count { max, min } if max == u64::MAX => {
+                format!("a whole number from {min} to {max}")
+            }
             Kind::Count { min, max } => format!("between {min} and {max}{unit}"),
             Kind::Number { min, max, .. } => format!("between {min} and {max}{unit}"),
             Kind::Choice(choices) => words(choices),

@@ -179,15 +179,14 @@ impl Sidecar {
             path: name.clone(),
             error,
         })?;
-        let mut sidecar: Sidecar =
-            serde_json::from_str(&text).map_err(|e| SidecarError::Parse {
-                path: name.clone(),
-                line: e.line(),
-                column: e.column(),
-                message: crate::scene::one_line(
-                    e.to_string().split(" at line").next().unwrap_or_default(),
-                ),
-            })?;
+        let parse = |e: serde_json::Error| SidecarError::Parse {
+            path: name.clone(),
+            line: e.line(),
+            column: e.column(),
+            message: crate::scene::one_line(
+                e.to_string().split(" at line").next().unwrap_or_default(),
+            ),
+        };
         // Where a field is written, for a message that names its line and column.
         let at = |key: &str, message: String| match text.find(&format!("\"{key}\"")) {
             Some(offset) => {
@@ -204,13 +203,19 @@ impl Sidecar {
                 message,
             },
         };
-        sidecar.params.validate().map_err(|error| {
-            let key = match &error {
-                ParamError::Invalid { name, .. } | ParamError::Unknown { name, .. } => name,
-                ParamError::Syntax(_) => "params",
-            };
-            at(key, error.to_string())
-        })?;
+        // The parameters first, each as `--set` checks it, so that an error names the
+        // parameter and its range (a typed read would only say where it stopped).
+        let raw: serde_json::Value = serde_json::from_str(&text).map_err(parse)?;
+        if let Some(serde_json::Value::Object(given)) = raw.get("params") {
+            Params::from_json(given).map_err(|error| {
+                let key = match &error {
+                    ParamError::Invalid { name, .. } | ParamError::Unknown { name, .. } => name,
+                    ParamError::Syntax(_) => "params",
+                };
+                at(key, error.to_string())
+            })?;
+        }
+        let mut sidecar: Sidecar = serde_json::from_str(&text).map_err(parse)?;
         sidecar.check().map_err(|(key, message)| at(key, message))?;
         // A scene path relative to the sidecar's folder (a bare built-in name stays).
         if let Some(folder) = path.parent() {

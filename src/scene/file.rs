@@ -3,7 +3,7 @@
 //! Numbers are checked as they are read (finite, in range), so that serde's error carries
 //! the span of the offending value and the message can name its line and column.
 
-use super::materials::MaterialDef;
+use super::materials::RawMaterial;
 use super::objects::{BoxDef, MeshDef, Objects, PlaneDef, QuadDef, SphereDef};
 use super::values::{Dir, Ior, Length, NonNegative, Pixels, Positive, Rgb, V3};
 use super::{Location, Scene, SceneDesc, SceneError, SceneSource};
@@ -43,6 +43,41 @@ impl Assets for FsAssets {
     }
     fn label(&self, rel: &str) -> String {
         self.0.join(rel).display().to_string()
+    }
+}
+
+/// A model opened alone: `name` in the made-up scene around it is the file at `model`
+/// (whatever characters its path holds), and the files it names lie beside it.
+pub(crate) struct ModelAssets {
+    pub model: PathBuf,
+    pub name: String,
+}
+
+impl ModelAssets {
+    fn beside(&self) -> FsAssets {
+        FsAssets(
+            self.model
+                .parent()
+                .map_or_else(PathBuf::new, Path::to_path_buf),
+        )
+    }
+}
+
+impl Assets for ModelAssets {
+    fn read(&self, rel: &str) -> Result<Vec<u8>, String> {
+        if rel == self.name {
+            crate::scene::input::read_limited(&self.model, crate::scene::input::MAX_MESH_BYTES)
+                .map_err(|e| e.to_string())
+        } else {
+            self.beside().read(rel)
+        }
+    }
+    fn label(&self, rel: &str) -> String {
+        if rel == self.name {
+            self.model.display().to_string()
+        } else {
+            self.beside().label(rel)
+        }
     }
 }
 
@@ -90,7 +125,7 @@ struct SceneFile {
     camera: Spanned<CameraDef>,
     background: Option<Spanned<BackgroundDef>>,
     #[serde(default)]
-    material: BTreeMap<String, MaterialDef>,
+    material: BTreeMap<String, RawMaterial>,
     #[serde(default)]
     sphere: Vec<Spanned<SphereDef>>,
     #[serde(default)]
@@ -205,7 +240,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         Some(span) => src.error(span, e.message()),
         None => SceneError::new(Location::file(file), e.message()),
     })?;
-    let mut objects = Objects::new(&src, f.material);
+    let mut objects = Objects::new(&src, f.material)?;
     objects.spheres(f.sphere)?;
     objects.planes(f.plane)?;
     objects.quads(f.quad)?;
@@ -241,6 +276,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         ambient: f.ambient.map_or(Color::ZERO, |a| a.0),
         background: background(&src, f.background)?,
         medium_ior: f.medium_ior.map_or(1.0, |m| m.0),
+        warnings: built.warnings,
     })
 }
 

@@ -13,6 +13,14 @@ use base64::Engine as _;
 use glam::{Mat4, Vec2};
 use std::borrow::Cow;
 
+/// The extensions a file may require: those whose data raylab reads (the rest are refused
+/// by name).
+const READ_EXTENSIONS: [&str; 3] = [
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_materials_emissive_strength",
+];
+
 /// Parses a glTF file: `data` is the `.gltf` JSON or the `.glb` container; `read_buffer`
 /// fetches a buffer the file names by a relative URI; `file` names it in messages.
 pub fn load_gltf(
@@ -21,7 +29,30 @@ pub fn load_gltf(
     read_buffer: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<Vec<ObjPart>, SceneError> {
     let error = |message: String| SceneError::new(Location::file(file), message);
-    let gltf = gltf::Gltf::from_slice(data).map_err(|e| gltf_error(file, e))?;
+    // A .gltf saved by a Windows editor may start with a byte-order mark.
+    let data = super::input::without_bom(data);
+    let unchecked =
+        gltf::Gltf::from_slice_without_validation(data).map_err(|e| gltf_error(file, e))?;
+    // Before validating: a compressed mesh has no plain data, and validation would call
+    // it missing rather than say why.
+    if let Some(extension) = unchecked
+        .extensions_required()
+        .find(|e| !READ_EXTENSIONS.contains(e))
+    {
+        let what = match extension {
+            "KHR_draco_mesh_compression" => " (Draco-compressed meshes)",
+            "EXT_meshopt_compression" => " (meshoptimizer-compressed buffers)",
+            "KHR_mesh_quantization" => " (quantized vertex attributes)",
+            _ => "",
+        };
+        return Err(error(format!(
+            "needs the glTF extension {extension}{what}, which raylab does not read; export the model without it"
+        )));
+    }
+    let gltf::Gltf { document, blob } = unchecked;
+    let document =
+        gltf::Document::from_json(document.into_json()).map_err(|e| gltf_error(file, e))?;
+    let gltf = gltf::Gltf { document, blob };
     // The .glb's own chunk is borrowed, not copied: it may be most of a large file.
     let mut buffers: Vec<Cow<[u8]>> = Vec::new();
     for buffer in gltf.buffers() {

@@ -46,10 +46,26 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// The text of the regular file at `path`, at most [`MAX_TEXT_BYTES`] of UTF-8.
+/// The text of the regular file at `path`, at most [`MAX_TEXT_BYTES`] of UTF-8, without a
+/// byte-order mark (which Windows editors write and which no format here allows).
 pub fn read_text(path: &Path) -> std::io::Result<String> {
-    String::from_utf8(read_limited(path, MAX_TEXT_BYTES)?)
-        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+    let text = String::from_utf8(read_limited(path, MAX_TEXT_BYTES)?)
+        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))?;
+    Ok(match text.strip_prefix(BYTE_ORDER_MARK) {
+        Some(rest) => rest.to_string(),
+        None => text,
+    })
+}
+
+/// UTF-8's byte-order mark, as text.
+const BYTE_ORDER_MARK: &str = "\u{feff}";
+
+/// `bytes` without a leading UTF-8 byte-order mark (for the text formats read as bytes:
+/// OBJ, MTL, glTF JSON).
+pub fn without_bom(bytes: &[u8]) -> &[u8] {
+    bytes
+        .strip_prefix(BYTE_ORDER_MARK.as_bytes())
+        .unwrap_or(bytes)
 }
 
 #[cfg(test)]

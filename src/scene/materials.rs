@@ -1,5 +1,7 @@
 //! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
 
+use super::SceneError;
+use super::file::Source;
 use super::values::{
     Abbe, CheckerScale, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit,
 };
@@ -9,7 +11,57 @@ use crate::material::{
 use crate::math::Color;
 use crate::optics::FresnelMode;
 use serde::Deserialize;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
+use toml::Spanned;
+
+/// A `[material.NAME]` table as written: each key and value with its place in the file.
+pub(super) type RawMaterial = Spanned<BTreeMap<Spanned<String>, Spanned<toml::Value>>>;
+
+/// The material a table defines, an error at the value (or key) it is about. serde reads
+/// a table tagged by `type` only after buffering it, which forgets where each value was
+/// written; so the table is read whole, and an error is then placed at the `type` when it
+/// is unknown, at the one key whose value alone (with the `type`) gives the same error,
+/// or at the table's header (a missing key, or keys that clash).
+pub(super) fn material_def(src: &Source, raw: RawMaterial) -> Result<MaterialDef, SceneError> {
+    type Entry<'a> = (&'a Spanned<String>, &'a Spanned<toml::Value>);
+    let read = |entries: &mut dyn Iterator<Item = Entry>| {
+        let table: toml::Table = entries
+            .map(|(k, v)| (k.get_ref().clone(), v.get_ref().clone()))
+            .collect();
+        MaterialDef::deserialize(toml::Value::Table(table)).map_err(|e| e.message().to_string())
+    };
+    let message = match read(&mut raw.get_ref().iter()) {
+        Ok(def) => return Ok(def),
+        Err(message) => message,
+    };
+    let is_type = |k: &Spanned<String>| k.get_ref() == "type";
+    let same = |keep: &dyn Fn(&Spanned<String>) -> bool| {
+        read(&mut raw.get_ref().iter().filter(|(k, _)| keep(k)))
+            .err()
+            .as_ref()
+            == Some(&message)
+    };
+    let kind = raw.get_ref().iter().find(|(k, _)| is_type(k));
+    let span = if same(&is_type) {
+        // The `type` alone is wrong (unknown), or the table lacks what it needs.
+        match kind {
+            Some((_, kind)) if message.starts_with("unknown variant") => kind.span(),
+            _ => raw.span(),
+        }
+    } else {
+        let culprit = raw
+            .get_ref()
+            .iter()
+            .filter(|(k, _)| !is_type(k))
+            .find(|(key, _)| same(&|k| is_type(k) || k == *key));
+        match culprit {
+            Some((key, _)) if message.starts_with("unknown field") => key.span(),
+            Some((_, value)) => value.span(),
+            None => raw.span(),
+        }
+    };
+    Err(src.error(span, message))
+}
 
 #[derive(Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]

@@ -89,6 +89,9 @@ pub struct SceneDesc {
     pub background: Background,
     /// Index of refraction of the medium around everything (air 1.0, water 1.33).
     pub medium_ior: f32,
+    /// What was missing from its files but not fatal (a material library that is not
+    /// there), one line each: the CLI and the window say them.
+    pub warnings: Vec<String>,
 }
 
 impl SceneDesc {
@@ -108,6 +111,7 @@ impl SceneDesc {
             ambient: Color::ZERO,
             background: crate::light::Background::Constant(Color::ZERO),
             medium_ior: 1.0,
+            warnings: Vec::new(),
         }
     }
 
@@ -175,6 +179,9 @@ pub struct Scene {
     pub background: Background,
     /// Index of refraction of the surrounding medium.
     pub medium_ior: f32,
+    /// What was missing from its files but not fatal, one line each (see
+    /// [`SceneDesc::warnings`]).
+    pub warnings: Vec<String>,
     accel: Accel,
     // Whether each object's material reads surface coordinates (a texture).
     object_uses_uv: Vec<bool>,
@@ -216,28 +223,33 @@ impl Scene {
             ambient: desc.ambient,
             background: desc.background,
             medium_ior: desc.medium_ior,
+            warnings: desc.warnings,
             accel,
         }
     }
 
     /// Loads a built-in scene by name (`default` or `builtin:default`), or a scene file by
-    /// path. A bare name that is both a built-in and an existing file means the file.
-    pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
-        if let Some(name) = name_or_path.strip_prefix("builtin:") {
+    /// path (any path the system allows, UTF-8 or not). A bare name that is both a
+    /// built-in and an existing file means the file.
+    pub fn load(name_or_path: impl AsRef<std::ffi::OsStr>) -> Result<Scene, SceneError> {
+        let given = name_or_path.as_ref();
+        let text = given.to_str();
+        if let Some(name) = text.and_then(|t| t.strip_prefix("builtin:")) {
             return match builtin(name) {
                 Some(b) => b.load(),
-                None => Err(unknown_scene(name_or_path)),
+                None => Err(unknown_scene(name)),
             };
         }
-        let path = Path::new(name_or_path);
+        let path = Path::new(given);
+        let named = text.and_then(builtin);
         // Anything there but a built-in's name is read as a file, which refuses what is
         // not a regular file (a folder, a device, a pipe) with a message.
-        if path.is_file() || (path.exists() && builtin(name_or_path).is_none()) {
+        if path.is_file() || (path.exists() && named.is_none()) {
             return Scene::load_file(path);
         }
-        match builtin(name_or_path) {
+        match named {
             Some(b) => b.load(),
-            None => Err(unknown_scene(name_or_path)),
+            None => Err(unknown_scene(&given.to_string_lossy())),
         }
     }
 
@@ -265,11 +277,23 @@ impl Scene {
         let label = path.display().to_string();
         // The mesh goes through the scene format, so that its errors and .mtl materials are
         // those of any scene; the rest is added around it.
-        let file = toml::Value::String(full.display().to_string()).to_string();
+        let assets = file::ModelAssets {
+            name: format!("model.{}", input::extension(path).unwrap_or_default()),
+            model: full.clone(),
+        };
         let probe = format!(
-            "[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[mesh]]\nfile = {file}\n"
+            "[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n[[mesh]]\nfile = \"{}\"\n",
+            assets.name
         );
-        let mut desc = file::parse(&probe, &label, &file::FsAssets(PathBuf::from("/")))?;
+        // An error placed in that made-up text is about the model as a whole: it names
+        // the model's file, with no line of a text the user never wrote.
+        const PROBE: &str = "\0model";
+        let mut desc = file::parse(&probe, PROBE, &assets).map_err(|mut e| {
+            if e.location.file == PROBE {
+                e.location = Location::file(&label);
+            }
+            e
+        })?;
         let (lo, hi) = desc
             .objects
             .iter()

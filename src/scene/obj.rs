@@ -22,13 +22,24 @@ pub struct ObjPart {
     pub material: Option<(String, Material)>,
 }
 
+/// A model file's objects, and what the user should know of how it was read.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// Its objects.
+    pub parts: Vec<ObjPart>,
+    /// What was missing but not fatal (a material library that is not there), one line
+    /// each, naming the file.
+    pub warnings: Vec<String>,
+}
+
 /// Parses OBJ text. `read_mtl` fetches a material library named by `mtllib`;
 /// `file` names the OBJ in error messages.
 pub fn load_obj(
     data: &[u8],
     file: &str,
     read_mtl: &dyn Fn(&str) -> Option<Vec<u8>>,
-) -> Result<Vec<ObjPart>, SceneError> {
+) -> Result<Model, SceneError> {
+    let data = super::input::without_bom(data);
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -42,6 +53,7 @@ pub fn load_obj(
     };
     let failed_mtl = RefCell::new(None::<String>);
     let bad_mtl = RefCell::new(None::<SceneError>);
+    let read_mtl_label = RefCell::new(None::<String>);
     let mtl_label = |name: &str| Path::new(file).with_file_name(name).display().to_string();
     // tobj panics on some malformed input: it is given only text checked here, and any
     // panic left is caught and reported as an error in the file.
@@ -50,7 +62,11 @@ pub fn load_obj(
             let name = p.to_string_lossy().into_owned();
             match read_mtl(&name) {
                 Some(bytes) => match check_mtl(&bytes, &mtl_label(&name)) {
-                    Ok(()) => tobj::load_mtl_buf(&mut &bytes[..]),
+                    Ok(()) => {
+                        // The library a parse error that tobj reports alone is in.
+                        *read_mtl_label.borrow_mut() = Some(mtl_label(&name));
+                        tobj::load_mtl_buf(&mut super::input::without_bom(&bytes))
+                    }
                     Err(e) => {
                         bad_mtl.borrow_mut().get_or_insert(e);
                         Err(tobj::LoadError::MaterialParseError)
@@ -78,14 +94,27 @@ pub fn load_obj(
     };
     // A missing or broken .mtl is not fatal: the scene may give the material, and
     // otherwise the default one is used; but a .mtl that exists and is broken is an error.
+    let mut warnings = Vec::new();
     let materials = match (materials, failed_mtl.into_inner()) {
         (Ok(m), _) => m,
-        (Err(_), Some(_missing)) => Vec::new(),
-        (Err(e), None) => {
-            return Err(SceneError::new(
-                Location::file(file),
-                format!("its material library is malformed ({e})"),
+        (Err(_), Some(missing)) => {
+            warnings.push(format!(
+                "{file}: its material library `{missing}` cannot be read (looked for {}); its objects get the scene's or the default material",
+                mtl_label(&missing)
             ));
+            Vec::new()
+        }
+        (Err(e), None) => {
+            return Err(match read_mtl_label.into_inner() {
+                Some(mtl) => SceneError::new(
+                    Location::file(mtl),
+                    format!("malformed material library ({e})"),
+                ),
+                None => SceneError::new(
+                    Location::file(file),
+                    format!("its material library is malformed ({e})"),
+                ),
+            });
         }
     };
     let mut parts = Vec::new();
@@ -143,7 +172,7 @@ pub fn load_obj(
             "the OBJ file has no faces",
         ));
     }
-    Ok(parts)
+    Ok(Model { parts, warnings })
 }
 
 fn triples(v: &[f32]) -> Vec<Vec3> {
@@ -308,25 +337,53 @@ fn find_bad_vertex(text: &str) -> Option<(usize, usize, String)> {
     None
 }
 
-/// Checks what tobj does not: a colour line (`Ka`, `Kd`, `Ks`, `Ke`) needs three numbers,
-/// and tobj 4 panics on fewer. `file` names the library in the error.
+/// Checks what tobj does not, so that a bad line is named by its line and column rather
+/// than as "malformed": a colour (`Ka`, `Kd`, `Ks`, `Ke`, `Tf`) needs three numbers (tobj 4
+/// panics on fewer), and every number tobj reads must be a finite f32 (`Ni 1e39` would
+/// otherwise become an infinite index). `file` names the library in the error.
 fn check_mtl(bytes: &[u8], file: &str) -> Result<(), SceneError> {
     let text = String::from_utf8_lossy(bytes);
     for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next() else {
-            continue;
-        };
-        let numbers = words.take(3).count();
-        if numbers < 3 {
-            let col = line.find(key).map_or(1, |c| c + 1);
-            return Err(SceneError::new(
+        let at = |col: usize, message: String| {
+            SceneError::new(
                 Location {
                     file: file.to_string(),
                     line_col: Some((n + 1, Some(col))),
                 },
-                format!("`{key}` needs three numbers (r g b), got {numbers}"),
+                message,
+            )
+        };
+        let mut words = line.split_whitespace();
+        let Some(key) = words.next() else { continue };
+        let count = match key {
+            "Ka" | "Kd" | "Ks" | "Ke" | "Tf" => 3,
+            "Ns" | "Ni" | "d" | "Tr" | "Pm" | "Pr" => 1,
+            _ => continue,
+        };
+        // Each word is a slice of `line`: its column is where it starts.
+        let col_of = |word: &str| {
+            let offset = word.as_ptr() as usize - line.as_ptr() as usize;
+            offset + 1
+        };
+        let numbers: Vec<&str> = words.take(count).collect();
+        if numbers.len() < count {
+            let what = if count == 3 {
+                "three numbers (r g b)"
+            } else {
+                "a number"
+            };
+            return Err(at(
+                col_of(key),
+                format!("`{key}` needs {what}, got {}", numbers.len()),
             ));
+        }
+        for word in numbers {
+            if !word.parse::<f32>().is_ok_and(f32::is_finite) {
+                return Err(at(
+                    col_of(word),
+                    format!("`{key}`: `{word}` is not a finite number"),
+                ));
+            }
         }
     }
     Ok(())
@@ -387,7 +444,9 @@ mod tests {
         let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\
                     usemtl Brushed_Gold\nf 1 2 3\nusemtl chrome\nf 1 2 3\n\
                     usemtl copper_paint\nf 1 2 3\n";
-        let parts = load_obj(obj, "m.obj", &|_: &str| Some(mtl.to_vec())).unwrap();
+        let parts = load_obj(obj, "m.obj", &|_: &str| Some(mtl.to_vec()))
+            .unwrap()
+            .parts;
         let kinds: Vec<_> = parts
             .iter()
             .map(|p| p.material.as_ref().map(|(_, m)| m.kind()))
@@ -407,7 +466,7 @@ mod tests {
     #[test]
     fn loads_a_quad_as_two_triangles() {
         let obj = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
-        let parts = load_obj(obj, "q.obj", &no_mtl).unwrap();
+        let parts = load_obj(obj, "q.obj", &no_mtl).unwrap().parts;
         assert_eq!(parts.len(), 1);
         assert_eq!(parts[0].mesh.triangle_count(), 2);
         assert!(parts[0].material.is_none());
@@ -434,7 +493,7 @@ mod tests {
         let mtl = |name: &str| {
             (name == "m.mtl").then(|| b"newmtl shiny\nKs 0.8 0.7 0.6\nillum 3\n".to_vec())
         };
-        let parts = load_obj(obj, "m.obj", &mtl).unwrap();
+        let parts = load_obj(obj, "m.obj", &mtl).unwrap().parts;
         let (name, m) = parts[0].material.clone().unwrap();
         assert_eq!(name, "shiny");
         assert!(matches!(m, Material::Mirror(_)));

@@ -3,7 +3,7 @@
 
 use super::file::{Assets, Source};
 use super::gltf::load_gltf;
-use super::materials::{MaterialDef, MaterialTable, default_material, material};
+use super::materials::{MaterialTable, RawMaterial, default_material, material, material_def};
 use super::obj::{ObjPart, load_obj};
 use super::values::{Dir, Length, V3};
 use super::{Material, Object, SceneError};
@@ -99,12 +99,14 @@ pub(super) struct Objects<'s> {
     materials: MaterialTable,
     objects: Vec<Object>,
     spans: Vec<Range<usize>>,
+    warnings: Vec<String>,
 }
 
 /// A file's materials (by name) and objects, built.
 pub(super) struct Built {
     pub(super) materials: Vec<(String, Material)>,
     pub(super) objects: Vec<Object>,
+    pub(super) warnings: Vec<String>,
 }
 
 /// `name`, or the kind and number of the `n`-th (from 0) object of its kind.
@@ -114,17 +116,21 @@ fn name_or(name: Option<String>, kind: &str, n: usize) -> String {
 
 impl<'s> Objects<'s> {
     /// No objects yet, the file's materials defined.
-    pub(super) fn new(src: &'s Source<'s>, defs: BTreeMap<String, MaterialDef>) -> Objects<'s> {
+    pub(super) fn new(
+        src: &'s Source<'s>,
+        defs: BTreeMap<String, RawMaterial>,
+    ) -> Result<Objects<'s>, SceneError> {
         let mut materials = MaterialTable::default();
-        for (name, def) in defs {
-            materials.add(name, material(def));
+        for (name, raw) in defs {
+            materials.add(name, material(material_def(src, raw)?));
         }
-        Objects {
+        Ok(Objects {
             src,
             materials,
             objects: Vec::new(),
             spans: Vec::new(),
-        }
+            warnings: Vec::new(),
+        })
     }
 
     /// The material an object names (the default one, if none).
@@ -269,7 +275,7 @@ impl<'s> Objects<'s> {
     }
 
     /// The parts of the model file a mesh names: OBJ, or glTF by its extension.
-    fn model(&self, m: &MeshDef, assets: &dyn Assets) -> Result<Vec<ObjPart>, SceneError> {
+    fn model(&mut self, m: &MeshDef, assets: &dyn Assets) -> Result<Vec<ObjPart>, SceneError> {
         let rel = m.file.get_ref().as_str();
         let gltf = match super::input::extension(Path::new(rel)).as_deref() {
             Some("gltf" | "glb") => true,
@@ -297,7 +303,9 @@ impl<'s> Objects<'s> {
         if gltf {
             load_gltf(&bytes, &label, &beside)
         } else {
-            load_obj(&bytes, &label, &|name| beside(name).ok())
+            let model = load_obj(&bytes, &label, &|name| beside(name).ok())?;
+            self.warnings.extend(model.warnings);
+            Ok(model.parts)
         }
     }
 
@@ -318,6 +326,7 @@ impl<'s> Objects<'s> {
         Ok(Built {
             materials: self.materials.list,
             objects: self.objects,
+            warnings: self.warnings,
         })
     }
 }

@@ -18,7 +18,7 @@ impl TryFrom<f64> for Num {
         if f.is_finite() {
             Ok(Num(f))
         } else {
-            Err(format!("{v} is not a finite number"))
+            Err(format!("{} is not a finite number", Shown(v)))
         }
     }
 }

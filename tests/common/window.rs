@@ -17,7 +17,7 @@ pub fn app(scene: &str, snapshots: &Path) -> Harness<'static, RaylabApp> {
 /// A window of `size` (width, height) on `scene`, its snapshots going to `snapshots`.
 pub fn app_sized(scene: &str, snapshots: &Path, size: (f32, f32)) -> Harness<'static, RaylabApp> {
     let options = AppOptions {
-        scene: Some(scene.to_string()),
+        scene: Some(scene.into()),
         snapshot_dir: snapshots.to_path_buf(),
         threads: Some(1),
         persist: false,

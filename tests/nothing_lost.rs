@@ -1,0 +1,283 @@
+//! Nothing the user made is lost, and nothing slips past a check: numbers beyond f32,
+//! writes cut short, outputs that cannot be written, full streams (issue 30).
+
+mod common;
+
+use common::{fails, raylab, stderr};
+use raylab::params::{Kind, TABLE};
+
+/// Every real parameter, with a value beyond f32's range in its own sign.
+fn overflowing() -> Vec<(&'static str, &'static str)> {
+    TABLE
+        .iter()
+        .filter(|s| matches!(s.kind, Kind::Number { .. } | Kind::WordOrNumber { .. }))
+        .map(|s| {
+            let negative = matches!(s.kind, Kind::Number { min, .. } if min < 0.0);
+            (s.name, if negative { "-1e39" } else { "1e39" })
+        })
+        .collect()
+}
+
+#[test]
+fn numbers_beyond_f32_are_refused_from_every_source_naming_it() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let reals = overflowing();
+    assert_eq!(reals.len(), 13, "the real parameters: {reals:?}");
+    let o = raylab(
+        &[
+            "render", "-o", "good.png", "--size", "8x8", "--spp", "1", "-q",
+        ],
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let good = std::fs::read_to_string(dir.join("good.png.json")).unwrap();
+    for (name, value) in reals {
+        // On the command line: the option and the parameter whose value it is, even with
+        // a good value set beside it.
+        let set = format!("{name}={value}");
+        let err = fails(
+            &[
+                "render", "-o", "x.png", "--size", "8x8", "--set", "spp=2", "--set", &set,
+            ],
+            dir,
+            &format!("--set: bad value for `{name}`: must be"),
+        );
+        assert!(err.contains("1e39") || err.contains("1e+39"), "{err}");
+        // In a scene's [params]: the file, line and column of the value.
+        std::fs::write(
+            dir.join("s.toml"),
+            format!(
+                "[camera]\nposition = [0.0, 1.0, 5.0]\nlook_at = [0.0, 1.0, 0.0]\n[params]\n{name} = {value}\n"
+            ),
+        )
+        .unwrap();
+        fails(
+            &["render", "s.toml", "-o", "x.png"],
+            dir,
+            &format!(
+                "s.toml:5:{}: in [params]: bad value for `{name}`",
+                name.len() + 4
+            ),
+        );
+        // In a sidecar: the file, line and column of the value, not an option.
+        let key = format!("\"{name}\": ");
+        let at = good.find(&key).expect("every parameter is in the sidecar");
+        let end = at + key.len() + good[at + key.len()..].find([',', '\n']).unwrap();
+        let bad = format!("{}{key}{value}{}", &good[..at], &good[end..]);
+        std::fs::write(dir.join("bad.json"), &bad).unwrap();
+        let line = bad[..at].matches('\n').count() + 1;
+        let err = fails(
+            &["render", "--params", "bad.json", "-o", "x.png"],
+            dir,
+            &format!("bad.json:{line}:"),
+        );
+        assert!(!err.contains("--set") && !err.contains("--spp"), "{err}");
+        assert!(err.contains(&format!("bad value for `{name}`")), "{err}");
+    }
+    assert!(!dir.join("x.png").exists(), "nothing rendered");
+}
+
+#[test]
+fn a_bad_value_among_several_sets_is_named_by_its_own_parameter() {
+    let d = tempfile::tempdir().unwrap();
+    let err = fails(
+        &[
+            "render",
+            "-o",
+            "x.png",
+            "--set",
+            "ior=2",
+            "--set",
+            "aperture=500",
+            "--set",
+            "max_depth=3",
+        ],
+        d.path(),
+        "bad value for `aperture`: must be between 0 and 100",
+    );
+    assert!(err.contains("got 500"), "{err}");
+}
+
+/// A glTF file of one triangle, its buffer inline; `extra` is added to its top level.
+fn triangle_gltf(extra: &str) -> String {
+    use base64::Engine as _;
+    let bytes: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0.]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let uri = base64::engine::general_purpose::STANDARD.encode(bytes);
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, {extra}
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+  "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0,
+  "buffers": [{{"byteLength": 36, "uri": "data:application/octet-stream;base64,{uri}"}}],
+  "bufferViews": [{{"buffer": 0, "byteLength": 36}}],
+  "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}}]}}"#
+    )
+}
+
+const TRIANGLE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+/// Renders `scene` in `dir` at 8×8, 1 spp; its stderr, after checking it succeeded.
+fn renders(scene: &str, dir: &std::path::Path) -> String {
+    let o = raylab(
+        &[
+            "render", scene, "-o", "r.png", "--size", "8x8", "--spp", "1",
+        ],
+        dir,
+    );
+    assert!(o.status.success(), "{scene}: {}", stderr(&o));
+    stderr(&o)
+}
+
+#[test]
+fn messages_point_where_the_mistake_is() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // A value inside a material's table: its own line and column, not the header's.
+    let e = common::scene_error(
+        "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[material.g]\ntype = \"dielectric\"\nior = 9.5\n",
+        dir,
+    );
+    assert!(e.starts_with("t.toml:6:7: "), "{e}");
+    let e = common::scene_error(
+        "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[material.g]\ncolor = [1, 1, 1]\ntype = \"difuse\"\n",
+        dir,
+    );
+    assert!(e.starts_with("t.toml:6:8: unknown variant `difuse`"), "{e}");
+    // An error in a material library names the library, not the OBJ.
+    std::fs::write(
+        dir.join("m.obj"),
+        format!("mtllib m.mtl\nusemtl red\n{TRIANGLE_OBJ}"),
+    )
+    .unwrap();
+    for (mtl, at) in [
+        ("newmtl red\nKd 1 0 0\nNi abc\n", "m.mtl:3:4: `Ni`"),
+        ("newmtl red\nKd 1 0 0\nNs 1e39\n", "m.mtl:3:4: `Ns`"),
+        (
+            "newmtl red\nTf 1 1\n",
+            "m.mtl:2:1: `Tf` needs three numbers",
+        ),
+    ] {
+        std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+        let err = fails(&["render", "m.obj", "-o", "x.png"], dir, at);
+        assert!(!err.contains("m.obj"), "{err}");
+    }
+    // A model opened alone: its own name, no line of a text the user never wrote.
+    std::fs::create_dir(dir.join("folder.obj")).unwrap();
+    let err = fails(&["render", "folder.obj", "-o", "x.png"], dir, "folder.obj");
+    assert!(!err.contains(":5:"), "{err}");
+    // A missing material library: rendered grey, with a warning naming it.
+    std::fs::write(
+        dir.join("lost.obj"),
+        format!("mtllib gone.mtl\n{TRIANGLE_OBJ}"),
+    )
+    .unwrap();
+    let said = renders("lost.obj", dir);
+    assert!(
+        said.starts_with("warning: ") && said.contains("`gone.mtl`"),
+        "{said}"
+    );
+    // Byte-order marks, as Windows editors write them, in every format read.
+    const BOM: &str = "\u{feff}";
+    std::fs::write(dir.join("bom.gltf"), format!("{BOM}{}", triangle_gltf(""))).unwrap();
+    renders("bom.gltf", dir);
+    let sidecar = std::fs::read_to_string(dir.join("r.png.json")).unwrap();
+    std::fs::write(dir.join("bom.json"), format!("{BOM}{sidecar}")).unwrap();
+    let o = raylab(
+        &["render", "--params", "bom.json", "-o", "b.png", "-q"],
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::write(
+        dir.join("bom.obj"),
+        format!("{BOM}mtllib bom.mtl\nusemtl red\n{TRIANGLE_OBJ}"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("bom.mtl"), format!("{BOM}newmtl red\nKd 1 0 0\n")).unwrap();
+    let said = renders("bom.obj", dir);
+    assert!(!said.contains("warning"), "{said}");
+    let scene = raylab::scene::Scene::load(dir.join("bom.obj")).unwrap();
+    assert_eq!(scene.shapes.len(), 2, "the triangle on the floor");
+    assert!(
+        scene.material_names.iter().any(|n| n.ends_with(":red")),
+        "the library's material: {:?}",
+        scene.material_names
+    );
+    std::fs::write(
+        dir.join("bom.toml"),
+        format!("{BOM}[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n"),
+    )
+    .unwrap();
+    renders("bom.toml", dir);
+    // A compressed mesh is named as what it is, not as missing data.
+    std::fs::write(
+        dir.join("draco.gltf"),
+        triangle_gltf(
+            r#""extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],"#,
+        ),
+    )
+    .unwrap();
+    fails(
+        &["render", "draco.gltf", "-o", "x.png"],
+        dir,
+        "needs the glTF extension KHR_draco_mesh_compression (Draco-compressed meshes)",
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn file_names_that_are_not_utf8_open() {
+    use std::os::unix::ffi::OsStrExt;
+    let d = tempfile::tempdir().unwrap();
+    let name = std::ffi::OsStr::from_bytes(b"caf\xe9.obj");
+    std::fs::write(d.path().join(name), TRIANGLE_OBJ).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .arg("render")
+        .arg(name)
+        .args(["-o", "r.png", "--size", "8x8", "--spp", "1", "-q"])
+        .current_dir(d.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_stream_is_an_error_not_a_panic_nor_silence() {
+    let d = tempfile::tempdir().unwrap();
+    let full = || std::fs::File::create("/dev/full").unwrap();
+    let run = |args: &[&str], stdout_full: bool| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"));
+        c.args(args).current_dir(d.path());
+        if stdout_full {
+            c.stdout(full());
+        } else {
+            c.stderr(full());
+        }
+        c.output().unwrap()
+    };
+    // The summary lost after a good render: the image is there, the status says the loss.
+    let o = run(
+        &["render", "-o", "r.png", "--size", "8x8", "--spp", "1"],
+        false,
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(d.path().join("r.png").is_file());
+    for args in [
+        &["params"][..],
+        &["scenes"],
+        &["lecture"],
+        &["fresnel"],
+        &["inspect", "glass", "--pixel", "1,1", "--size", "8x8"],
+    ] {
+        let o = run(args, true);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: cannot write to standard output:"),
+            "{args:?}: {err}"
+        );
+    }
+}
