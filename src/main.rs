@@ -214,6 +214,12 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // Ctrl-C (or a termination request) mid-write leaves no temporary file behind; one
+    // left by a kill -9 is removed by the next write to its folder.
+    let _ = ctrlc::set_handler(|| {
+        raylab::render::output::remove_temporaries();
+        std::process::exit(130);
+    });
     // A panic (a bug) is reported once, as one line, by `caught` below; RUST_BACKTRACE
     // keeps the full report for debugging.
     if std::env::var_os("RUST_BACKTRACE").is_none() {

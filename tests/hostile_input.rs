@@ -356,10 +356,16 @@ fn a_folder_of_scenes_and_renders_moves_as_a_whole() {
         &moved,
     );
     assert!(o.status.success(), "{}", stderr(&o));
+    // The same pixels; each image names the scene relative to its own folder.
+    let pixels = |p: &str| image::open(moved.join(p)).unwrap().into_rgb8().into_raw();
+    assert_eq!(pixels("renders/a.png"), pixels("b.png"));
+    let carried = |p: &str| raylab::render::Sidecar::read(&moved.join(p)).unwrap();
+    let (a, b) = (carried("renders/a.png"), carried("b.png"));
     assert_eq!(
-        std::fs::read(moved.join("renders/a.png")).unwrap(),
-        std::fs::read(moved.join("b.png")).unwrap()
+        std::fs::canonicalize(&a.scene).unwrap(),
+        std::fs::canonicalize(&b.scene).unwrap()
     );
+    assert_eq!(a.params, b.params);
 }
 
 #[cfg(unix)]
@@ -459,13 +465,13 @@ fn parameters_set_together_are_checked_together_and_errors_are_said_once() {
 }
 
 #[test]
-fn a_failure_while_working_exits_1_and_leaves_what_was_there() {
+fn an_output_that_cannot_be_written_is_refused_before_the_render() {
     let d = tempfile::tempdir().unwrap();
     let dir = d.path();
-    // A folder where the image should go: found only when the finished image is written.
+    // A folder where the image should go: refused before any time is spent, untouched.
     std::fs::create_dir(dir.join("taken.png")).unwrap();
     std::fs::write(dir.join("taken.png/inside"), "mine").unwrap();
-    let o = raylab(
+    let err = fails(
         &[
             "render",
             "-o",
@@ -477,12 +483,7 @@ fn a_failure_while_working_exits_1_and_leaves_what_was_there() {
             "-q",
         ],
         dir,
-    );
-    let err = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(
-        err.starts_with("error: taken.png: cannot write the image"),
-        "{err}"
+        "taken.png: cannot be written: is a folder",
     );
     assert_eq!(err.lines().count(), 1, "{err}");
     assert_eq!(

@@ -281,3 +281,148 @@ fn a_full_stream_is_an_error_not_a_panic_nor_silence() {
         );
     }
 }
+
+#[test]
+fn an_image_carries_its_parameters_and_reproduces_from_itself() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    for ext in ["png", "exr"] {
+        let (a, b) = (format!("a.{ext}"), format!("b.{ext}"));
+        let o = raylab(
+            &[
+                "render", "glass", "-o", &a, "--size", "24x16", "--spp", "2", "--set", "ior=1.7",
+                "-q",
+            ],
+            dir,
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+        // The sidecar gone, the image alone says how it was made.
+        std::fs::remove_file(dir.join(format!("{a}.json"))).unwrap();
+        let o = raylab(&["render", "--params", &a, "-o", &b, "-q"], dir);
+        assert!(o.status.success(), "{}", stderr(&o));
+        if ext == "png" {
+            let same = std::fs::read(dir.join(&a)).unwrap() == std::fs::read(dir.join(&b)).unwrap();
+            assert!(same, "a PNG reproduces byte for byte");
+        } else {
+            // EXR's header attributes come in no fixed order: the pixels are the same.
+            let pixels = |p: &str| image::open(dir.join(p)).unwrap().into_rgb32f().into_raw();
+            assert!(
+                pixels(&a) == pixels(&b),
+                "an EXR reproduces pixel for pixel"
+            );
+        }
+        let carried = raylab::render::Sidecar::read(&dir.join(&b)).unwrap();
+        assert_eq!(carried.params.ior, Some(1.7));
+    }
+    // An image raylab did not write says so in one line.
+    image::RgbImage::new(2, 2)
+        .save(dir.join("plain.png"))
+        .unwrap();
+    fails(
+        &["render", "--params", "plain.png", "-o", "x.png"],
+        dir,
+        "plain.png: carries no raylab parameters",
+    );
+}
+
+#[test]
+fn outputs_that_cannot_be_written_are_refused_before_the_render() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let render = |out: &str, words: &str| {
+        fails(
+            &["render", "glass", "-o", out, "--size", "8x8", "--spp", "1"],
+            dir,
+            words,
+        )
+    };
+    // Its sidecar's name would pass the file system's 255 bytes.
+    let long = format!("{}.png", "n".repeat(250));
+    render(&long, "259 bytes long with its sidecar's .json");
+    render("missing/x.png", "the folder missing does not exist");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::create_dir(dir.join("ro")).unwrap();
+        std::fs::set_permissions(dir.join("ro"), std::fs::Permissions::from_mode(0o555)).unwrap();
+        // Root writes anywhere: the check is then what the file system says.
+        let writable = std::fs::write(dir.join("ro/probe"), "").is_ok();
+        if !writable {
+            render("ro/x.png", "no new file can be made in ro");
+        }
+    }
+    assert_eq!(
+        std::fs::read_dir(dir).unwrap().flatten().count(),
+        usize::from(cfg!(unix))
+    );
+}
+
+/// The `.tmp` files in `dir`.
+fn temporaries(dir: &std::path::Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .expect("the folder is there")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect()
+}
+
+#[cfg(unix)]
+#[test]
+fn a_kill_at_any_moment_leaves_a_matching_pair_and_the_next_write_cleans_up() {
+    use std::time::{Duration, Instant};
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let args = |seed: u64| {
+        [
+            "render", "glass", "-o", "k.png", "--size", "480x270", "--spp", "1", "-q", "--seed",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([seed.to_string()])
+        .collect::<Vec<_>>()
+    };
+    let start = Instant::now();
+    let o = raylab(&args(0).iter().map(String::as_str).collect::<Vec<_>>(), dir);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let whole = start.elapsed();
+    // Kills from a third of the way in to past the end, so that many land in the write.
+    let kills = 24;
+    let mut outcomes = std::collections::BTreeSet::new();
+    for (n, signal) in (1..=kills).zip(["-KILL", "-INT"].into_iter().cycle()) {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args(n))
+            .current_dir(dir)
+            .spawn()
+            .unwrap();
+        let at = whole.mul_f64(0.3 + 1.0 * n as f64 / kills as f64);
+        std::thread::sleep(at.min(Duration::from_secs(10)));
+        let _ = std::process::Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status();
+        let _ = child.wait();
+        // The image's own parameters and its sidecar's (if there is one) agree.
+        let image = raylab::render::Sidecar::read(&dir.join("k.png")).unwrap();
+        let sidecar = raylab::render::Sidecar::read(&dir.join("k.png.json")).ok();
+        if let Some(sidecar) = &sidecar {
+            assert_eq!(image.params.seed, sidecar.params.seed, "kill {n} at {at:?}");
+        }
+        outcomes.insert((image.params.seed == n, sidecar.is_some()));
+        if signal == "-INT" {
+            assert!(
+                temporaries(dir).is_empty(),
+                "Ctrl-C cleans up: {:?}",
+                temporaries(dir)
+            );
+        }
+    }
+    // Some kills came before the new image, some after: the test saw both sides.
+    assert!(outcomes.contains(&(false, true)), "{outcomes:?}");
+    assert!(outcomes.contains(&(true, true)), "{outcomes:?}");
+    let o = raylab(
+        &args(99).iter().map(String::as_str).collect::<Vec<_>>(),
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(temporaries(dir).is_empty(), "{:?}", temporaries(dir));
+}

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
 impl RaylabApp {
-    /// Writes the newest full frame to `path` (PNG or EXR) with its sidecar.
+    /// Writes the newest full frame to `path` (PNG or EXR) with its sidecar, inside it and
+    /// beside it.
     pub(super) fn save_to(&mut self, path: &Path) -> Result<PathBuf, String> {
         let Some(frame) = self.main.frame().filter(|f| !f.is_preview()) else {
             return Err("Nothing to save yet: wait for the first pass".into());
@@ -46,7 +47,6 @@ impl RaylabApp {
             Some(&sidecar),
         )
         .map_err(|e| e.to_string())?;
-        sidecar.write(&json).map_err(|e| e.to_string())?;
         Ok(path.to_path_buf())
     }
 

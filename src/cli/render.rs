@@ -39,9 +39,10 @@ pub struct RenderArgs {
     /// Set any parameter by name, e.g. --set max_depth=3 --set min_weight=0.01 (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
-    /// Start from a snapshot's sidecar JSON: its scene, size and every parameter, to
-    /// reproduce its image bit for bit. Other options override it.
-    #[arg(long, value_name = "SIDECAR.json")]
+    /// Start from a snapshot's sidecar JSON, or from an image raylab wrote (its PNG or EXR
+    /// carries the same): its scene, size and every parameter, to reproduce the image bit
+    /// for bit. Other options override it.
+    #[arg(long, value_name = "SIDECAR.json|IMAGE")]
     params: Option<PathBuf>,
     /// Render slide N of the lecture (`raylab lecture` lists them) as the window shows it:
     /// its scene and parameters; a slide that compares things as its split image, side
@@ -170,9 +171,10 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         (None, Some(n)) => default_output(Path::new(""), &format!("slide-{n}")),
         (None, None) => default_output(Path::new(""), &job.scene.name),
     };
-    check_output(&output, args.caption)?;
     let json = sidecar_path(&output);
-    if job.others.is_empty() {
+    let with_sidecar = job.others.is_empty();
+    check_output(&output, args.caption, with_sidecar)?;
+    if with_sidecar {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
     let rows = job.height as u64 * (1 + job.others.len() as u64);
@@ -217,15 +219,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
                 &film.to_srgb8(params.exposure),
                 &slide.caption(&shown),
             );
-            raylab::render::output::save_image(&image, &output, image::ImageFormat::Png)
-                .with_context(|| format!("cannot write {}", output.display()))
-                .map_err(runtime)?;
+            raylab::render::write_png(&output, &image, sidecar.as_ref()).map_err(runtime)?;
         }
         None => film
             .save(&output, params.exposure, sidecar.as_ref())
             .map_err(runtime)?,
     }
-    let Some(sidecar) = sidecar else {
+    if sidecar.is_none() {
         if !args.quiet {
             tell!(
                 "slide {}: A/B split written to {}{replaced} (no sidecar: no one set of parameters makes it)",
@@ -234,8 +234,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
             );
         }
         return Ok(());
-    };
-    sidecar.write(&json).map_err(runtime)?;
+    }
     if !args.quiet {
         tell!(
             "{} wrote {}{replaced} and {}",

@@ -2,7 +2,7 @@
 //! workbench at one angle, as an SVG (for slides) or a PNG.
 
 use super::inspect::{SampleArgs, Traced, parse_pixel, trace_pixel};
-use super::output::check_folder;
+use super::output::check_writable;
 use crate::{parse_ior, parse_size};
 use anyhow::{Context, Result, bail};
 use raylab::section::{Room, Theme, Workbench, section, text_size, to_png, to_svg};
@@ -69,7 +69,7 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
         Some("png") => false,
         _ => bail!("{}: the output must end in .svg or .png", path.display()),
     };
-    check_folder(path)?;
+    check_writable(path, false)?;
     let diagram = match (args.angle, args.pixel) {
         (Some(theta_i), _) => Workbench {
             n1: args.n1,

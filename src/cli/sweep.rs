@@ -1,7 +1,7 @@
 //! `raylab sweep`: one image per value of a parameter, as a labelled contact sheet or an
 //! animation.
 
-use crate::cli::output::{check_folder, default_output};
+use crate::cli::output::{check_writable, default_output};
 use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result, bail};
@@ -67,7 +67,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
             output.display()
         ),
     };
-    check_folder(&output)?;
+    check_writable(&output, false)?;
     let (w, h) = args
         .size
         .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));

@@ -33,7 +33,8 @@ fn text(s: &str) -> Text {
 
 /// The EXR file of `pixels` (`width` × `height`, row-major, linear), with `sidecar`'s
 /// facts in its header: `raylab:scene`, one `raylab:NAME` per parameter that is set (its
-/// value as in `--set NAME=VALUE`), and `raylab:sidecar` (the sidecar's JSON).
+/// value as in `--set NAME=VALUE`), and `raylab:sidecar` (the sidecar's JSON, as
+/// [`Sidecar::embedded_json`] gives it).
 pub(crate) fn exr_bytes(
     width: u32,
     height: u32,
@@ -66,9 +67,10 @@ pub(crate) fn exr_bytes(
                 }
             }
         }
-        if let Ok(json) = serde_json::to_string(sidecar) {
-            add("sidecar", &json);
-        }
+        attributes.other.insert(
+            text(super::SIDECAR_KEY),
+            AttributeValue::Text(text(&sidecar.embedded_json())),
+        );
     }
     let w = width as usize;
     let layer = Layer::new(

@@ -1,7 +1,7 @@
 //! The film: per-pixel sums of radiance samples, resolved to PNG (8-bit sRGB) or EXR (linear).
 
 use crate::math::Color;
-use crate::render::output::{save_image, write_atomic};
+use crate::render::output::{write_atomic, write_pair};
 use std::path::Path;
 
 /// What a pixel has accumulated: the sum and count of its samples, and the same for its
@@ -77,7 +77,7 @@ pub enum FilmError {
         /// The file.
         path: String,
         /// Why.
-        error: image::ImageError,
+        error: String,
     },
 }
 
@@ -163,8 +163,8 @@ pub fn to_srgba8(pixels: &[Color], exposure: f32) -> Vec<u8> {
 }
 
 /// Writes linear radiance `pixels` (`width` × `height`, row-major): `.png` as 8-bit sRGB
-/// after scaling by 2^exposure, `.exr` as linear radiance with `sidecar`'s parameters in
-/// its header.
+/// after scaling by 2^exposure, `.exr` as linear radiance; with `sidecar` inside the image
+/// (PNG iTXt, EXR header) and beside it as `NAME.json`, the two replaced as a pair.
 pub fn write_image(
     path: &Path,
     width: u32,
@@ -174,24 +174,62 @@ pub fn write_image(
     sidecar: Option<&super::Sidecar>,
 ) -> Result<(), FilmError> {
     let name = path.display().to_string();
-    let ext = crate::scene::input::extension(path);
+    let mismatch = || FilmError::UnsupportedFormat(format!("{name} (size mismatch)"));
     if pixels.len() != width as usize * height as usize {
-        return Err(FilmError::UnsupportedFormat(format!(
-            "{name} (size mismatch)"
-        )));
+        return Err(mismatch());
     }
-    let written = match ext.as_deref() {
+    let bytes = match crate::scene::input::extension(path).as_deref() {
         Some("png") => {
-            let img = srgb_image(width, height, pixels, exposure)
-                .ok_or_else(|| FilmError::UnsupportedFormat(format!("{name} (size mismatch)")))?;
-            save_image(&img, path, image::ImageFormat::Png)
+            let img = srgb_image(width, height, pixels, exposure).ok_or_else(mismatch)?;
+            return write_png(path, &img, sidecar);
         }
-        Some("exr") => super::exr_file::exr_bytes(width, height, pixels, sidecar)
-            .map_err(|e| image::ImageError::IoError(std::io::Error::other(e.to_string())))
-            .and_then(|bytes| write_atomic(path, &bytes).map_err(image::ImageError::IoError)),
+        Some("exr") => {
+            super::exr_file::exr_bytes(width, height, pixels, sidecar).map_err(|e| e.to_string())
+        }
         _ => return Err(FilmError::UnsupportedFormat(name)),
     };
-    written.map_err(|error| FilmError::Write { path: name, error })
+    let write = |error: String| FilmError::Write {
+        path: name.clone(),
+        error,
+    };
+    let bytes = bytes.map_err(write)?;
+    write_with_sidecar(path, &bytes, sidecar).map_err(|e| write(e.to_string()))
+}
+
+/// Writes `img` as a PNG at `path`, with `sidecar` inside it and beside it (see
+/// [`write_image`]).
+pub fn write_png(
+    path: &Path,
+    img: &image::RgbImage,
+    sidecar: Option<&super::Sidecar>,
+) -> Result<(), FilmError> {
+    let embedded = sidecar.map(super::Sidecar::embedded_json);
+    let (w, h) = img.dimensions();
+    super::png_file::png_bytes(w, h, false, img.as_raw(), embedded.as_deref())
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| write_with_sidecar(path, &bytes, sidecar).map_err(|e| e.to_string()))
+        .map_err(|error| FilmError::Write {
+            path: path.display().to_string(),
+            error,
+        })
+}
+
+/// Writes an image's `bytes` at `path`, and `sidecar` beside it as a pair (see
+/// [`write_pair`]).
+fn write_with_sidecar(
+    path: &Path,
+    bytes: &[u8],
+    sidecar: Option<&super::Sidecar>,
+) -> std::io::Result<()> {
+    match sidecar {
+        Some(sidecar) => write_pair(
+            path,
+            bytes,
+            &super::sidecar_path(path),
+            sidecar.file_json()?.as_bytes(),
+        ),
+        None => write_atomic(path, bytes),
+    }
 }
 
 impl Film {

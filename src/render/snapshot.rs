@@ -172,13 +172,25 @@ impl Sidecar {
         Ok(())
     }
 
-    /// Reads and checks a sidecar.
+    /// Reads and checks a sidecar: a `.json` file, or the copy a PNG or EXR written by
+    /// raylab carries inside it.
     pub fn read(path: &Path) -> Result<Sidecar, SidecarError> {
         let name = path.display().to_string();
-        let text = crate::scene::input::read_text(path).map_err(|error| SidecarError::Io {
-            path: name.clone(),
-            error,
-        })?;
+        let text = match crate::scene::input::extension(path).as_deref() {
+            Some("png" | "exr") => super::embedded_sidecar(path)
+                .map_err(|message| SidecarError::Invalid {
+                    path: name.clone(),
+                    message,
+                })?
+                .ok_or_else(|| SidecarError::Invalid {
+                    path: name.clone(),
+                    message: "carries no raylab parameters (written by another program or an older raylab, or its metadata was stripped); give its .json sidecar".into(),
+                })?,
+            _ => crate::scene::input::read_text(path).map_err(|error| SidecarError::Io {
+                path: name.clone(),
+                error,
+            })?,
+        };
         let parse = |e: serde_json::Error| SidecarError::Parse {
             path: name.clone(),
             line: e.line(),
@@ -253,13 +265,21 @@ impl Sidecar {
         Ok(())
     }
 
-    /// Writes the sidecar as pretty JSON.
-    pub fn write(&self, path: &Path) -> Result<(), SidecarError> {
-        let io = |error| SidecarError::Io {
-            path: path.display().to_string(),
-            error,
+    /// The sidecar file's text: pretty JSON.
+    pub fn file_json(&self) -> std::io::Result<String> {
+        let json = serde_json::to_string_pretty(self).map_err(std::io::Error::other)?;
+        Ok(json + "\n")
+    }
+
+    /// The copy an image carries of it: what reproduces the image (the file's own name and
+    /// the render's time left out), so that a render repeated from it, under any name, is
+    /// the same file byte for byte.
+    pub fn embedded_json(&self) -> String {
+        let reproducible = Sidecar {
+            image: None,
+            seconds: None,
+            ..self.clone()
         };
-        let json = serde_json::to_string_pretty(self).map_err(|e| io(std::io::Error::other(e)))?;
-        crate::render::output::write_atomic(path, (json + "\n").as_bytes()).map_err(io)
+        serde_json::to_string(&reproducible).unwrap_or_default()
     }
 }
