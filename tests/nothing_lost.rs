@@ -426,3 +426,160 @@ fn a_kill_at_any_moment_leaves_a_matching_pair_and_the_next_write_cleans_up() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(temporaries(dir).is_empty(), "{:?}", temporaries(dir));
 }
+
+/// An OBJ grid of `n` × `n` squares (2n² triangles) on the unit square of the x–z plane.
+fn grid_obj(n: usize) -> String {
+    let mut s = String::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            s += &format!("v {} 0 {}\n", i as f32 / n as f32, j as f32 / n as f32);
+        }
+    }
+    for i in 0..n {
+        for j in 0..n {
+            let a = i * (n + 1) + j + 1;
+            let (b, c, d) = (a + 1, a + n + 1, a + n + 2);
+            s += &format!("f {a} {b} {d}\nf {a} {d} {c}\n");
+        }
+    }
+    s
+}
+
+/// A scene placing `file` `copies` times side by side.
+fn placed(file: &str, copies: usize) -> String {
+    let mut s = String::from("[camera]\nposition = [0.5, 2, 3]\nlook_at = [0.5, 0, 0.5]\n");
+    for i in 0..copies {
+        s += &format!(
+            "[[mesh]]\nfile = \"{file}\"\ntranslate = [{}, 0, 0]\n",
+            i as f32 * 1.1
+        );
+    }
+    s
+}
+
+#[test]
+fn a_scene_beyond_the_memory_limit_is_refused_before_it_is_built() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    std::fs::write(dir.join("grid.obj"), grid_obj(100)).unwrap();
+    std::fs::write(dir.join("many.toml"), placed("grid.obj", 40)).unwrap();
+    let run = |limit: &str, args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args)
+            .env("RAYLAB_MEMORY_LIMIT", limit)
+            .current_dir(dir)
+            .output()
+            .unwrap()
+    };
+    // 20,000 triangles a copy: the limit is passed at the 8th of 40 (8 × 20,000 × 340 B).
+    let o = run(
+        "50M",
+        &["render", "many.toml", "-o", "x.png", "--size", "8x8"],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: many.toml:26:8: with this mesh, the scene's 160000 triangles need about 54 MB, more than raylab's limit of 52 MB (RAYLAB_MEMORY_LIMIT)\n"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let o = run(
+        "1G",
+        &["render", "many.toml", "-o", "x.png", "--size", "8x8", "-q"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A film, a contact sheet: said before any work.
+    let o = run(
+        "50M",
+        &["render", "glass", "-o", "x.png", "--size", "1000x1000"],
+    );
+    assert!(stderr(&o).contains("a 1000x1000 render's film and file need about 90 MB"));
+    let values = vec!["1"; 2000].join(",");
+    let o = run(
+        "50M",
+        &[
+            "sweep",
+            "glass",
+            "--param",
+            &format!("spp={values}"),
+            "-o",
+            "s.png",
+            "--size",
+            "96x54",
+        ],
+    );
+    assert!(stderr(&o).contains("2000 values: the contact sheet's pixels need about"));
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn under_a_two_gigabyte_address_space_every_big_job_renders_or_is_refused_in_a_line() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    // 200,000 triangles: 40 copies are 8 million.
+    std::fs::write(dir.join("grid.obj"), grid_obj(316)).unwrap();
+    std::fs::write(dir.join("many.toml"), placed("grid.obj", 40)).unwrap();
+    std::fs::write(dir.join("few.toml"), placed("grid.obj", 2)).unwrap();
+    let values = vec!["1"; 2000].join(",");
+    let sweep = format!("sweep glass --param spp={values} -o s.png --size 480x270");
+    for (job, refused) in [
+        ("render many.toml -o a.png --size 64x36 --spp 1", true),
+        ("render few.toml -o b.png --size 64x36 --spp 1", false),
+        ("render glass -o c.png --size 4096x4096 --spp 1", true),
+        (sweep.as_str(), true),
+    ] {
+        let o = std::process::Command::new("sh")
+            .arg("-c")
+            .arg(format!("ulimit -v 2000000 && exec \"$0\" {job} -q"))
+            .arg(env!("CARGO_BIN_EXE_raylab"))
+            .env_remove("RAYLAB_MEMORY_LIMIT")
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        let err = stderr(&o);
+        let name = &job[..30.min(job.len())];
+        if refused {
+            assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+            assert!(
+                err.contains("half the address space ulimit -v allows"),
+                "{name}: {err}"
+            );
+            assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        } else {
+            assert!(o.status.success(), "{name}: {err}");
+        }
+    }
+}
+
+#[test]
+fn a_z_up_model_stands_up() {
+    let d = tempfile::tempdir().unwrap();
+    // A triangle standing 2 units along z: lying on its back unless z is up.
+    std::fs::write(
+        d.path().join("z.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 0 2\nf 1 2 3\n",
+    )
+    .unwrap();
+    let extent = |up: &str| {
+        let scene = raylab::scene::Scene::from_toml_str(
+            &format!(
+                "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[mesh]]\nfile = \"z.obj\"\n{up}"
+            ),
+            "t.toml",
+            d.path(),
+        )
+        .unwrap();
+        let raylab::geometry::Shape::Mesh(mesh) = &scene.shapes[0] else {
+            panic!("a mesh")
+        };
+        let ys = mesh.positions().iter().map(|p| p.y);
+        ys.clone().fold(f32::MIN, f32::max) - ys.fold(f32::MAX, f32::min)
+    };
+    assert_eq!(extent(""), 0.0);
+    assert!((extent("up = \"z\"\n") - 2.0).abs() < 1e-6);
+    let e = common::scene_error(
+        "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[mesh]]\nfile = \"z.obj\"\nup = \"w\"\n",
+        d.path(),
+    );
+    assert!(e.starts_with("t.toml:6:6: unknown variant `w`"), "{e}");
+}

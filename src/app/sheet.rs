@@ -98,19 +98,30 @@ impl RaylabApp {
         let ctx = ctx.clone();
         std::thread::spawn(move || {
             let (w, h) = ((scene.width / 2).max(1), (scene.height / 2).max(1));
-            let result = crate::render::sweep_frames(&scene, &camera, &params, (w, h), &sweep, &())
-                .map_err(|e| e.to_string())
-                .and_then(|frames| {
-                    let sheet = crate::render::contact_sheet(&frames);
-                    if let Some(dir) = path.parent() {
-                        std::fs::create_dir_all(dir)
-                            .map_err(|e| format!("{}: {e}", dir.display()))?;
-                    }
-                    sheet
-                        .save(&path)
-                        .map_err(|e| format!("{}: {e}", path.display()))?;
-                    Ok(path)
-                });
+            // Each frame is placed in the sheet as it is made; the sheet is written whole.
+            let tile = crate::render::frame_size((w, h));
+            let mut sheet = crate::render::ContactSheet::new(sweep.values.len(), tile);
+            let result = crate::render::sweep_each(
+                &scene,
+                &camera,
+                &params,
+                (w, h),
+                &sweep,
+                &(),
+                &mut |frame| {
+                    sheet.add(&frame);
+                    Ok(())
+                },
+            )
+            .map_err(|e| e.to_string())
+            .and_then(|()| {
+                if let Some(dir) = path.parent() {
+                    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+                }
+                crate::render::output::save_image(&sheet.finish(), &path, image::ImageFormat::Png)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                Ok(path)
+            });
             let _ = tx.send(result);
             ctx.request_repaint();
         });

@@ -177,6 +177,12 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     if with_sidecar {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
+    let pixels = job.width as u64 * job.height as u64;
+    raylab::scene::memory::check(
+        pixels * raylab::scene::memory::BYTES_PER_PIXEL,
+        &format!("a {}x{} render's film and file", job.width, job.height),
+    )
+    .map_err(anyhow::Error::msg)?;
     let rows = job.height as u64 * (1 + job.others.len() as u64);
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();

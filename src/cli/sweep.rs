@@ -5,6 +5,7 @@ use crate::cli::output::{check_writable, default_output};
 use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result, bail};
+use raylab::render::SheetError;
 use raylab::render::output::{save_image, write_atomic};
 use raylab::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -71,24 +72,58 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     let (w, h) = args
         .size
         .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));
+    // What the result holds, said before any frame is rendered: the sheet's pixels (twice,
+    // while it is encoded), or an animation's frames at up to a byte a pixel.
+    let tile = raylab::render::frame_size((w, h));
+    let frames = values.len() as u64;
+    let (needed, what) = if gif {
+        (
+            frames * tile.0 as u64 * tile.1 as u64 * 6 / 5,
+            "the animation's frames",
+        )
+    } else {
+        let (sw, sh) = raylab::render::ContactSheet::size(values.len(), tile);
+        (2 * 3 * sw as u64 * sh as u64, "the contact sheet's pixels")
+    };
+    raylab::scene::memory::check(needed, &format!("{} values: {what}", values.len()))
+        .map_err(anyhow::Error::msg)?;
     let start = Instant::now();
     let bar = progress_bar(args.quiet, h as u64 * values.len() as u64, "sweeping");
-    let frames = raylab::render::sweep_frames(
-        &scene,
-        &scene.camera,
-        &params,
-        (w, h),
-        &sweep,
-        &Progress(bar.clone()),
-    )?;
-    bar.finish_and_clear();
-    let written = if gif {
-        raylab::render::animation(&frames, args.frame_ms)
-            .and_then(|bytes| write_atomic(&output, &bytes).map_err(image::ImageError::IoError))
-    } else {
-        let sheet = raylab::render::contact_sheet(&frames);
-        save_image(&sheet, &output, image::ImageFormat::Png)
+    let progress = Progress(bar.clone());
+    let sweep_each = |each: &mut dyn FnMut(image::RgbImage) -> Result<(), SheetError>| {
+        raylab::render::sweep_each(
+            &scene,
+            &scene.camera,
+            &params,
+            (w, h),
+            &sweep,
+            &progress,
+            each,
+        )
     };
+    // Each frame goes into the result as it is made, and is then dropped.
+    let written = if gif {
+        let mut bytes = Vec::new();
+        let encoded = raylab::render::Animation::new(&mut bytes, args.frame_ms)
+            .map_err(|e| SheetError::Frame(e.to_string()))
+            .and_then(|mut animation| {
+                sweep_each(&mut |frame| {
+                    animation
+                        .add(&frame)
+                        .map_err(|e| SheetError::Frame(e.to_string()))
+                })
+            });
+        encoded?;
+        write_atomic(&output, &bytes).map_err(image::ImageError::IoError)
+    } else {
+        let mut sheet = raylab::render::ContactSheet::new(values.len(), tile);
+        sweep_each(&mut |frame| {
+            sheet.add(&frame);
+            Ok(())
+        })?;
+        save_image(&sheet.finish(), &output, image::ImageFormat::Png)
+    };
+    bar.finish_and_clear();
     written
         .with_context(|| format!("{}: cannot write the sweep", output.display()))
         .map_err(runtime)?;

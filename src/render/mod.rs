@@ -22,7 +22,7 @@ pub use frame::{Frame, Progress};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by, render_preview};
 pub use png_file::{SIDECAR_KEY, embedded_sidecar};
-pub use sheet::{SheetError, Sweep, animation, contact_sheet, parse_sweep, sweep_frames};
+pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
 pub use snapshot::{Rendered, Sidecar, SidecarError, sidecar_path};
 pub use text::with_caption;
 

@@ -21,6 +21,9 @@ pub enum SheetError {
     /// Stopped.
     #[error(transparent)]
     Cancelled(#[from] Cancelled),
+    /// A frame could not be added to what is being made of them (an animation's encoder).
+    #[error("{0}")]
+    Frame(String),
 }
 
 /// A parameter and the values a sweep gives it, as `--set` takes them.
@@ -69,17 +72,24 @@ fn label_height(height: u32) -> u32 {
     (height / 10).clamp(16, 40)
 }
 
+/// The size of a sweep's frame for images of `size`: the image and its label strip.
+pub fn frame_size((width, height): (u32, u32)) -> (u32, u32) {
+    (width, height + label_height(height))
+}
+
 /// Renders one image of `scene` through `camera`, `size` (width, height) pixels, for each
 /// value of the sweep's parameter (set as `--set name=value` would, on top of `base`), each
-/// with a strip under it labelled `name = value`: the frames of a sweep.
-pub fn sweep_frames(
+/// with a strip under it labelled `name = value`: the frames of a sweep, handed to `each`
+/// as each is made, so that a sweep of thousands of values holds one frame at a time.
+pub fn sweep_each(
     scene: &Scene,
     camera: &Camera,
     base: &Params,
     size: (u32, u32),
     sweep: &Sweep,
     observer: &dyn PassObserver,
-) -> Result<Vec<RgbImage>, SheetError> {
+    each: &mut dyn FnMut(RgbImage) -> Result<(), SheetError>,
+) -> Result<(), SheetError> {
     let ((width, height), name, values) = (size, sweep.name.as_str(), &sweep.values);
     if values.is_empty() {
         return Err(SheetError::Empty);
@@ -92,65 +102,135 @@ pub fn sweep_frames(
             p.set(name, v).map(|_| p)
         })
         .collect::<Result<_, _>>()?;
-    let label = label_height(height);
-    let mut frames = Vec::with_capacity(values.len());
+    let (_, framed) = frame_size(size);
     for (p, value) in params.iter().zip(values) {
         let mut film = Film::new(width, height);
         render_pass(scene, camera, p, &mut film, p.spp, observer)?;
-        let mut frame = RgbImage::from_pixel(width, height + label, BACKDROP);
+        let mut frame = RgbImage::from_pixel(width, framed, BACKDROP);
         image::imageops::replace(&mut frame, &film.to_srgb8(p.exposure), 0, 0);
         draw_label(
             &mut frame,
-            (0, height, width, label),
+            (0, height, width, framed - height),
             &format!("{name} = {value}"),
         );
-        frames.push(frame);
+        each(frame)?;
     }
-    Ok(frames)
+    Ok(())
 }
 
-/// Lays out `frames` (all of one size) in rows of up to four, `GAP` apart: a contact
-/// sheet. Empty for no frames.
-pub fn contact_sheet(frames: &[RgbImage]) -> RgbImage {
-    let Some(first) = frames.first() else {
-        return RgbImage::new(0, 0);
-    };
-    let (w, h) = first.dimensions();
-    let cols = columns(frames.len()) as u32;
-    let rows = frames.len().div_ceil(cols as usize) as u32;
-    let mut sheet = RgbImage::from_pixel(
-        cols * w + (cols + 1) * GAP,
-        rows * h + (rows + 1) * GAP,
-        BACKDROP,
-    );
-    for (i, frame) in frames.iter().enumerate() {
-        let (col, row) = (i as u32 % cols, i as u32 / cols);
-        let (x0, y0) = (GAP + col * (w + GAP), GAP + row * (h + GAP));
-        image::imageops::replace(&mut sheet, frame, x0 as i64, y0 as i64);
-    }
-    sheet
+/// A contact sheet filled frame by frame: rows of up to four, `GAP` apart.
+pub struct ContactSheet {
+    sheet: RgbImage,
+    columns: u32,
+    tile: (u32, u32),
+    next: u32,
 }
 
-/// `frames` as an animated GIF that loops, each shown for `delay_ms` milliseconds (GIF
-/// keeps 256 colours a frame, chosen per frame).
-pub fn animation(frames: &[RgbImage], delay_ms: u32) -> image::ImageResult<Vec<u8>> {
-    use image::codecs::gif::{GifEncoder, Repeat};
-    let mut bytes = Vec::new();
-    {
-        let mut encoder = GifEncoder::new_with_speed(&mut bytes, 10);
-        encoder.set_repeat(Repeat::Infinite)?;
-        let delay = image::Delay::from_numer_denom_ms(delay_ms, 1);
-        for frame in frames {
-            let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
-            encoder.encode_frame(image::Frame::from_parts(rgba, 0, 0, delay))?;
+impl ContactSheet {
+    /// The sheet's size for `n` frames of `tile` pixels.
+    pub fn size(n: usize, (w, h): (u32, u32)) -> (u32, u32) {
+        let cols = columns(n) as u32;
+        let rows = n.max(1).div_ceil(cols as usize) as u32;
+        (cols * w + (cols + 1) * GAP, rows * h + (rows + 1) * GAP)
+    }
+
+    /// An empty sheet for `n` frames of `tile` pixels.
+    pub fn new(n: usize, tile: (u32, u32)) -> ContactSheet {
+        let (w, h) = ContactSheet::size(n, tile);
+        ContactSheet {
+            sheet: RgbImage::from_pixel(w, h, BACKDROP),
+            columns: columns(n) as u32,
+            tile,
+            next: 0,
         }
     }
-    Ok(bytes)
+
+    /// Places the next frame.
+    pub fn add(&mut self, frame: &RgbImage) {
+        let (w, h) = self.tile;
+        let (col, row) = (self.next % self.columns, self.next / self.columns);
+        let (x0, y0) = (GAP + col * (w + GAP), GAP + row * (h + GAP));
+        image::imageops::replace(&mut self.sheet, frame, x0 as i64, y0 as i64);
+        self.next += 1;
+    }
+
+    /// The sheet.
+    pub fn finish(self) -> RgbImage {
+        self.sheet
+    }
+}
+
+/// An animated GIF that loops, encoded frame by frame into `bytes`, each frame shown for
+/// `delay_ms` milliseconds (GIF keeps 256 colours a frame, chosen per frame).
+pub struct Animation<'a> {
+    encoder: image::codecs::gif::GifEncoder<&'a mut Vec<u8>>,
+    delay: image::Delay,
+}
+
+impl<'a> Animation<'a> {
+    /// An animation written into `bytes`.
+    pub fn new(bytes: &'a mut Vec<u8>, delay_ms: u32) -> image::ImageResult<Animation<'a>> {
+        use image::codecs::gif::{GifEncoder, Repeat};
+        let mut encoder = GifEncoder::new_with_speed(bytes, 10);
+        encoder.set_repeat(Repeat::Infinite)?;
+        Ok(Animation {
+            encoder,
+            delay: image::Delay::from_numer_denom_ms(delay_ms, 1),
+        })
+    }
+
+    /// Adds the next frame.
+    pub fn add(&mut self, frame: &RgbImage) -> image::ImageResult<()> {
+        let rgba = image::DynamicImage::ImageRgb8(frame.clone()).into_rgba8();
+        self.encoder
+            .encode_frame(image::Frame::from_parts(rgba, 0, 0, self.delay))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every frame of a sweep of `scene` seen by its camera (see [`sweep_each`]), in the
+    /// order of its values.
+    fn sweep_frames(
+        scene: &Scene,
+        base: &Params,
+        size: (u32, u32),
+        sweep: &Sweep,
+    ) -> Result<Vec<RgbImage>, SheetError> {
+        let mut frames = Vec::with_capacity(sweep.values.len());
+        sweep_each(scene, &scene.camera, base, size, sweep, &(), &mut |f| {
+            frames.push(f);
+            Ok(())
+        })?;
+        Ok(frames)
+    }
+
+    /// Lays out `frames` (all of one size) in rows of up to four, `GAP` apart: a contact
+    /// sheet. Empty for no frames.
+    fn contact_sheet(frames: &[RgbImage]) -> RgbImage {
+        let Some(first) = frames.first() else {
+            return RgbImage::new(0, 0);
+        };
+        let mut sheet = ContactSheet::new(frames.len(), first.dimensions());
+        for frame in frames {
+            sheet.add(frame);
+        }
+        sheet.finish()
+    }
+
+    /// `frames` as an animated GIF that loops, each shown for `delay_ms` milliseconds.
+    fn animation(frames: &[RgbImage], delay_ms: u32) -> image::ImageResult<Vec<u8>> {
+        let mut bytes = Vec::new();
+        {
+            let mut animation = Animation::new(&mut bytes, delay_ms)?;
+            for frame in frames {
+                animation.add(frame)?;
+            }
+        }
+        Ok(bytes)
+    }
 
     #[test]
     fn sweep_specs_parse() {
@@ -172,7 +252,7 @@ mod tests {
             ..scene.params.clone()
         };
         let five = parse_sweep("max_depth=1,2,3,4,5").unwrap();
-        let frames = sweep_frames(&scene, &scene.camera, &base, (40, 30), &five, &()).unwrap();
+        let frames = sweep_frames(&scene, &base, (40, 30), &five).unwrap();
         let sheet = contact_sheet(&frames);
         assert_eq!(sheet.width(), 4 * 40 + 5 * GAP);
         let label = label_height(30);
@@ -203,7 +283,7 @@ mod tests {
         // A bad value is an error before any rendering.
         let sweep = |spec: &str| {
             let sweep = parse_sweep(spec).unwrap();
-            sweep_frames(&scene, &scene.camera, &base, (8, 8), &sweep, &())
+            sweep_frames(&scene, &base, (8, 8), &sweep)
         };
         assert!(sweep("spp=0").is_err());
         assert!(sweep("spp=").is_err());

@@ -6,6 +6,7 @@ mod file;
 mod gltf;
 pub mod input;
 mod materials;
+pub mod memory;
 mod obj;
 mod objects;
 mod values;
@@ -15,7 +16,7 @@ pub(crate) use error::one_line;
 pub use error::{Location, SceneError, line_col};
 pub use file::describe;
 pub use gltf::load_gltf;
-pub use obj::{ObjPart, load_obj};
+pub use obj::{Model, ObjPart, load_obj};
 pub use values::{MAX_IMAGE_SIDE, MAX_PIXELS, check_size};
 
 use crate::camera::Camera;

@@ -10,9 +10,10 @@ use super::{Material, Object, SceneError};
 use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
 use crate::math::Vec3;
 use serde::Deserialize;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 use std::path::Path;
+use std::rc::Rc;
 use toml::Spanned;
 
 #[derive(Deserialize)]
@@ -67,6 +68,30 @@ pub(super) struct MeshDef {
     velocity: Option<V3>,
     #[serde(default = "yes")]
     smooth: bool,
+    /// The model's up axis: `y` (glTF's, and most OBJ files'), or `z` (CAD and many
+    /// scans), turned to stand on raylab's floor before `rotate`.
+    #[serde(default)]
+    up: UpAxis,
+}
+
+/// Which of the model file's axes points up.
+#[derive(Clone, Copy, Debug, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum UpAxis {
+    #[default]
+    Y,
+    Z,
+}
+
+impl UpAxis {
+    /// The turn that makes this axis raylab's +y: for z up, −90° about x, so
+    /// (x, y, z) ↦ (x, z, −y).
+    fn turn(self) -> glam::Quat {
+        match self {
+            UpAxis::Y => glam::Quat::IDENTITY,
+            UpAxis::Z => glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+        }
+    }
 }
 
 fn yes() -> bool {
@@ -100,6 +125,10 @@ pub(super) struct Objects<'s> {
     objects: Vec<Object>,
     spans: Vec<Range<usize>>,
     warnings: Vec<String>,
+    // Each model file read once, however often it is placed.
+    models: HashMap<String, Rc<Vec<ObjPart>>>,
+    // Triangles placed so far, for the memory estimate.
+    triangles: u64,
 }
 
 /// A file's materials (by name) and objects, built.
@@ -130,6 +159,8 @@ impl<'s> Objects<'s> {
             objects: Vec::new(),
             spans: Vec::new(),
             warnings: Vec::new(),
+            models: HashMap::new(),
+            triangles: 0,
         })
     }
 
@@ -238,20 +269,36 @@ impl<'s> Objects<'s> {
     ) -> Result<(), SceneError> {
         for (n, m) in defs.into_iter().enumerate() {
             let span = m.file.span();
-            let parts = self.model(&m, assets)?;
+            let rel = m.file.get_ref();
+            let parts = match self.models.get(rel) {
+                Some(parts) => Rc::clone(parts),
+                None => {
+                    let parts = Rc::new(self.model(&m, assets)?);
+                    self.models.insert(rel.clone(), Rc::clone(&parts));
+                    parts
+                }
+            };
+            // Before this placement's copy is made: refused while it is only a count.
+            let placed: u64 = parts.iter().map(|p| p.mesh.triangle_count() as u64).sum();
+            self.triangles += placed;
+            let bytes = self.triangles * super::memory::BYTES_PER_TRIANGLE;
+            super::memory::check(
+                bytes,
+                &format!("with this mesh, the scene's {} triangles", self.triangles),
+            )
+            .map_err(|e| self.src.error(span.clone(), e))?;
             let transform = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
-                rotation(m.rotate),
+                rotation(m.rotate) * m.up.turn(),
                 m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
             );
             let base = name_or(m.name, "mesh", n);
             let single = parts.len() == 1;
-            let rel = m.file.get_ref();
-            for part in parts {
-                let material = match (&m.material, part.material) {
+            for part in parts.iter() {
+                let material = match (&m.material, &part.material) {
                     (Some(_), _) | (None, None) => self.resolve(&m.material)?,
                     (None, Some((mtl_name, mat))) => {
-                        self.materials.add(format!("{rel}:{mtl_name}"), mat)
+                        self.materials.add(format!("{rel}:{mtl_name}"), mat.clone())
                     }
                 };
                 let mut mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
