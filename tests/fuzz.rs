@@ -1,11 +1,17 @@
-//! A seeded mutation fuzzer over everything a user hands raylab: scene files, OBJ and MTL
-//! files, sidecars, `--set` assignments and image sizes, and the command line itself. A
-//! case fails on a panic, on a loaded scene that renders a non-finite pixel, or on a case
-//! that runs for more than a minute (a watchdog ends the run). Failing inputs are shrunk
-//! line by line and kept in `tests/fuzz-regressions/`, which every run replays first.
+//! A seeded mutation fuzzer over everything a user hands raylab: scene files, OBJ, MTL and
+//! glTF files, sidecars, `--set` assignments and image sizes, and the command line itself.
+//! Mutations splice lines, cut them, insert junk, put a byte-order mark first, and
+//! replace numbers with values that broke parsers before (beyond f32 and f64 among them).
+//! A case fails on a panic, on a loaded scene that renders a non-finite pixel, on accepted
+//! parameters that do not read back from their own sidecar unchanged, or on a case that
+//! runs for more than a minute (a watchdog ends the run). Failing inputs are shrunk line
+//! by line and kept in `tests/fuzz-regressions/`, which every run replays first. Kills at
+//! random moments of a render's write check that no image is left beside another
+//! render's sidecar and that the next write removes what a kill left.
 //!
 //! `cargo test --release --test fuzz` runs 10,000 cases in seconds. A longer
-//! run: `RAYLAB_FUZZ_CASES=100000 RAYLAB_FUZZ_SEED=7 cargo test --release --test fuzz`.
+//! run: `RAYLAB_FUZZ_CASES=100000 RAYLAB_FUZZ_SEED=7 RAYLAB_FUZZ_KILLS=200 cargo test
+//! --release --test fuzz`.
 // Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]
@@ -63,6 +69,12 @@ const NUMBERS: &[&str] = &[
     "[1, 2]",
     "{}",
     "true",
+    // Beyond f32 (which once became infinity silently), beyond f64, below f32's least.
+    "1e39",
+    "-1e39",
+    "3.5e38",
+    "1e309",
+    "1e-50",
 ];
 
 /// Pieces of each format, spliced in as lines.
@@ -113,7 +125,12 @@ const LINES: &[&str] = &[
     "\"camera\": {\"position\": [0,0,0], \"look_at\": [0,0,0], \"up\": [0,1,0], \"fov_deg\": 0},",
 ];
 
+/// UTF-8's byte-order mark, which Windows editors put first.
+const BOM: &str = "\u{feff}";
+
 fn mutate(text: &str, rng: &mut Rng) -> String {
+    // One case in eight starts with a byte-order mark, as if saved by a Windows editor.
+    let bom = if rng.below(8) == 0 { BOM } else { "" };
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     for _ in 0..1 + rng.below(4) {
         let i = rng.below(lines.len());
@@ -144,7 +161,7 @@ fn mutate(text: &str, rng: &mut Rng) -> String {
             _ => lines.push(rng.pick(LINES).to_string()),
         }
     }
-    lines.join("\n")
+    format!("{bom}{}", lines.join("\n"))
 }
 
 /// The line with one of its numbers replaced by an interesting value.
@@ -181,14 +198,16 @@ enum Target {
     Mtl,
     Sidecar,
     Params,
+    Gltf,
 }
 
-const TARGETS: [Target; 5] = [
+const TARGETS: [Target; 6] = [
     Target::Scene,
     Target::Obj,
     Target::Mtl,
     Target::Sidecar,
     Target::Params,
+    Target::Gltf,
 ];
 
 impl Target {
@@ -199,6 +218,7 @@ impl Target {
             Target::Mtl => "mtl",
             Target::Sidecar => "json",
             Target::Params => "set",
+            Target::Gltf => "gltf",
         }
     }
 
@@ -210,6 +230,22 @@ impl Target {
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
+
+/// A glTF file of one triangle with a glass material, its buffer inline, a key a line.
+const GLTF: &str = r#"{
+"asset": {"version": "2.0"},
+"extensionsUsed": ["KHR_materials_ior", "KHR_materials_transmission"],
+"scene": 0,
+"scenes": [{"nodes": [0]}],
+"nodes": [{"mesh": 0, "translation": [0, 1, 0], "scale": [2, 2, 2]}],
+"materials": [{"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0},
+"extensions": {"KHR_materials_ior": {"ior": 1.5}, "KHR_materials_transmission": {"transmissionFactor": 1}}}],
+"meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+"buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+"bufferViews": [{"buffer": 0, "byteLength": 36}],
+"accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+"min": [0, 0, 0], "max": [1, 1, 0]}]
+}"#;
 
 /// The unmutated inputs of each target.
 fn seeds(target: Target) -> Vec<String> {
@@ -230,6 +266,7 @@ fn seeds(target: Target) -> Vec<String> {
         Target::Obj => read_dir("scenes/models", ".obj"),
         Target::Mtl => vec!["newmtl a\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\nNs 40\nillum 2\nnewmtl b\nKe 1 1 1\n".into()],
         Target::Sidecar => read_dir("screenshots", ".png.json"),
+        Target::Gltf => vec![GLTF.into()],
         Target::Params => vec![
             "spp=4\nmax_depth=3\nmin_weight=0.01\nior=1.5\naperture=0.1\nfocus_distance=5\nshutter_open=0\nshutter=1\npattern=sobol\ntree=split\nsize=64x36".into(),
             "abbe=20\npolarizer=45\ntransport=transmissive_shadows\nior=2.4\nsize=64x36".into(),
@@ -255,10 +292,25 @@ fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
             None => Ok(()),
         }
     };
+    // Accepted parameters are written to a sidecar and read back as they were: none
+    // holds a number its JSON cannot say (an f32 beyond range once became `null`).
+    let round_trip = |params: &Params| -> Result<(), String> {
+        let json = serde_json::to_value(params).map_err(|e| e.to_string())?;
+        let serde_json::Value::Object(map) = json else {
+            return Err("parameters are not a JSON object".into());
+        };
+        match Params::from_json(&map) {
+            Ok(back) if back == *params => Ok(()),
+            Ok(back) => Err(format!("accepted {params:?}, read back {back:?}")),
+            Err(e) => Err(format!("accepted, but its sidecar is refused: {e}")),
+        }
+    };
     let accepted = match target {
         Target::Scene => {
-            let scene = Scene::from_toml_str(input, "fuzz.toml", &repo().join("scenes"));
+            let text = input.strip_prefix(BOM).unwrap_or(input);
+            let scene = Scene::from_toml_str(text, "fuzz.toml", &repo().join("scenes"));
             if let Ok(scene) = &scene {
+                round_trip(&scene.params)?;
                 check_render(scene, &scene.params)?;
             }
             scene.is_ok()
@@ -274,12 +326,17 @@ fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
             let read_mtl = |_: &str| Some(mtl.as_bytes().to_vec());
             load_obj(obj.as_bytes(), "fuzz.obj", &read_mtl).is_ok()
         }
+        Target::Gltf => {
+            let no_files = |_: &str| Err("no files beside it".to_string());
+            raylab::scene::load_gltf(input.as_bytes(), "fuzz.gltf", &no_files).is_ok()
+        }
         Target::Sidecar => {
             let path = dir.join("fuzz.png.json");
             std::fs::write(&path, input).map_err(|e| e.to_string())?;
             let sidecar = Sidecar::read(&path);
             if let Ok(sidecar) = &sidecar {
                 check_size(sidecar.width, sidecar.height)?;
+                round_trip(&sidecar.params)?;
             }
             sidecar.is_ok()
         }
@@ -298,6 +355,7 @@ fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
                 params
                     .validate()
                     .map_err(|e| format!("accepted, then invalid: {e}"))?;
+                round_trip(&params)?;
                 check_render(&Scene::load("glass").map_err(|e| e.to_string())?, &params)?;
             }
             set.is_ok()
@@ -421,7 +479,7 @@ fn thousands_of_mutated_inputs_neither_panic_nor_hang_nor_render_nan() {
     let seeds: Vec<(Target, Vec<String>)> = TARGETS.iter().map(|&t| (t, seeds(t))).collect();
     let mut rng = Rng(seed);
     // Per target: inputs accepted, inputs refused.
-    let mut counts = [[0u64; 2]; 5];
+    let mut counts = [[0u64; 2]; TARGETS.len()];
     let start = Instant::now();
     for case in 0..cases {
         let (target, inputs) = &seeds[case as usize % seeds.len()];
@@ -447,7 +505,7 @@ fn thousands_of_mutated_inputs_neither_panic_nor_hang_nor_render_nan() {
                 kept.display()
             );
         }
-        counts[case as usize % 5][usize::from(result == Ok(false))] += 1;
+        counts[case as usize % TARGETS.len()][usize::from(result == Ok(false))] += 1;
     }
     let per_target: Vec<String> = TARGETS
         .iter()
@@ -491,4 +549,67 @@ fn mutated_command_lines_exit_cleanly() {
             assert_eq!(err.lines().count(), 1, "case {case} {args:?}: {err}");
         }
     }
+}
+
+/// Kills during writes: the CLI killed (SIGKILL or Ctrl-C) at moments drawn at random
+/// across a render and its write. After each, the image's own parameters and its sidecar's
+/// (if one is there) are the same render's, and after the last a write leaves no
+/// temporary file. `RAYLAB_FUZZ_KILLS` sets how many (12 by default).
+#[cfg(unix)]
+#[test]
+fn kills_at_random_moments_never_pair_an_image_with_another_render() {
+    let kills: u64 = std::env::var("RAYLAB_FUZZ_KILLS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(12);
+    let dir = tempfile::tempdir().unwrap();
+    let args = |seed: u64| -> Vec<String> {
+        let fixed = [
+            "render", "glass", "-o", "k.png", "--size", "320x180", "--spp", "1", "-q",
+        ];
+        let mut args: Vec<String> = fixed.iter().map(|s| s.to_string()).collect();
+        args.extend(["--seed".to_string(), seed.to_string()]);
+        args
+    };
+    let start = Instant::now();
+    let first = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(args(0))
+        .current_dir(dir.path())
+        .status()
+        .unwrap();
+    assert!(first.success());
+    let whole = start.elapsed();
+    let mut rng = Rng(0x6b696c6c);
+    for n in 1..=kills {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+            .args(args(n))
+            .current_dir(dir.path())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(whole.mul_f64(rng.below(1000) as f64 / 700.0));
+        let signal = *rng.pick(&["-KILL", "-INT"]);
+        let _ = std::process::Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status();
+        let _ = child.wait();
+        let image = Sidecar::read(&dir.path().join("k.png")).unwrap();
+        if let Ok(sidecar) = Sidecar::read(&dir.path().join("k.png.json")) {
+            assert_eq!(
+                image.params.seed, sidecar.params.seed,
+                "kill {n} ({signal})"
+            );
+        }
+    }
+    let last = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .args(args(kills + 1))
+        .current_dir(dir.path())
+        .status()
+        .unwrap();
+    assert!(last.success());
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
 }

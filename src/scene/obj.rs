@@ -61,17 +61,20 @@ pub fn load_obj(
         tobj::load_obj_buf(&mut reader, &options, |p: &Path| {
             let name = p.to_string_lossy().into_owned();
             match read_mtl(&name) {
-                Some(bytes) => match check_mtl(&bytes, &mtl_label(&name)) {
-                    Ok(()) => {
-                        // The library a parse error that tobj reports alone is in.
-                        *read_mtl_label.borrow_mut() = Some(mtl_label(&name));
-                        tobj::load_mtl_buf(&mut super::input::without_bom(&bytes))
+                Some(bytes) => {
+                    let text = super::input::without_bom(&bytes);
+                    match check_mtl(text, &mtl_label(&name)) {
+                        Ok(()) => {
+                            // The library a parse error that tobj reports alone is in.
+                            *read_mtl_label.borrow_mut() = Some(mtl_label(&name));
+                            tobj::load_mtl_buf(&mut &text[..])
+                        }
+                        Err(e) => {
+                            bad_mtl.borrow_mut().get_or_insert(e);
+                            Err(tobj::LoadError::MaterialParseError)
+                        }
                     }
-                    Err(e) => {
-                        bad_mtl.borrow_mut().get_or_insert(e);
-                        Err(tobj::LoadError::MaterialParseError)
-                    }
-                },
+                }
                 None => {
                     failed_mtl.borrow_mut().get_or_insert(name);
                     Err(tobj::LoadError::OpenFileFailed)
