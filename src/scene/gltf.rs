@@ -49,6 +49,23 @@ pub fn load_gltf(
             "needs the glTF extension {extension}{what}, which raylab does not read; export the model without it"
         )));
     }
+    // gltf-json 1.4's validator indexes the accessors by each POSITION without checking
+    // it: checked here first, so that it says what is wrong rather than panicking.
+    let json = unchecked.as_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+            if let Some(index) = primitive.attributes.get(&position)
+                && index.value() >= json.accessors.len()
+            {
+                return Err(error(format!(
+                    "invalid glTF: meshes[{m}].primitives[{p}].attributes.POSITION is accessor {}, but the file has {}",
+                    index.value(),
+                    json.accessors.len()
+                )));
+            }
+        }
+    }
     let gltf::Gltf { document, blob } = unchecked;
     let document =
         gltf::Document::from_json(document.into_json()).map_err(|e| gltf_error(file, e))?;
