@@ -189,6 +189,32 @@ fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
 }
 
 #[test]
+fn a_scene_whose_files_lack_something_opens_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("lost.obj");
+    std::fs::write(
+        &obj,
+        "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let warned = |a: &RaylabApp| {
+        a.toasts()
+            .iter()
+            .any(|t| t.starts_with("Warning: ") && t.contains("`gone.mtl`"))
+    };
+    // Opened first, and opened later.
+    let mut h = window::app(obj.to_str().unwrap(), dir.path());
+    h.step();
+    assert!(warned(h.state()), "{:?}", h.state().toasts());
+    let mut h = app("default", dir.path());
+    h.step();
+    assert!(!warned(h.state()));
+    h.state_mut().open_scene(&obj);
+    step_until(&mut h, "the warning", warned);
+    assert_eq!(h.state().scene().name, "lost");
+}
+
+#[test]
 fn space_pauses_and_reset_restores_the_scene_defaults() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("default", dir.path());

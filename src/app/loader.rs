@@ -204,9 +204,8 @@ impl RaylabApp {
             if !(self.hall.presenting && slide.is_some()) {
                 self.toasts.info(format!("{verb} {}", scene.name));
             }
-            // Shown as long as a failure: something the user's files lack.
             for warning in &scene.warnings {
-                self.toasts.error(format!("Warning: {warning}"));
+                self.toasts.warn(warning);
             }
             self.keep_side_a();
             self.instruments.inspection = None;

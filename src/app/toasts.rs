@@ -32,6 +32,11 @@ impl Toasts {
         self.push(text.into(), true, 8);
     }
 
+    /// Something a scene's files lack (not fatal), shown as long as a failure.
+    pub(crate) fn warn(&mut self, text: impl std::fmt::Display) {
+        self.error(format!("Warning: {text}"));
+    }
+
     /// The texts shown.
     pub(crate) fn texts(&self) -> Vec<String> {
         self.0.iter().map(|t| t.text.clone()).collect()
