@@ -19,13 +19,15 @@ const TEMP_MARK: &str = ".raylab-";
 /// The temporary files being written now, for [`remove_temporaries`].
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Removes every temporary file this process is writing: for a Ctrl-C handler, just
-/// before the process ends.
+/// Removes every temporary file this process is writing, and keeps the list locked, so
+/// that no other can be made after: for a Ctrl-C handler, just before it ends the process.
 pub fn remove_temporaries() {
     if let Ok(live) = LIVE.lock() {
         for path in live.iter() {
             let _ = std::fs::remove_file(path);
         }
+        // Held until the process ends: a writer waits at its next file.
+        std::mem::forget(live);
     }
 }
 
@@ -52,12 +54,15 @@ impl TempFile {
             keep -= 1;
         }
         let path = dir.join(format!(".{}{tail}", &name[..keep]));
+        // Made and listed under the list's lock, so that Ctrl-C finds every file made.
+        let mut live = LIVE.lock().ok();
         let file = File::options().write(true).create_new(true).open(&path)?;
         // Unlocked only on platforms without file locks; the sweep then leaves it alone.
         let _ = file.try_lock();
-        if let Ok(mut live) = LIVE.lock() {
+        if let Some(live) = live.as_mut() {
             live.push(path.clone());
         }
+        drop(live);
         Ok(TempFile {
             path,
             file: Some(file),

@@ -84,12 +84,13 @@ enum UpAxis {
 }
 
 impl UpAxis {
-    /// The turn that makes this axis raylab's +y: for z up, −90° about x, so
-    /// (x, y, z) ↦ (x, z, −y).
-    fn turn(self) -> glam::Quat {
+    /// `rotation` after the turn that makes this axis raylab's +y: for z up, −90° about x,
+    /// so (x, y, z) ↦ (x, z, −y). For y up, `rotation` itself, not a product with the
+    /// identity (which could turn a −0 into +0 and change an image by a bit).
+    fn then(self, rotation: glam::Quat) -> glam::Quat {
         match self {
-            UpAxis::Y => glam::Quat::IDENTITY,
-            UpAxis::Z => glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2),
+            UpAxis::Y => rotation,
+            UpAxis::Z => rotation * glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2),
         }
     }
 }
@@ -289,7 +290,7 @@ impl<'s> Objects<'s> {
             .map_err(|e| self.src.error(span.clone(), e))?;
             let transform = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
-                rotation(m.rotate) * m.up.turn(),
+                m.up.then(rotation(m.rotate)),
                 m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
             );
             let base = name_or(m.name, "mesh", n);
