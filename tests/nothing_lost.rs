@@ -314,6 +314,16 @@ fn an_image_carries_its_parameters_and_reproduces_from_itself() {
         let carried = raylab::render::Sidecar::read(&dir.join(&b)).unwrap();
         assert_eq!(carried.params.ior, Some(1.7));
     }
+    // The image read is not replaced by its own re-render.
+    let before = std::fs::read(dir.join("a.png")).unwrap();
+    fails(
+        &[
+            "render", "--params", "a.png", "-o", "a.png", "--set", "ior=2",
+        ],
+        dir,
+        "a.png: is the image this render reads its parameters from; not replaced",
+    );
+    assert!(std::fs::read(dir.join("a.png")).unwrap() == before);
     // An image raylab did not write says so in one line.
     image::RgbImage::new(2, 2)
         .save(dir.join("plain.png"))

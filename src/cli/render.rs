@@ -177,6 +177,14 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     if with_sidecar {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
+    // An image that carries the parameters being read is not replaced either.
+    let read = args.params.as_deref();
+    if read.is_some_and(|input| raylab::render::output::same_file(input, &output)) {
+        anyhow::bail!(
+            "{}: is the image this render reads its parameters from; not replaced (write the image under another name)",
+            output.display()
+        );
+    }
     let pixels = job.width as u64 * job.height as u64;
     raylab::scene::memory::check(
         pixels * raylab::scene::memory::BYTES_PER_PIXEL,

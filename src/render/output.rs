@@ -128,6 +128,11 @@ fn destination(path: &Path) -> PathBuf {
     }
 }
 
+/// Whether `a` and `b` name one existing file (through links, `..` and the like).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((std::fs::canonicalize(a), std::fs::canonicalize(b)), (Ok(a), Ok(b)) if a == b)
+}
+
 /// The folder `path` is in (`.` for a bare name).
 pub fn folder_of(path: &Path) -> &Path {
     path.parent()

@@ -157,8 +157,7 @@ impl Sidecar {
                 message: message.to_string(),
             })
         };
-        let same = |a: &Path, b: &Path| matches!((std::fs::canonicalize(a), std::fs::canonicalize(b)), (Ok(a), Ok(b)) if a == b);
-        if input.is_some_and(|input| same(path, input)) {
+        if input.is_some_and(|input| super::output::same_file(path, input)) {
             return refuse(
                 "is the sidecar this render reads; not replaced (write the image under another name)",
             );
