@@ -231,9 +231,7 @@ impl RaylabApp {
             // The first run: where the lecture is, and how to present it.
             toasts.info("The Lecture menu has the slides; F5 presents them; F1 lists every key.");
         }
-        for warning in &scene.warnings {
-            toasts.warn(warning);
-        }
+        scene.warnings.iter().for_each(|w| toasts.warn(w));
         let mut loader = Loader::new(&cc.egui_ctx);
         loader.watch(&scene);
         Ok(RaylabApp {
