@@ -140,7 +140,7 @@ pub fn folder_of(path: &Path) -> &Path {
         .unwrap_or(Path::new("."))
 }
 
-/// Whether `name` is a temporary file raylab writes (or wrote before 0.2:
+/// Whether `name` is a temporary file raylab writes (or wrote before this version:
 /// `.NAME.PID-N.tmp`).
 fn is_temporary(name: &str) -> bool {
     let Some(inner) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) else {
@@ -149,12 +149,17 @@ fn is_temporary(name: &str) -> bool {
     if inner.contains(TEMP_MARK) {
         return true;
     }
-    let Some((_, tail)) = inner.rsplit_once('.') else {
+    // 0.1's names carry no mark: only those of a file raylab writes are taken, so that
+    // another program's `.notes.txt.12-3.tmp` is never removed.
+    let Some((name, tail)) = inner.rsplit_once('.') else {
         return false;
     };
+    let ours = [".png", ".exr", ".json", ".gif", ".svg"];
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    tail.split_once('-')
-        .is_some_and(|(pid, n)| digits(pid) && digits(n))
+    ours.iter().any(|ext| name.ends_with(ext))
+        && tail
+            .split_once('-')
+            .is_some_and(|(pid, n)| digits(pid) && digits(n))
 }
 
 /// Removes the temporary files a killed run left in `dir`: those no running writer holds
@@ -422,10 +427,13 @@ mod tests {
         std::fs::write(&old, "left by raylab 0.1").unwrap();
         let mine = dir.path().join(".notes.tmp");
         std::fs::write(&mine, "not ours").unwrap();
+        let theirs = dir.path().join(".notes.txt.12-3.tmp");
+        std::fs::write(&theirs, "another program's").unwrap();
         sweep_stale(dir.path());
         assert!(held.path.exists(), "a live writer's file stays");
         assert!(!old.exists(), "an old version's leftover goes");
         assert!(mine.exists(), "a name raylab never writes stays");
+        assert!(theirs.exists(), "another program's temporary file stays");
         assert!(is_temporary(".x.raylab-1-2.tmp") && !is_temporary(".x.1.tmp"));
     }
 
