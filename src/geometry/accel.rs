@@ -30,7 +30,7 @@ use std::time::Duration;
 /// > each axis) in `ray_get_octant_inv4`, or `if x < 0.0 { -1.0 } else { 1.0 }` in
 /// > `safe_inverse`, so that both agree.
 #[inline]
-fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
+pub(super) fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
     dir + crate::math::Vec3::ZERO
 }
 
@@ -87,6 +87,17 @@ fn break_ties(bounds: &mut [Aabb]) {
     }
 }
 
+/// The BVH over the boxes `bounds` (made distinct first, see [`break_ties`]); its
+/// `primitive_indices` give each leaf's place in `bounds`.
+pub(super) fn build_tree(bounds: &mut [Aabb]) -> CwBvh {
+    break_ties(bounds);
+    build_cwbvh(
+        bounds,
+        BvhBuildParams::medium_build(),
+        &mut Duration::default(),
+    )
+}
+
 /// Hashes keys that are hashes already: passes them through.
 #[derive(Default)]
 pub(crate) struct KeyHasher(u64);
@@ -125,16 +136,9 @@ impl Accel {
         let (direct, mut prims) = Direct::new(shapes);
         let mut bounds: Vec<Aabb> = prims
             .iter()
-            .map(|p| shapes[p.object as usize].primitive_bounds(p.index))
+            .map(|p| shapes[p.object as usize].leaf_bounds(p.index))
             .collect();
-        break_ties(&mut bounds);
-        let bvh = (!prims.is_empty()).then(|| {
-            build_cwbvh(
-                &bounds,
-                BvhBuildParams::medium_build(),
-                &mut Duration::default(),
-            )
-        });
+        let bvh = (!prims.is_empty()).then(|| build_tree(&mut bounds));
         if let Some(bvh) = &bvh {
             prims = bvh
                 .primitive_indices
@@ -195,14 +199,24 @@ impl Accel {
         };
         let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_best);
         let mut hit = obvhs::ray::RayHit::none();
+        // Every distance returned is below the traversal's current limit and so taken
+        // (obvhs keeps t < tmax): the last primitive returned is the nearest.
+        let mut nearest = PrimRef {
+            object: 0,
+            index: 0,
+        };
         let found = bvh.ray_traverse(obv_ray, &mut hit, |r, id| {
             let p = self.prims[id];
-            shapes[p.object as usize]
-                .intersect_t(p.index, ray, r.tmax)
-                .unwrap_or(f32::INFINITY)
+            match shapes[p.object as usize].intersect_leaf(p.index, ray, r.tmax) {
+                Some((index, t)) => {
+                    nearest = PrimRef { index, ..p };
+                    t
+                }
+                None => f32::INFINITY,
+            }
         });
         if found {
-            best = Some((self.prims[hit.primitive_id as usize], hit.t));
+            best = Some((nearest, hit.t));
         }
         best
     }
@@ -253,11 +267,13 @@ impl Accel {
             return false;
         };
         let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
+        // A blocker found is told as a distance below the limit, which ends the search.
         !bvh.ray_traverse_miss(obv_ray, |r, id| {
             let p = self.prims[id];
-            shapes[p.object as usize]
-                .intersect_t(p.index, ray, r.tmax)
-                .unwrap_or(f32::INFINITY)
+            match shapes[p.object as usize].leaf_blocks(p.index, ray, r.tmax) {
+                true => 0.0,
+                false => f32::INFINITY,
+            }
         })
     }
 
@@ -271,11 +287,13 @@ impl Accel {
         // The directly tested shapes first, then every BVH primitive one by one.
         let mut best = self.direct.intersect(ray, t_max);
         let mut t_best = best.map_or(t_max, |(_, t)| t);
-        let all = self.prims.iter().copied();
-        for p in all {
-            if let Some(t) = shapes[p.object as usize].intersect_t(p.index, ray, t_best) {
-                t_best = t;
-                best = Some((p, t));
+        for &leaf in &self.prims {
+            let shape = &shapes[leaf.object as usize];
+            for index in shape.leaf_primitives(leaf.index) {
+                if let Some(t) = shape.intersect_t(index, ray, t_best) {
+                    t_best = t;
+                    best = Some((PrimRef { index, ..leaf }, t));
+                }
             }
         }
         best

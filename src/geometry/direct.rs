@@ -16,7 +16,7 @@ const DIRECT_MAX: usize = 16;
 
 /// A mesh of at most this many triangles (a box has 12) counts as one shape of the
 /// [`DIRECT_MAX`]: its triangles are tested one by one behind its bounding box.
-const SMALL_MESH: usize = 16;
+pub(crate) const SMALL_MESH: usize = 16;
 
 /// The spheres, quads and small meshes tested directly (when there are at most
 /// DIRECT_MAX), and the planes.
@@ -92,7 +92,7 @@ impl Direct {
         let small = |s: &Shape| match s {
             Shape::Sphere(_) | Shape::Quad(_) => true,
             Shape::Mesh(m) => m.triangle_count() <= SMALL_MESH,
-            Shape::Plane(_) => false,
+            Shape::Plane(_) | Shape::Instance(_) => false,
         };
         let direct_ok = shapes.iter().filter(|s| small(s)).count() <= DIRECT_MAX;
         let mut direct = Direct::default();
@@ -122,7 +122,7 @@ impl Direct {
                     tested[3].extend((0..count).map(|index| PrimRef { object, index }));
                 }
                 _ => {
-                    let count = shape.primitive_count() as u32;
+                    let count = shape.leaf_count() as u32;
                     rest.extend((0..count).map(|index| PrimRef { object, index }));
                 }
             }

@@ -49,6 +49,9 @@ pub enum MeshError {
         /// Vertices.
         count: usize,
     },
+    /// A placement's transform flattens, mirrors or overflows the mesh.
+    #[error("its transform is not an invertible one that keeps the mesh's orientation")]
+    Transform,
 }
 
 impl Mesh {
@@ -233,6 +236,17 @@ impl Mesh {
 
     /// The hit record of triangle `i` at `t`, with the point rebuilt from barycentrics.
     pub fn surface_hit(&self, i: usize, ray: &Ray, t: f32) -> SurfaceHit {
+        self.surface_hit_shaded(i, ray, t, true)
+    }
+
+    /// [`Mesh::surface_hit`], with the vertex normals used only where `smooth`.
+    pub(super) fn surface_hit_shaded(
+        &self,
+        i: usize,
+        ray: &Ray,
+        t: f32,
+        smooth: bool,
+    ) -> SurfaceHit {
         let [v0, e1, e2] = self.edges[i];
         // Barycentrics of the point at t, by projecting onto the triangle's edges.
         let (u, v) = match self.intersect_t(i, ray, f32::INFINITY) {
@@ -243,7 +257,7 @@ impl Mesh {
         let p = v0 + u * e1 + v * e2 + self.velocity * ray.time;
         let mut n_geom = e1.cross(e2).normalize_or_zero();
         let [a, b, c] = self.indices[i].map(|k| k as usize);
-        let n_shade = match &self.normals {
+        let n_shade = match self.normals.as_ref().filter(|_| smooth) {
             Some(n) => {
                 let s = (w * n[a] + u * n[b] + v * n[c]).normalize_or_zero();
                 if s == Vec3::ZERO { n_geom } else { s }

@@ -7,12 +7,15 @@
 
 mod accel;
 mod direct;
+mod instance;
 mod mesh;
 mod shapes;
 
 pub(crate) use accel::KeyHasher;
 pub use accel::{Accel, PrimRef};
-pub use mesh::Mesh;
+pub(crate) use direct::SMALL_MESH;
+pub use instance::{Instance, SharedMesh};
+pub use mesh::{Mesh, MeshError};
 pub use shapes::{Plane, Quad, Sphere};
 
 use crate::math::lanes::{Lanes, Real, V3, Vector};
@@ -59,6 +62,9 @@ pub enum Shape {
     Plane(Plane),
     /// A triangle mesh.
     Mesh(Mesh),
+    /// A placement of a mesh shared with other placements: one leaf of the scene's BVH,
+    /// over the mesh's own BVH.
+    Instance(Instance),
 }
 
 /// The hit records of `N` rays on one analytic shape, column by column: points, unit
@@ -85,22 +91,50 @@ impl<const N: usize> SurfaceLanes<N> {
 }
 
 impl Shape {
-    /// How many BVH primitives this shape contributes (0 for an unbounded plane).
+    /// How many primitives this shape has: its triangles, or 1 for a sphere or quad (0 for
+    /// an unbounded plane). Emitters are sampled primitive by primitive.
     pub fn primitive_count(&self) -> usize {
         match self {
             Shape::Sphere(_) | Shape::Quad(_) => 1,
             Shape::Plane(_) => 0,
             Shape::Mesh(m) => m.triangle_count(),
+            Shape::Instance(i) => i.triangle_count(),
         }
     }
 
-    /// The bounds of primitive `index` of this shape.
+    /// The bounds of primitive `index` of this shape over the whole frame.
     pub fn primitive_bounds(&self, index: u32) -> obvhs::aabb::Aabb {
         match self {
             Shape::Sphere(s) => s.bounds(),
             Shape::Quad(q) => q.bounds(),
             Shape::Plane(_) => obvhs::aabb::Aabb::INFINITY,
             Shape::Mesh(m) => m.triangle_bounds(index as usize),
+            Shape::Instance(i) => i.triangle_bounds(index as usize),
+        }
+    }
+
+    /// How many leaves this shape puts in the scene's BVH: one per primitive, but one for
+    /// a whole instance, which has a BVH of its own.
+    fn leaf_count(&self) -> usize {
+        match self {
+            Shape::Instance(_) => 1,
+            _ => self.primitive_count(),
+        }
+    }
+
+    /// The bounds of leaf `leaf` of this shape over the whole frame.
+    fn leaf_bounds(&self, leaf: u32) -> obvhs::aabb::Aabb {
+        match self {
+            Shape::Instance(i) => i.bounds(),
+            _ => self.primitive_bounds(leaf),
+        }
+    }
+
+    /// The primitives under leaf `leaf`.
+    fn leaf_primitives(&self, leaf: u32) -> std::ops::Range<u32> {
+        match self {
+            Shape::Instance(i) => 0..i.triangle_count() as u32,
+            _ => leaf..leaf + 1,
         }
     }
 
@@ -113,6 +147,7 @@ impl Shape {
             Shape::Quad(q) => inside(q.bounds()),
             Shape::Plane(p) => within_limits(p.point),
             Shape::Mesh(m) => (0..m.triangle_count()).all(|i| inside(m.triangle_bounds(i))),
+            Shape::Instance(i) => i.within_limits(),
         }
     }
 
@@ -124,6 +159,26 @@ impl Shape {
             Shape::Quad(q) => q.intersect_t(ray, t_max),
             Shape::Plane(p) => p.intersect_t(ray, t_max),
             Shape::Mesh(m) => m.intersect_t(index as usize, ray, t_max).map(|(t, _)| t),
+            Shape::Instance(i) => i.intersect_triangle(index as usize, ray, t_max),
+        }
+    }
+
+    /// The nearest primitive under leaf `leaf` that `ray` hits in (0, t_max), and the
+    /// distance.
+    #[inline(always)]
+    fn intersect_leaf(&self, leaf: u32, ray: &Ray, t_max: f32) -> Option<(u32, f32)> {
+        match self {
+            Shape::Instance(i) => i.intersect(ray, t_max),
+            _ => self.intersect_t(leaf, ray, t_max).map(|t| (leaf, t)),
+        }
+    }
+
+    /// Whether a primitive under leaf `leaf` blocks `ray` in (0, t_max).
+    #[inline(always)]
+    fn leaf_blocks(&self, leaf: u32, ray: &Ray, t_max: f32) -> bool {
+        match self {
+            Shape::Instance(i) => i.occluded(ray, t_max),
+            _ => self.intersect_t(leaf, ray, t_max).is_some(),
         }
     }
 
@@ -134,6 +189,7 @@ impl Shape {
             Shape::Quad(q) => q.edge_u.cross(q.edge_v).length(),
             Shape::Plane(_) => f32::INFINITY,
             Shape::Mesh(m) => m.triangle_area(index as usize),
+            Shape::Instance(i) => i.triangle_area(index as usize),
         }
     }
 
@@ -151,6 +207,7 @@ impl Shape {
             Shape::Quad(q) => Some(q.corner + u.x * q.edge_u + u.y * q.edge_v),
             Shape::Plane(_) => None,
             Shape::Mesh(m) => Some(m.sample_point(index as usize, u, time)),
+            Shape::Instance(i) => Some(i.sample_point(index as usize, u, time)),
         }
     }
 
@@ -194,7 +251,7 @@ impl Shape {
                     uv: (u, v),
                 }
             }
-            Shape::Sphere(_) | Shape::Mesh(_) => return None,
+            Shape::Sphere(_) | Shape::Mesh(_) | Shape::Instance(_) => return None,
         })
     }
 
@@ -206,6 +263,7 @@ impl Shape {
             Shape::Quad(q) => q.surface_hit(ray, t),
             Shape::Plane(p) => p.surface_hit(ray, t),
             Shape::Mesh(m) => m.surface_hit(index as usize, ray, t),
+            Shape::Instance(i) => i.surface_hit(index as usize, ray, t),
         }
     }
 }

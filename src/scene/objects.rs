@@ -7,13 +7,14 @@ use super::materials::{MaterialTable, RawMaterial, default_material, material, m
 use super::obj::{ObjPart, load_obj};
 use super::values::{Dir, Length, V3};
 use super::{Material, Object, SceneError};
-use crate::geometry::{Mesh, Plane, Quad, Shape, Sphere};
+use crate::geometry::{Instance, Mesh, Plane, Quad, SMALL_MESH, Shape, SharedMesh, Sphere};
 use crate::math::Vec3;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 use std::path::Path;
 use std::rc::Rc;
+use std::sync::Arc;
 use toml::Spanned;
 
 #[derive(Deserialize)]
@@ -127,10 +128,63 @@ pub(super) struct Objects<'s> {
     spans: Vec<Range<usize>>,
     warnings: Vec<String>,
     // Each model file read once, however often it is placed.
-    models: HashMap<String, Rc<Vec<ObjPart>>>,
-    // Triangles placed so far, for the memory estimate.
+    models: HashMap<String, Rc<Vec<Part>>>,
+    // Triangles built so far and shared placements, for the memory estimate.
     triangles: u64,
+    instances: u64,
 }
+
+/// A part of a model file, as its placements use it.
+struct Part {
+    name: String,
+    material: Option<(String, Material)>,
+    mesh: PartMesh,
+}
+
+/// A part's triangles: copied into each placement, or built once and shared.
+enum PartMesh {
+    Copied(Mesh),
+    Shared(Arc<SharedMesh>),
+}
+
+/// Whether a part of `triangles` placed `placements` times is shared by its placements
+/// (an instance each): when there are several and it is more than a small mesh. A small
+/// mesh is copied: it costs little, and copies are tested directly, several rays at once,
+/// where an instance is a trip into its own frame and tree.
+fn shares(placements: usize, triangles: usize) -> bool {
+    placements > 1 && triangles > SMALL_MESH
+}
+
+impl Part {
+    /// `part` as placed `placements` times.
+    fn new(part: ObjPart, placements: usize) -> Part {
+        let mesh = if shares(placements, part.mesh.triangle_count()) {
+            PartMesh::Shared(SharedMesh::new(part.mesh))
+        } else {
+            PartMesh::Copied(part.mesh)
+        };
+        Part {
+            name: part.name,
+            material: part.material,
+            mesh,
+        }
+    }
+
+    fn is_shared(&self) -> bool {
+        matches!(self.mesh, PartMesh::Shared(_))
+    }
+
+    fn triangle_count(&self) -> usize {
+        match &self.mesh {
+            PartMesh::Copied(m) => m.triangle_count(),
+            PartMesh::Shared(s) => s.mesh().triangle_count(),
+        }
+    }
+}
+
+/// The memory a shared placement takes beside its mesh: the instance and its leaf of
+/// the scene's BVH, with margin.
+const BYTES_PER_INSTANCE: u64 = 512;
 
 /// A file's materials (by name) and objects, built.
 pub(super) struct Built {
@@ -162,6 +216,7 @@ impl<'s> Objects<'s> {
             warnings: Vec::new(),
             models: HashMap::new(),
             triangles: 0,
+            instances: 0,
         })
     }
 
@@ -262,37 +317,49 @@ impl<'s> Objects<'s> {
     }
 
     /// Meshes from model files beside the scene (`assets`): one object per part of a
-    /// model, each with its own material unless the scene names one.
+    /// model, each with its own material unless the scene names one. A file placed more
+    /// than once is read and built once, and placed by transforms (see [`Part::new`]).
     pub(super) fn meshes(
         &mut self,
         defs: Vec<MeshDef>,
         assets: &dyn Assets,
     ) -> Result<(), SceneError> {
+        let mut placements: HashMap<String, usize> = HashMap::new();
+        for m in &defs {
+            *placements.entry(m.file.get_ref().clone()).or_default() += 1;
+        }
         for (n, m) in defs.into_iter().enumerate() {
             let span = m.file.span();
             let rel = m.file.get_ref();
+            // Each placement is counted before it is built (the first before its model's
+            // shared trees are), and refused while it is only a count.
             let parts = match self.models.get(rel) {
-                Some(parts) => Rc::clone(parts),
+                Some(parts) => {
+                    let parts = Rc::clone(parts);
+                    let sizes = parts.iter().map(|p| (p.triangle_count(), p.is_shared()));
+                    self.account(sizes, false, &span)?;
+                    parts
+                }
                 None => {
-                    let parts = Rc::new(self.model(&m, assets)?);
+                    let placed = placements.get(rel).copied().unwrap_or(1);
+                    let raw = self.model(&m, assets)?;
+                    let sizes = raw.iter().map(|p| {
+                        let count = p.mesh.triangle_count();
+                        (count, shares(placed, count))
+                    });
+                    self.account(sizes, true, &span)?;
+                    let parts: Vec<Part> = raw.into_iter().map(|p| Part::new(p, placed)).collect();
+                    let parts = Rc::new(parts);
                     self.models.insert(rel.clone(), Rc::clone(&parts));
                     parts
                 }
             };
-            // Before this placement's copy is made: refused while it is only a count.
-            let placed: u64 = parts.iter().map(|p| p.mesh.triangle_count() as u64).sum();
-            self.triangles += placed;
-            let bytes = self.triangles * super::memory::BYTES_PER_TRIANGLE;
-            super::memory::check(
-                bytes,
-                &format!("with this mesh, the scene's {} triangles", self.triangles),
-            )
-            .map_err(|e| self.src.error(span.clone(), e))?;
             let transform = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
                 m.up.then(rotation(m.rotate)),
                 m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
             );
+            let velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
             let base = name_or(m.name, "mesh", n);
             let single = parts.len() == 1;
             for part in parts.iter() {
@@ -302,13 +369,22 @@ impl<'s> Objects<'s> {
                         self.materials.add(format!("{rel}:{mtl_name}"), mat.clone())
                     }
                 };
-                let mut mesh = part.mesh.transformed(&transform, m.smooth).map_err(|e| {
+                let after = |e: crate::geometry::MeshError| {
                     self.src
                         .error(span.clone(), format!("after its transform: {e}"))
-                })?;
-                mesh.velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
-                let mesh = Shape::Mesh(mesh);
-                if !mesh.within_limits() {
+                };
+                let shape = match &part.mesh {
+                    PartMesh::Copied(mesh) => {
+                        let mut mesh = mesh.transformed(&transform, m.smooth).map_err(after)?;
+                        mesh.velocity = velocity;
+                        Shape::Mesh(mesh)
+                    }
+                    PartMesh::Shared(shared) => Shape::Instance(
+                        Instance::new(Arc::clone(shared), transform, m.smooth, velocity)
+                            .map_err(after)?,
+                    ),
+                };
+                if !shape.within_limits() {
                     return Err(self.src.error(span, beyond_limits("the mesh")));
                 }
                 let name = if single {
@@ -316,10 +392,36 @@ impl<'s> Objects<'s> {
                 } else {
                     format!("{base}/{}", part.name)
                 };
-                self.push(span.clone(), name, mesh, material);
+                self.push(span.clone(), name, shape, material);
             }
         }
         Ok(())
+    }
+
+    /// Adds one placement of a model's parts (their triangle counts, and whether each is
+    /// shared) to the memory estimate, and refuses it beyond the limit. A shared part's
+    /// triangles count once, at the `first` placement.
+    fn account(
+        &mut self,
+        parts: impl Iterator<Item = (usize, bool)>,
+        first: bool,
+        span: &Range<usize>,
+    ) -> Result<(), SceneError> {
+        for (count, shared) in parts {
+            if shared {
+                self.instances += 1;
+            }
+            if first || !shared {
+                self.triangles += count as u64;
+            }
+        }
+        let bytes = self.triangles * super::memory::BYTES_PER_TRIANGLE
+            + self.instances * BYTES_PER_INSTANCE;
+        super::memory::check(
+            bytes,
+            &format!("with this mesh, the scene's {} triangles", self.triangles),
+        )
+        .map_err(|e| self.src.error(span.clone(), e))
     }
 
     /// The parts of the model file a mesh names: OBJ, or glTF by its extension.

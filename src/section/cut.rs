@@ -76,6 +76,9 @@ pub(super) fn cut(shape: &Shape, plane: &SectionPlane, time: f32) -> Vec<Piece> 
                 })
                 .collect()
         }
+        Shape::Instance(instance) => (0..instance.triangle_count())
+            .filter_map(|i| cut_polygon(&instance.corners_at(i, time), plane))
+            .collect(),
     }
 }
 
