@@ -90,6 +90,8 @@ const LINES: &[&str] = &[
     "radius = 1e30",
     "center = [0, 0, 0]",
     "file = \"models/prism.obj\"",
+    // A second placement of a model: shared by both (an instance each).
+    "[[mesh]]\nfile = \"models/bunny.obj\"\nscale = 0.1\nrotate = [10, 20, 30]",
     "file = \"/dev/zero\"",
     "scale = 1e30",
     "velocity = [3e38, 0, 0]",
