@@ -105,6 +105,9 @@ fn a_b_compare_renders_both_sides() {
     assert_eq!(side_b(h.state()).unwrap().0.max_depth, 2);
     // So do the resolution and the scene.
     h.get_by_role_and_label(Role::ComboBox, "Resolution")
+        .scroll_to_me();
+    h.run_steps(3);
+    h.get_by_role_and_label(Role::ComboBox, "Resolution")
         .click();
     h.run_steps(3);
     h.get_by_label("25%").click();

@@ -37,6 +37,7 @@ fn case(
         "spp" => ("default", &[], "1", "4"),
         "pattern" => ("default", &[], "random", "sobol"),
         "seed" => ("soft-shadows", &[], "0", "1"),
+        "noise_target" => ("soft-shadows", &[("spp", "32")], "off", "5"),
         "ior" => ("glass", &[], "1.2", "1.8"),
         "abbe" => ("dispersion", &[], "0", "20"),
         "fresnel" => ("glazed", &[], "constant", "exact"),

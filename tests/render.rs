@@ -3,6 +3,9 @@
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
+use common::{bits, in_pool};
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Shape};
 use raylab::light::{Background, Light};
@@ -13,20 +16,6 @@ use raylab::render::{Film, render, render_pass};
 use raylab::scene::{Scene, SceneDesc};
 use std::f32::consts::PI;
 use std::path::Path;
-
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
-}
-
-fn bits(film: &Film) -> Vec<[u32; 3]> {
-    film.pixels()
-        .map(|c| c.to_array().map(f32::to_bits))
-        .collect()
-}
 
 #[test]
 fn same_image_for_any_thread_count() {

@@ -81,7 +81,7 @@ impl Section {
                 "abbe",
             ],
             Section::RayTree => &["max_depth", "min_weight", "tree", "transport"],
-            Section::Sampling => &["spp", "pattern", "seed"],
+            Section::Sampling => &["spp", "noise_target", "pattern", "seed"],
             Section::SoftShadows => &["light_size"],
             Section::Glossy => &["phong_exponent"],
             Section::Camera => &["aperture", "focus_distance"],

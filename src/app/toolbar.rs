@@ -171,9 +171,14 @@ impl RaylabApp {
             if let Some(noise) = p.noise {
                 ui.separator();
                 // Under 2 %, what each lecture slide's target reaches (tests/slides.rs).
-                let clean = if noise < 0.02 { " (clean)" } else { "" };
+                let clean = if noise < crate::render::CLEAN_NOISE { " (clean)" } else { "" };
                 ui.label(format!("noise {:.2}%{clean}", noise * 100.0))
                     .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of the even and odd samples' means. Under 2 % the image reads as clean.");
+            }
+            if let Some(done) = p.pixels_done {
+                ui.separator();
+                ui.label(format!("{:.0}% of pixels done", done * 100.0))
+                    .on_hover_text("Adaptive sampling (Sampling > noise target): pixels whose noise, and their neighbours', is under the target take no more samples.");
             }
             if self.main.paused() {
                 ui.separator();

@@ -184,6 +184,11 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
             ui.checkbox(c.unlimited, "Keep refining")
                 .hint("Run on past the target, until paused.");
         }
+        "noise_target" => {
+            let label = "Adaptive sampling: stop clean pixels";
+            let clean = crate::render::CLEAN_NOISE * 100.0;
+            switched_slider(ui, &mut p.noise_target, name, label, clean, 2);
+        }
         "pattern" => choice_menu(ui, name, &mut p.pattern, None),
         "seed" => {
             ui.horizontal(|ui| {
@@ -298,22 +303,31 @@ fn focus_ui(ui: &mut Ui, c: &mut Controls) {
     });
 }
 
+/// A parameter that is off (`None`) or a number: a checkbox `label` that turns it on at
+/// `default`, and its slider, live while it is on. Returns whether it is on.
+fn switched_slider(
+    ui: &mut Ui,
+    value: &mut Option<f32>,
+    name: &str,
+    label: &str,
+    default: f32,
+    decimals: usize,
+) -> bool {
+    let mut on = value.is_some();
+    if ui.checkbox(&mut on, label).hint(tip(name)).changed() {
+        *value = on.then_some(default);
+    }
+    let mut v = value.unwrap_or(default);
+    let slider = param_slider(&mut v, name).fixed_decimals(decimals);
+    if ui.add_enabled(on, slider).hint(tip(name)).changed() {
+        *value = Some(v);
+    }
+    on
+}
+
 fn polarizer_ui(ui: &mut Ui, p: &mut Params) {
-    let mut on = p.polarizer.is_some();
-    if ui
-        .checkbox(&mut on, "Linear polariser in front of the lens")
-        .hint(tip("polarizer"))
-        .changed()
-    {
-        p.polarizer = on.then_some(90.0);
-    }
-    let mut angle = p.polarizer.unwrap_or(90.0);
-    let slider = ui
-        .add_enabled(on, param_slider(&mut angle, "polarizer").fixed_decimals(0))
-        .hint(tip("polarizer"));
-    if slider.changed() {
-        p.polarizer = Some(angle);
-    }
+    let label = "Linear polariser in front of the lens";
+    let on = switched_slider(ui, &mut p.polarizer, "polarizer", label, 90.0, 0);
     ui.horizontal(|ui| {
         for (label, a, hint) in [
             (

@@ -20,21 +20,28 @@ pub struct BenchArgs {
     /// Worker threads [default: all cores but one, as with the window].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
+    /// Instead: the time each lecture slide takes to reach its target (all its sides),
+    /// every pixel sampled against adaptive sampling (the scene argument is not used).
+    #[arg(long)]
+    slides: bool,
 }
 
 pub fn bench_command(args: &BenchArgs) -> Result<()> {
     use raylab::render::{Engine, EngineConfig, Film, render_pass};
     use std::sync::Arc;
     use std::time::Duration;
-    let scene = Arc::new(Scene::load(&args.scene)?);
-    crate::cli::streams::warn(&scene);
-    let (width, height) = args.size;
     let config = match args.threads {
         Some(t) => EngineConfig {
             threads: t as usize,
         },
         None => EngineConfig::with_ui(),
     };
+    if args.slides {
+        return super::bench_slides::bench_slides(args.size, config.threads);
+    }
+    let scene = Arc::new(Scene::load(&args.scene)?);
+    crate::cli::streams::warn(&scene);
+    let (width, height) = args.size;
     let params = Params {
         spp: 1 << 16,
         ..scene.params.clone()

@@ -1,6 +1,7 @@
 //! The `raylab` command's larger subcommands, one file each.
 
 pub mod bench;
+mod bench_slides;
 pub mod inspect;
 pub mod output;
 pub mod progress;

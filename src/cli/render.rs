@@ -268,9 +268,17 @@ fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
     let noise = film
         .noise(job.params.exposure)
         .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
+    let adaptive = match job.params.noise_target {
+        Some(_) => format!(
+            " adaptive: {:.0}% of pixels done early, {:.1} samples a pixel on average;",
+            100.0 * film.done_pixels() as f64 / pixels,
+            stats.samples as f64 / pixels
+        ),
+        None => String::new(),
+    };
     let rays = stats.total_rays();
     format!(
-        "{} {}x{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}",
+        "{} {}x{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}{adaptive}",
         job.scene.name,
         job.width,
         job.height,

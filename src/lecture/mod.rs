@@ -110,7 +110,8 @@ pub struct Slide {
     /// Its built-in scene.
     pub scene: &'static str,
     /// Parameters set on top of the scene's, by name, as `--set` takes them. The slide's
-    /// `spp` is its target: enough for the status bar's noise under 2 % (tests/slides.rs),
+    /// `spp` is its most samples: enough for the status bar's noise under 2 %
+    /// (tests/slides.rs), with adaptive sampling stopping each pixel once it is there,
     /// except where the slide is about the noise of few samples.
     pub params: &'static [(&'static str, &'static str)],
     /// What the sides of its A/B view differ in, if it compares things.
@@ -125,6 +126,10 @@ pub struct Slide {
     pub controls: &'static [&'static str],
     /// What to look at.
     pub caption: Caption,
+    /// Whether adaptive sampling stops each pixel once it is clean (its `noise_target` at
+    /// [`crate::render::CLEAN_NOISE`]): on, but where the slide teaches the noise of few
+    /// samples ([`Slide::uniform`]).
+    pub adaptive: bool,
 }
 
 /// A slide of `title` on the built-in scene `scene`, the rest set by the builder methods
@@ -139,6 +144,7 @@ pub const fn slide(title: &'static str, scene: &'static str) -> Slide {
         instruments: &[],
         controls: &[],
         caption: Caption::Fixed(""),
+        adaptive: true,
     }
 }
 
@@ -172,6 +178,15 @@ impl Slide {
     /// Asking the lecturer to change these parameters.
     pub const fn asks(self, controls: &'static [&'static str]) -> Slide {
         Slide { controls, ..self }
+    }
+
+    /// Teaching the noise of few samples: every pixel gets every sample, so raising the
+    /// samples shows the noise falling everywhere alike.
+    pub const fn uniform(self) -> Slide {
+        Slide {
+            adaptive: false,
+            ..self
+        }
     }
 
     /// With this caption.
@@ -241,6 +256,9 @@ impl Slide {
     /// `base` with the slide's parameters set on top.
     fn set_on(&self, base: &Params) -> Result<Params, ParamError> {
         let mut p = base.clone();
+        if self.adaptive {
+            p.noise_target = Some(crate::render::CLEAN_NOISE * 100.0);
+        }
         for (name, value) in self.params {
             p.set(name, value)?;
         }

@@ -110,6 +110,7 @@ pub const LECTURE: &[Slide] = &[
             "Left: Schlick's R0 + (1 − R0)(1 − cos θ)^5. Right: exact (Fs² + Fp²)/2. For n = 1.5 they differ by under 0.01 up to 47°, 0.036 at most (85°), on the bright rims. The workbench writes both at its angle.",
         ),
     slide("The basic ray tracer", "default")
+        .uniform()
         .set(&[("spp", "1"), ("pattern", "regular")])
         .follows(|s| {
             let p = s.params;
@@ -120,11 +121,13 @@ pub const LECTURE: &[Slide] = &[
             )
         }),
     slide("Antialiasing: 1 against 4 samples", "antialiasing")
+        .uniform()
         .compare(Comparison::Supersampling)
         .says(
             "Left: one sample at each pixel's centre: the far checks turn to moiré and the thin rods break into stair steps (aliasing). Right: 4 jittered samples per pixel, averaged (a box filter): smooth edges, and grey where the checks are finer than a pixel.",
         ),
     slide("Regular, random and jittered samples", "antialiasing")
+        .uniform()
         .set(&[("spp", "4")])
         .compare(Comparison::RegularRandomJittered)
         .asks(&["spp"])

@@ -64,6 +64,11 @@ pub struct Params {
     pub pattern: Pattern,
     /// Seed of every random number: the same seed gives the same image, bit for bit.
     pub seed: u64,
+    /// Adaptive sampling's noise target, in percent of the image's mean displayed
+    /// brightness: a pixel whose estimated noise (and its neighbours') is below it stops
+    /// receiving samples. `None`: off, every pixel gets every sample.
+    #[serde(with = "noise_target_value")]
+    pub noise_target: Option<f32>,
     /// Index of refraction of every dielectric and glazed material (except those with
     /// `ior_fixed`); `None` keeps each material's own. 1.0 to 3.0.
     #[serde(deserialize_with = "real::optional")]
@@ -151,42 +156,72 @@ mod real {
     }
 }
 
-/// `polarizer` in files and on the command line: `"none"` or an angle.
-mod polarizer_value {
+/// A parameter that is a word meaning "off" or a number, as JSON: written as the f32 (its
+/// shortest form) or the word, read as f64 (checked as every real is) or the word.
+mod word_or_real {
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    // Written as f32 (its shortest form), read as f64 (checked as every real is).
     #[derive(Serialize)]
     #[serde(untagged)]
-    enum Value {
-        Angle(f32),
-        Word(String),
+    enum Value<'w> {
+        Number(f32),
+        Word(&'w str),
     }
 
     #[derive(Deserialize)]
     #[serde(untagged)]
     enum Read {
-        Angle(f64),
+        Number(f64),
         Word(String),
     }
 
-    pub fn serialize<S: Serializer>(v: &Option<f32>, s: S) -> Result<S::Ok, S::Error> {
+    pub fn serialize<S: Serializer>(v: &Option<f32>, word: &str, s: S) -> Result<S::Ok, S::Error> {
         match v {
-            Some(a) => Value::Angle(*a),
-            None => Value::Word("none".into()),
+            Some(x) => Value::Number(*x),
+            None => Value::Word(word),
         }
         .serialize(s)
     }
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
+    pub fn deserialize<'de, D: Deserializer<'de>>(
+        d: D,
+        word: &str,
+        what: &str,
+    ) -> Result<Option<f32>, D::Error> {
         match Option::<Read>::deserialize(d)? {
-            Some(Read::Angle(a)) => super::real::narrow(a).map(Some),
-            Some(Read::Word(w)) if w == "none" => Ok(None),
+            Some(Read::Number(x)) => super::real::narrow(x).map(Some),
+            Some(Read::Word(w)) if w == word => Ok(None),
             None => Ok(None),
             Some(Read::Word(w)) => Err(serde::de::Error::custom(format!(
-                "must be none or an angle in degrees, got \"{w}\""
+                "must be {word} or {what}, got \"{w}\""
             ))),
         }
+    }
+}
+
+/// `polarizer`: `"none"` or an angle.
+mod polarizer_value {
+    use serde::{Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &Option<f32>, s: S) -> Result<S::Ok, S::Error> {
+        super::word_or_real::serialize(v, "none", s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
+        super::word_or_real::deserialize(d, "none", "an angle in degrees")
+    }
+}
+
+/// `noise_target`: `"off"` or a percentage.
+mod noise_target_value {
+    use serde::{Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &Option<f32>, s: S) -> Result<S::Ok, S::Error> {
+        super::word_or_real::serialize(v, "off", s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f32>, D::Error> {
+        super::word_or_real::deserialize(d, "off", "a percentage")
     }
 }
 
@@ -196,6 +231,7 @@ impl Default for Params {
             spp: 16,
             pattern: Pattern::Sobol,
             seed: 0,
+            noise_target: None,
             ior: None,
             abbe: None,
             fresnel: None,

@@ -180,6 +180,20 @@ pub const TABLE: &[Spec] = &[
         display_only: false,
     },
     Spec {
+        name: "noise_target",
+        label: "Adaptive: noise target %",
+        kind: Kind::WordOrNumber {
+            word: "off",
+            min: 0.1,
+            max: 20.0,
+        },
+        unit: "%",
+        doc: "adaptive sampling: a pixel stops receiving samples once its estimated noise, and its neighbours', is below this share of the image's mean brightness (`off`: every pixel gets every sample)",
+        explain: "Adaptive sampling: from 16 samples on, every 8 samples, each pixel's noise is estimated from the spread of its own samples. A pixel whose noise, and its 8 neighbours', is below this share of the image's mean brightness stops; the rest go on to the sample count. Samples go where the noise is.",
+        slider: log_slider(0.25, 10.0),
+        display_only: false,
+    },
+    Spec {
         name: "ior",
         label: "IOR",
         kind: number(IOR_RANGE.0 as f64, IOR_RANGE.1 as f64),

@@ -434,8 +434,9 @@ impl Controller {
         (!self.unlimited).then_some(self.params.spp)
     }
 
+    /// The target reached, or every pixel stopped by adaptive sampling.
     fn target_reached(&self) -> bool {
-        self.target().is_some_and(|t| self.film.spp() >= t)
+        self.target().is_some_and(|t| self.film.spp() >= t) || self.film.all_done()
     }
 
     fn needs_preview(&self) -> bool {
@@ -547,6 +548,10 @@ impl Controller {
             },
             eta,
             noise: self.film.noise(self.params.exposure),
+            pixels_done: self
+                .params
+                .noise_target
+                .map(|_| self.film.done_pixels() as f32 / self.film.pixels.len().max(1) as f32),
             stats: self.stats,
             paused: self.paused,
             failure: self.failure.clone(),

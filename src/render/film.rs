@@ -4,6 +4,10 @@ use crate::math::Color;
 use crate::render::output::{write_atomic, write_pair};
 use std::path::Path;
 
+/// The noise (as [`Film::noise`] estimates it) under which an image reads as clean: the
+/// status bar says so, and it is each lecture slide's target.
+pub const CLEAN_NOISE: f32 = 0.02;
+
 /// What a pixel has accumulated: the sum and count of its samples, and the same for its
 /// odd-numbered samples alone (the two halves give the noise estimate).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -18,6 +22,9 @@ pub struct Accum {
     pub odd_count: u32,
     /// Rays traced for this pixel's samples, of every kind: its cost.
     pub rays: u32,
+    /// Sum of the squares of the samples' luminance, for the spread adaptive sampling
+    /// reads (f32 is enough: the spread it must resolve grows with the count).
+    pub luma_sq: f32,
 }
 
 // The size scene::MAX_PIXELS budgets for.
@@ -27,6 +34,7 @@ impl Accum {
     /// Adds sample number `index` with radiance `c`.
     #[inline]
     pub fn add(&mut self, index: u32, c: Color) {
+        self.luma_sq += luminance(c).powi(2);
         let c = c.to_array().map(f64::from);
         for (sum, v) in self.sum.iter_mut().zip(c) {
             *sum += v;
@@ -38,6 +46,28 @@ impl Accum {
             }
             self.odd_count += 1;
         }
+    }
+
+    /// The pixel as shown (scaled by `scale`, clipped to [0, 1], sRGB encoded; its Rec. 709
+    /// luma) and the standard error of that, estimated from the difference of its even-
+    /// and odd-numbered samples' means as shown (|A − B|/2 for halves of equal size).
+    /// `None` until each half has a sample.
+    pub(crate) fn shown_error(&self, scale: f64) -> Option<(f64, f64)> {
+        let even_count = self.count - self.odd_count;
+        if self.odd_count == 0 || even_count == 0 {
+            return None;
+        }
+        // Rec. 709 weights on the encoded values (luma): brightness as shown.
+        let luma = |c: [f64; 3], count: u32| {
+            let shown = |v: f64| srgb_encode_table((v * scale / count as f64) as f32) as f64;
+            0.2126 * shown(c[0]) + 0.7152 * shown(c[1]) + 0.0722 * shown(c[2])
+        };
+        let even_sum = [0, 1, 2].map(|i| self.sum[i] - self.odd_sum[i]);
+        let (odd, even) = (
+            luma(self.odd_sum, self.odd_count),
+            luma(even_sum, even_count),
+        );
+        Some((luma(self.sum, self.count), (odd - even).abs() / 2.0))
     }
 
     /// The mean radiance; black before any sample.
@@ -52,6 +82,12 @@ impl Accum {
     }
 }
 
+/// Rec. 709 luminance of linear RGB.
+#[inline]
+pub(crate) fn luminance(c: Color) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
 /// Accumulated radiance per pixel, row-major from the top left.
 ///
 /// Sums are f64, added in sample order, so a pixel's value does not depend on how its
@@ -62,6 +98,8 @@ pub struct Film {
     height: u32,
     pub(crate) pixels: Vec<Accum>,
     spp: u32,
+    // Adaptive sampling: the pixels that receive no more samples (see `adaptive`).
+    pub(crate) done: Vec<bool>,
 }
 
 /// An image that cannot be written.
@@ -95,7 +133,7 @@ pub fn srgb_encode(linear: f32) -> f32 {
 /// linear interpolation (within 2e-5 of [`srgb_encode`]): the noise estimate runs it nine
 /// times a pixel for every frame, where `powf` took 42 ms at 960×540.
 #[inline]
-fn srgb_encode_table(linear: f32) -> f32 {
+pub(crate) fn srgb_encode_table(linear: f32) -> f32 {
     static TABLE: std::sync::OnceLock<Vec<f32>> = std::sync::OnceLock::new();
     const N: usize = 4096;
     let table = TABLE.get_or_init(|| {
@@ -240,6 +278,7 @@ impl Film {
             height,
             pixels: vec![Accum::default(); width as usize * height as usize],
             spp: 0,
+            done: vec![false; width as usize * height as usize],
         }
     }
 
@@ -276,7 +315,22 @@ impl Film {
         self.pixels.clear();
         self.pixels
             .resize(width as usize * height as usize, Accum::default());
+        self.done.clear();
+        self.done.resize(self.pixels.len(), false);
         self.spp = 0;
+    }
+
+    /// Whether adaptive sampling has stopped every pixel: more passes would trace nothing.
+    pub fn all_done(&self) -> bool {
+        self.spp > 0 && self.done.iter().all(|&d| d)
+    }
+
+    /// How many pixels adaptive sampling has stopped (0 while the film is empty).
+    pub fn done_pixels(&self) -> usize {
+        if self.spp == 0 {
+            return 0;
+        }
+        self.done.iter().filter(|&&d| d).count()
     }
 
     /// The accumulators; none while the film is empty (they may hold an earlier image).
@@ -334,22 +388,13 @@ impl Film {
             return None;
         }
         let scale = exposure.exp2() as f64;
-        // Rec. 709 weights on the encoded values (luma): brightness as shown.
-        let luma = |c: [f64; 3], count: u32| {
-            let shown = |v: f64| srgb_encode_table((v * scale / count as f64) as f32);
-            0.2126 * shown(c[0]) as f64 + 0.7152 * shown(c[1]) as f64 + 0.0722 * shown(c[2]) as f64
-        };
         let (mut err2, mut total, mut n) = (0.0f64, 0.0f64, 0usize);
         for p in self.accums() {
-            let even_count = p.count - p.odd_count;
-            if p.odd_count == 0 || even_count == 0 {
-                continue;
+            if let Some((shown, err)) = p.shown_error(scale) {
+                err2 += err * err;
+                total += shown;
+                n += 1;
             }
-            let even_sum = [0, 1, 2].map(|i| p.sum[i] - p.odd_sum[i]);
-            let (odd, even) = (luma(p.odd_sum, p.odd_count), luma(even_sum, even_count));
-            err2 += (odd - even).powi(2) / 4.0;
-            total += luma(p.sum, p.count);
-            n += 1;
         }
         (n > 0 && total > 0.0).then(|| ((err2 / n as f64).sqrt() / (total / n as f64)) as f32)
     }

@@ -21,6 +21,8 @@ pub struct Progress {
     /// Estimated noise of the image as shown, relative to its brightness (see
     /// [`super::Film::noise`]).
     pub noise: Option<f32>,
+    /// With adaptive sampling, the share of pixels it has stopped (0 to 1); `None` off.
+    pub pixels_done: Option<f32>,
     /// What the tracer did in this generation.
     pub stats: Stats,
     /// Whether refinement is paused.
@@ -33,11 +35,15 @@ pub struct Progress {
 impl Progress {
     /// Whether the target has been reached.
     pub fn done(&self) -> bool {
-        self.target.is_some_and(|t| self.spp >= t)
+        self.target.is_some_and(|t| self.spp >= t) || self.pixels_done == Some(1.0)
     }
 
-    /// The fraction of the target done, 0 to 1 (1 without a target: nothing to wait for).
+    /// The fraction of the target done, 0 to 1 (1 without a target: nothing to wait for,
+    /// or once adaptive sampling has stopped every pixel).
     pub fn fraction(&self) -> f32 {
+        if self.pixels_done == Some(1.0) {
+            return 1.0;
+        }
         self.target
             .map_or(1.0, |t| (self.spp as f32 / t.max(1) as f32).min(1.0))
     }

@@ -1,7 +1,7 @@
 //! The one render kernel: a pass of samples over the whole film, in bands of rows run in
 //! parallel. The CLI, the tests and the progressive engine all call [`render_pass`].
 
-use super::{Accum, Film};
+use super::{Accum, Film, adaptive};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::lanes::Width;
@@ -71,23 +71,46 @@ pub fn render_pass_by(
     let (width, height) = (film.width(), film.height());
     let first = film.spp();
     let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
-    if let Traversal::Waves(lanes) = traversal.for_tracer(&tracer) {
-        return pass_in_waves(&tracer, lanes, film, first, samples, observer);
+    let waves = traversal.for_tracer(&tracer);
+    if first == 0 {
+        // A new image: no pixel is done (the flags may be an earlier image's).
+        film.done.fill(false);
     }
-    if !tracer.gathers_photons() {
-        return pass(&tracer, film, first, samples, observer);
-    }
-    // Each sample number has photons of its own, so that the image does not depend on how
+    // Adaptive sampling decides at fixed counts: the pass is cut there. Each sample number
+    // of photon mapping has photons of its own, so that the image does not depend on how
     // the samples are split into passes: one pass per sample.
+    let pieces = match (tracer.gathers_photons(), params.noise_target) {
+        (true, _) => (first..first + samples).map(|s| (s, 1)).collect(),
+        (false, Some(_)) => adaptive::segments(first, samples),
+        (false, None) => vec![(first, samples)],
+    };
     let each = Share {
         observer,
-        samples,
+        samples: pieces.len() as u32,
         rows: AtomicU32::new(0),
     };
+    let observer: &dyn PassObserver = if pieces.len() == 1 { observer } else { &each };
     let mut total = Stats::default();
-    for s in first..first + samples {
-        tracer.prepare_photons(s);
-        total += pass(&tracer, film, s, 1, &each)?;
+    for (start, count) in pieces {
+        if let Some(target) = params.noise_target
+            && start > 0
+            && adaptive::is_checkpoint(start)
+            && adaptive::decide(film, target)
+        {
+            // Every pixel is done: the rest of the pass would trace nothing.
+            film.set_spp(first + samples);
+            break;
+        }
+        let skip = params.noise_target.is_some() && start >= adaptive::FIRST_CHECK;
+        if tracer.gathers_photons() {
+            tracer.prepare_photons(start);
+        }
+        total += match waves {
+            Traversal::Waves(lanes) => {
+                pass_in_waves(&tracer, lanes, film, start, count, skip, observer)?
+            }
+            _ => pass(&tracer, film, start, count, skip, observer)?,
+        };
     }
     Ok(total)
 }
@@ -114,22 +137,30 @@ impl PassObserver for Share<'_> {
     }
 }
 
-/// Samples `first..first + samples` of every pixel, by `tracer`.
+/// Samples `first..first + samples` of every pixel (but those adaptive sampling has
+/// stopped, where `skip`), by `tracer`.
 fn pass(
     tracer: &Tracer,
     film: &mut Film,
     first: u32,
     samples: u32,
+    skip: bool,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
     let width = film.width();
-    over_bands(film, first, samples, observer, |y0, pixels, stats| {
+    over_bands(film, first, samples, observer, |y0, pixels, done, stats| {
         // Row by row: the pixel's coordinates without a division per pixel.
-        for (row, pixels) in pixels.chunks_mut(width as usize).enumerate() {
+        let rows = pixels
+            .chunks_mut(width as usize)
+            .zip(done.chunks(width as usize));
+        for (row, (pixels, done)) in rows.enumerate() {
             let y = y0 + row as u32;
-            for (x, pixel) in (0..width).zip(pixels) {
+            for ((x, pixel), &done) in (0..width).zip(pixels).zip(done) {
                 if !observer.keep_going() {
                     return None;
+                }
+                if skip && done {
+                    continue;
                 }
                 for s in first..first + samples {
                     let before = stats.total_rays();
@@ -154,12 +185,14 @@ fn pass_in_waves(
     film: &mut Film,
     first: u32,
     samples: u32,
+    skip: bool,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
     let width = film.width();
-    over_bands(film, first, samples, observer, |y0, pixels, stats| {
-        // Pixel by pixel, each pixel's samples in order.
+    over_bands(film, first, samples, observer, |y0, pixels, done, stats| {
+        // Pixel by pixel (but those stopped, where `skip`), each pixel's samples in order.
         let all = (0..pixels.len() as u32)
+            .filter(|&i| !(skip && done[i as usize]))
             .flat_map(|i| (first..first + samples).map(move |s| (i % width, y0 + i / width, s)));
         in_waves(
             tracer,
@@ -230,7 +263,7 @@ fn add(pixel: &mut Accum, s: u32, c: Color, rays: u32, stats: &mut Stats) {
     }
 }
 
-/// Runs `band` (its first row, its pixels, its counters) on every band of rows of `film`
+/// Runs `band` (its first row, its pixels, which of them are done, its counters) on every band of rows of `film`
 /// in parallel, telling `observer` of each; `None` from a band cancels the pass. The film
 /// then holds samples `..first + samples`.
 fn over_bands(
@@ -238,18 +271,19 @@ fn over_bands(
     first: u32,
     samples: u32,
     observer: &dyn PassObserver,
-    band: impl Fn(u32, &mut [Accum], &mut Stats) -> Option<()> + Sync,
+    band: impl Fn(u32, &mut [Accum], &[bool], &mut Stats) -> Option<()> + Sync,
 ) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
         .pixels
         .par_chunks_mut(band_len)
+        .zip(film.done.par_chunks(band_len))
         .enumerate()
-        .map(|(i, pixels)| {
+        .map(|(i, (pixels, done))| {
             let mut stats = Stats::default();
             let y0 = i as u32 * BAND_ROWS;
-            band(y0, pixels, &mut stats)?;
+            band(y0, pixels, done, &mut stats)?;
             observer.band_done(BAND_ROWS.min(height - y0));
             Some(stats)
         })

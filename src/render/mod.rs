@@ -1,6 +1,7 @@
 //! Rendering: the film, the render kernel, the progressive engine, and snapshots with
 //! their sidecars.
 
+mod adaptive;
 mod drag;
 mod engine;
 mod exr_file;
@@ -17,7 +18,9 @@ pub(crate) mod text;
 
 pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
-pub use film::{Accum, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image, write_png};
+pub use film::{
+    Accum, CLEAN_NOISE, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image, write_png,
+};
 pub use frame::{Frame, Progress};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by, render_preview};

@@ -1,4 +1,5 @@
-//! Helpers shared by the tests that run the `raylab` binary as a user runs it.
+//! Helpers shared by the tests: running the `raylab` binary as a user runs it, and
+//! rendering on a given number of threads.
 
 #![allow(dead_code)] // Each test file uses its own share of these.
 
@@ -67,4 +68,20 @@ pub fn pixel_centre_ray(
         (y as f32 + 0.5) / height as f32,
     );
     frame.ray(film, glam::Vec2::ZERO, 0.0)
+}
+
+/// Runs `f` on a pool of `threads` worker threads.
+pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(f)
+}
+
+/// A film's pixels as bits, for comparisons that must be exact.
+pub fn bits(film: &raylab::render::Film) -> Vec<[u32; 3]> {
+    film.pixels()
+        .map(|c| c.to_array().map(f32::to_bits))
+        .collect()
 }
