@@ -307,3 +307,62 @@ fn a_pass_that_panics_stops_its_generation_with_a_message_and_the_engine_goes_on
     });
     assert!(again.last().unwrap().progress.failure.is_some());
 }
+
+#[test]
+fn an_image_rendered_ahead_shows_at_once_finished_and_a_finished_one_comes_back() {
+    use raylab::render::{FilmCache, Prerender};
+    let first = Arc::new(Scene::load("default").unwrap());
+    let next = Arc::new(Scene::load("glass").unwrap());
+    let a = Params {
+        spp: 8,
+        ..first.params.clone()
+    };
+    // Adaptive sampling too: its decisions ride along with the film.
+    let b = Params {
+        spp: 24,
+        noise_target: Some(3.0),
+        ..next.params.clone()
+    };
+    let mut e = engine(&first, a.clone());
+    let cache = FilmCache::default();
+    let job = Prerender {
+        scene: Arc::clone(&next),
+        camera: next.camera.clone(),
+        params: b.clone(),
+        size: (W, H),
+    };
+    e.prerender(&cache, vec![job.clone()]);
+    frames_until(&e, Duration::from_secs(60), |f| f.progress.done());
+    // The workers go on to the next image once this one is finished.
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !cache.ready(&job) {
+        assert!(Instant::now() < deadline, "nothing rendered ahead");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // Switching to it: the first frame of the new generation is the finished image, no
+    // preview, bit for bit the kernel's.
+    let generation = e.generation() + 2;
+    e.set_scene(Arc::clone(&next));
+    e.set_params(b.clone());
+    let frames = frames_until(&e, Duration::from_secs(60), |f| f.generation == generation);
+    let shown = frames.last().unwrap();
+    assert!(
+        !shown.is_preview(),
+        "a preview: nothing was taken from the cache"
+    );
+    assert!(shown.progress.done(), "{:?}", shown.progress);
+    let mut film = Film::new(W, H);
+    render_pass(&next, &next.camera, &b, &mut film, 24, &()).unwrap();
+    assert_eq!(
+        bits(&shown.pixels),
+        bits(&film.pixels().collect::<Vec<_>>())
+    );
+    // And back: the first image, finished when it was left, comes back as it was.
+    let generation = e.generation() + 2;
+    e.set_scene(Arc::clone(&first));
+    e.set_params(a.clone());
+    let frames = frames_until(&e, Duration::from_secs(60), |f| f.generation == generation);
+    let back = frames.last().unwrap();
+    assert!(!back.is_preview() && back.progress.done());
+    assert_eq!(bits(&back.pixels), bits(&reference(&first, &a, 8)));
+}

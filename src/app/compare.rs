@@ -70,7 +70,10 @@ impl RaylabApp {
         let started: Result<Vec<Side>, _> = others
             .into_iter()
             .zip(TEXTURES)
-            .map(|(p, name)| Side::new(ctx, name, self.told(), p, EngineConfig::with_ui()))
+            .map(|(p, name)| {
+                let cache = self.main.cache().clone();
+                Side::new(ctx, name, self.told(), p, EngineConfig::with_ui(), cache)
+            })
             .collect();
         match started {
             Ok(sides) => {

@@ -6,6 +6,7 @@ use super::compare::CompareKind;
 use super::instruments::SectionMode;
 use crate::lecture::{Instrument, LECTURE, Shown, Slide};
 use crate::params::Params;
+use crate::render::Prerender;
 use crate::scene::Scene;
 use egui::Color32;
 
@@ -20,6 +21,8 @@ pub(crate) struct Lecture {
     open: &'static [&'static str],
     // The slide last asked for (its number in `LECTURE`), for next and previous.
     current: Option<usize>,
+    // The slide (and image size) whose neighbours are being rendered ahead.
+    ahead: Option<(usize, (u32, u32))>,
 }
 
 impl Lecture {
@@ -71,6 +74,52 @@ impl RaylabApp {
                 ui.close();
             }
         }
+    }
+
+    /// Once the slide shown is finished on every side: its neighbours (the next first,
+    /// then the previous), each of their sides, rendered ahead by the idle workers at the
+    /// size the window would show them, so that Page Down and Page Up show finished
+    /// images at once.
+    pub(super) fn render_ahead(&mut self) {
+        let (Some(i), Some(_)) = (self.lecture.current, self.lecture.shown) else {
+            return;
+        };
+        let size = super::render_size(&self.scene, self.settings.resolution);
+        if self.lecture.ahead == Some((i, size)) || !self.all_sides().all(|(_, s)| s.settled()) {
+            return;
+        }
+        self.lecture.ahead = Some((i, size));
+        let neighbours = [i + 1, i.wrapping_sub(1)];
+        let jobs = neighbours
+            .iter()
+            .filter_map(|&j| LECTURE.get(j))
+            .flat_map(|slide| self.sides_of(slide))
+            .collect();
+        self.main.engine().prerender(self.main.cache(), jobs);
+    }
+
+    /// Every side of `slide` as the window would render it: its scene through its own
+    /// camera, each side's parameters, at the window's resolution.
+    fn sides_of(&self, slide: &Slide) -> Vec<Prerender> {
+        let Ok(scene) = Scene::load(slide.reference()) else {
+            return Vec::new();
+        };
+        let Ok(a) = slide.params_on(&scene.params) else {
+            return Vec::new();
+        };
+        let size = super::render_size(&scene, self.settings.resolution);
+        let scene = std::sync::Arc::new(scene);
+        let mut sides = vec![a.clone()];
+        sides.extend(slide.others(&a));
+        sides
+            .into_iter()
+            .map(|params| Prerender {
+                scene: std::sync::Arc::clone(&scene),
+                camera: scene.camera.clone(),
+                params,
+                size,
+            })
+            .collect()
     }
 
     /// Opens slide `i` of the lecture: its scene, then its parameters and caption.

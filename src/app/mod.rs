@@ -221,9 +221,9 @@ impl RaylabApp {
             told,
             settings.params.clone(),
             config,
+            crate::render::FilmCache::default(),
         )?;
-        // Tooltips wait a little: they would cover the readouts under a control the
-        // pointer only passes over.
+        // Tooltips wait a little, not to cover readouts under a pointer passing over.
         cc.egui_ctx
             .global_style_mut(|style| style.interaction.tooltip_delay = 0.6);
         let mut toasts = Toasts::default();
@@ -480,6 +480,7 @@ impl eframe::App for RaylabApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         self.fit_to_screen(ctx);
         self.receive_scenes(ctx);
+        self.render_ahead();
         self.loader.poll();
         self.receive_sheet();
         self.dropped_files(ctx);

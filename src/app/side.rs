@@ -4,7 +4,7 @@
 use super::instruments::{cost_range, heat_map_rgba};
 use crate::camera::Camera;
 use crate::params::Params;
-use crate::render::{Engine, EngineConfig, EngineError, Frame, to_srgba8};
+use crate::render::{Engine, EngineConfig, EngineError, FilmCache, Frame, to_srgba8};
 use crate::scene::Scene;
 use std::sync::Arc;
 
@@ -38,6 +38,7 @@ pub(crate) struct Side {
     // The newest frame's fewest and most rays per sample, found once when it arrived.
     cost_range: Option<(f32, f32)>,
     paused: bool,
+    cache: FilmCache,
 }
 
 impl Side {
@@ -48,12 +49,14 @@ impl Side {
         told: Told,
         params: Params,
         config: EngineConfig,
+        cache: FilmCache,
     ) -> Result<Side, EngineError> {
         let repaint = ctx.clone();
         let (w, h) = told.size;
-        let mut engine = Engine::new(Arc::clone(&told.scene), params, w, h, config, move || {
-            repaint.request_repaint()
-        })?;
+        let scene = Arc::clone(&told.scene);
+        let wake = move || repaint.request_repaint();
+        let cached = Some(cache.clone());
+        let mut engine = Engine::sharing(scene, params, w, h, config, cached, wake)?;
         if told.camera != told.scene.camera {
             engine.set_camera(told.camera.clone());
         }
@@ -70,7 +73,13 @@ impl Side {
             pixels: Vec::new(),
             cost_range: None,
             paused: false,
+            cache,
         })
+    }
+
+    /// The images rendered ahead, which every side of the window shares.
+    pub(crate) fn cache(&self) -> &FilmCache {
+        &self.cache
     }
 
     /// Tells the engine what changed since it was last told. A new scene resets the

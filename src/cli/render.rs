@@ -268,13 +268,13 @@ fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
     let noise = film
         .noise(job.params.exposure)
         .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
-    let adaptive = match job.params.noise_target {
-        Some(_) => format!(
+    let adaptive = match raylab::render::adaptive::acts(&job.params) {
+        true => format!(
             " adaptive: {:.0}% of pixels done early, {:.1} samples a pixel on average;",
             100.0 * film.done_pixels() as f64 / pixels,
             stats.samples as f64 / pixels
         ),
-        None => String::new(),
+        false => String::new(),
     };
     let rays = stats.total_rays();
     format!(

@@ -1,8 +1,8 @@
 //! Adaptive sampling: samples where the noise is.
 //!
-//! At fixed sample counts (16, then every 8) each pixel's noise is estimated from its own
-//! samples, and a pixel whose noise and whose 8 neighbours' noise are below the target
-//! stops receiving samples. The decisions are made on the whole film between passes, at
+//! At fixed sample counts (16, 24, then four times per doubling) each pixel's noise is
+//! estimated from its own samples, and a pixel whose noise and whose 8 neighbours' noise
+//! are below the target stops receiving samples. The decisions are made on the whole film between passes, at
 //! counts that do not depend on how the samples were split into passes, so an image is
 //! the same bit for bit for any thread count and any split (the kernel cuts its passes at
 //! these counts).
@@ -13,6 +13,12 @@ use rayon::prelude::*;
 /// The first decision is made once every pixel has this many samples: fewer give too
 /// rough an estimate of a pixel's spread.
 pub(crate) const FIRST_CHECK: u32 = 16;
+
+/// Whether adaptive sampling acts on a render with `params`: it is on, and the target
+/// goes past the first decision.
+pub fn acts(params: &crate::params::Params) -> bool {
+    params.noise_target.is_some() && params.spp > FIRST_CHECK
+}
 
 /// Whether the film is decided on when it holds `k` samples: 16 and 24, then four times
 /// per doubling (32, 40, 48, 56, 64, 80, ..., 128, 160, ...). A pixel then takes at most

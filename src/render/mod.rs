@@ -1,7 +1,8 @@
 //! Rendering: the film, the render kernel, the progressive engine, and snapshots with
 //! their sidecars.
 
-mod adaptive;
+pub mod adaptive;
+mod controller;
 mod drag;
 mod engine;
 mod exr_file;
@@ -12,6 +13,7 @@ mod kernel;
 pub mod output;
 mod pace;
 mod png_file;
+mod prerender;
 mod sheet;
 mod snapshot;
 pub(crate) mod text;
@@ -25,6 +27,7 @@ pub use frame::{Frame, Progress};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by, render_preview};
 pub use png_file::{SIDECAR_KEY, embedded_sidecar};
+pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
 pub use snapshot::{Rendered, Sidecar, SidecarError, sidecar_path};
 pub use text::with_caption;
