@@ -29,7 +29,7 @@ fn adaptive_images_are_the_same_for_any_thread_count_and_split() {
         ("default", Transport::Path),
     ] {
         let scene = Scene::load(name).unwrap();
-        let params = adaptive(&scene, 48, 4.0, transport);
+        let params = adaptive(&scene, 48, 1.0, transport);
         let (w, h) = (96, 54);
         let one = in_pool(1, || render(&scene, &params, w, h, &()).unwrap());
         let three = in_pool(3, || render(&scene, &params, w, h, &()).unwrap());
@@ -100,14 +100,14 @@ fn adaptive_sampling_reaches_uniform_sampling_s_error_with_far_fewer_samples() {
     let (u, u_stats) = render(&scene, &uniform, w, h, &()).unwrap();
     let a_params = Params {
         seed: 7,
-        ..adaptive(&scene, 512, 5.0, Transport::Whitted)
+        ..adaptive(&scene, 512, 2.0, Transport::Whitted)
     };
     let (a, a_stats) = render(&scene, &a_params, w, h, &()).unwrap();
     let (e_u, e_a) = (shown_error(&u, &reference), shown_error(&a, &reference));
     let ratio = a_stats.samples as f64 / u_stats.samples as f64;
     // The reference has 1024 samples a pixel: its own error is about a third of the
     // uniform image's (error falls at least as 1/√n), which both comparisons share.
-    // Measured: 0.52 % against 0.59 %, with 0.27 of the samples.
+    // Measured: 0.51 % against 0.59 %, with 0.37 of the samples.
     assert!(e_a <= e_u, "adaptive error {e_a} against uniform {e_u}");
-    assert!(ratio < 0.4, "adaptive took {ratio} of the samples");
+    assert!(ratio < 0.45, "adaptive took {ratio} of the samples");
 }

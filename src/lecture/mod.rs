@@ -102,6 +102,11 @@ pub enum Caption {
     Follows(fn(&Shown) -> String),
 }
 
+/// The noise target of a slide's adaptive sampling, in percent: a quarter under the
+/// clean mark ([`crate::render::CLEAN_NOISE`], 2 %), as the noise the status bar estimates
+/// ends near the target, a little over or under it.
+pub const SLIDE_NOISE_TARGET: f32 = 1.5;
+
 /// One slide of the lecture.
 #[derive(Clone, Copy)]
 pub struct Slide {
@@ -127,8 +132,8 @@ pub struct Slide {
     /// What to look at.
     pub caption: Caption,
     /// Whether adaptive sampling stops each pixel once it is clean (its `noise_target` at
-    /// [`crate::render::CLEAN_NOISE`]): on, but where the slide teaches the noise of few
-    /// samples ([`Slide::uniform`]).
+    /// [`SLIDE_NOISE_TARGET`]): on, but where the slide teaches the noise of few samples
+    /// ([`Slide::uniform`]).
     pub adaptive: bool,
 }
 
@@ -257,7 +262,7 @@ impl Slide {
     fn set_on(&self, base: &Params) -> Result<Params, ParamError> {
         let mut p = base.clone();
         if self.adaptive {
-            p.noise_target = Some(crate::render::CLEAN_NOISE * 100.0);
+            p.noise_target = Some(SLIDE_NOISE_TARGET);
         }
         for (name, value) in self.params {
             p.set(name, value)?;

@@ -65,8 +65,9 @@ pub struct Params {
     /// Seed of every random number: the same seed gives the same image, bit for bit.
     pub seed: u64,
     /// Adaptive sampling's noise target, in percent of the image's mean displayed
-    /// brightness: a pixel whose estimated noise (and its neighbours') is below it stops
-    /// receiving samples. `None`: off, every pixel gets every sample.
+    /// brightness: pixels stop receiving samples once they have had their share of an
+    /// image with that noise (see `render::adaptive`). `None`: off, every pixel gets
+    /// every sample.
     #[serde(with = "noise_target_value")]
     pub noise_target: Option<f32>,
     /// Index of refraction of every dielectric and glazed material (except those with
