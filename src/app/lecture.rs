@@ -21,8 +21,10 @@ pub(crate) struct Lecture {
     open: &'static [&'static str],
     // The slide last asked for (its number in `LECTURE`), for next and previous.
     current: Option<usize>,
-    // The slide (and image size) whose neighbours are being rendered ahead.
+    // The slide (and image size) whose neighbours are being rendered ahead, and their
+    // images.
     ahead: Option<(usize, (u32, u32))>,
+    ahead_jobs: Vec<Prerender>,
 }
 
 impl Lecture {
@@ -90,12 +92,31 @@ impl RaylabApp {
         }
         self.lecture.ahead = Some((i, size));
         let neighbours = [i + 1, i.wrapping_sub(1)];
-        let jobs = neighbours
+        let jobs: Vec<Prerender> = neighbours
             .iter()
             .filter_map(|&j| LECTURE.get(j))
             .flat_map(|slide| self.sides_of(slide))
             .collect();
-        self.main.engine().prerender(self.main.cache(), jobs);
+        self.main
+            .engine()
+            .prerender(self.main.cache(), jobs.clone());
+        self.lecture.ahead_jobs = jobs;
+    }
+
+    /// The newest generation the main view's engine was asked for: its frames of older
+    /// ones are stale.
+    pub fn generation(&self) -> u64 {
+        self.main.engine().generation()
+    }
+
+    /// Whether the neighbours of the slide shown are rendered ahead, finished.
+    pub fn neighbours_ready(&self) -> bool {
+        self.lecture.ahead.is_some()
+            && self
+                .lecture
+                .ahead_jobs
+                .iter()
+                .all(|job| self.main.cache().ready(job))
     }
 
     /// Every side of `slide` as the window would render it: its scene through its own
