@@ -8,7 +8,7 @@
 //! and its tree once.
 
 use super::accel::{build_tree, positive_zeros};
-use super::{MAX_COORDINATE, Mesh, MeshError, SurfaceHit};
+use super::{Mesh, MeshError, SurfaceHit};
 use crate::math::{Ray, Vec3};
 use glam::{Affine3A, Mat3A, Vec2};
 use obvhs::aabb::Aabb;
@@ -144,8 +144,7 @@ impl Instance {
 
     /// Whether the placement, over the whole frame, lies within ±[`MAX_COORDINATE`].
     pub fn within_limits(&self) -> bool {
-        let limit = Vec3::splat(MAX_COORDINATE);
-        self.bounds.min.cmpge(-limit).all() && self.bounds.max.cmple(limit).all()
+        super::within_limits(self.bounds.min) && super::within_limits(self.bounds.max)
     }
 
     /// Triangle `i`'s corners in the scene at time 0.
