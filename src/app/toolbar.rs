@@ -173,7 +173,7 @@ impl RaylabApp {
                 // Under 2 %, what each lecture slide's target reaches (tests/slides.rs).
                 let clean = if noise < crate::render::CLEAN_NOISE { " (clean)" } else { "" };
                 ui.label(format!("noise {:.2}%{clean}", noise * 100.0))
-                    .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of the even and odd samples' means. Under 2 % the image reads as clean.");
+                    .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of two halves of the samples (alternate octaves of sample numbers). Under 2 % the image reads as clean.");
             }
             if let Some(done) = p.pixels_done {
                 ui.separator();
