@@ -6,14 +6,11 @@ use raylab::render::{Film, render_pass};
 
 /// Slides whose subject is the noise of few samples, where a clean image would hide it:
 /// one sample through each pixel's centre, 1 against 4 samples, regular, random and
-/// jittered at 4. And dispersion, which does not get there (about 10 % at its 64 samples, see
-/// docs/internals.md: a pixel sees the narrow slit through only part of each channel's 100 nm box,
-/// and the edge that makes in wavelength and position together converges slowly).
+/// jittered at 4.
 const ABOUT_FEW_SAMPLES: &[&str] = &[
     "The basic ray tracer",
     "Antialiasing: 1 against 4 samples",
     "Regular, random and jittered samples",
-    "Dispersion",
 ];
 
 #[test]

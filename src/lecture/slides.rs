@@ -194,7 +194,7 @@ pub const LECTURE: &[Slide] = &[
     slide("Dispersion", "dispersion")
         .asks(&["abbe"])
         .says(
-            "n depends on the wavelength: n(λ) = A + B/λ² through n_d and the Abbe number. Through the flint prism the white slit spreads into its spectrum, blue bent most; the lamps seen in the diamond fringe with colour. Drag the Abbe number (0: none).",
+            "n depends on the wavelength: n(λ) = A + B/λ² through n_d and the Abbe number. Through the flint prism a white slit (out of view, left) spreads into its spectrum, blue bent most; reflected in the left face it stays white. Drag the Abbe number (0: none).",
         ),
     slide("What the ray tree misses", "default")
         .set(&[("spp", "64")])

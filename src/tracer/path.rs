@@ -383,7 +383,7 @@ impl Tracer<'_> {
             && wavelength.is_none()
             && self.materials[hit.material as usize].disperses()
         {
-            let lambda = dispersion::wavelength(rng.next_1d());
+            let lambda = dispersion::wavelength(rng.with_image_position());
             *wavelength = Some(lambda);
             *weight *= dispersion::channel_weight(lambda);
         }

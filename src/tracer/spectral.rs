@@ -21,7 +21,7 @@ impl Tracer<'_> {
         w: &mut Walk<R>,
         shade: impl Fn(Branch, &mut Walk<R>) -> (Color, End),
     ) -> (Color, End) {
-        let u = w.rng.next_1d();
+        let u = w.rng.with_image_position();
         let shade_at = |lambda: f32, w: &mut Walk<R>| {
             let b = Branch {
                 wavelength: Some(lambda),

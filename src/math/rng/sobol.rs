@@ -1,5 +1,6 @@
-//! Owen-scrambled Sobol points: the first two Sobol dimensions, the hash-based Owen
-//! scramble, the pair a [`SampleStream`] draws per dimension, and the same pairs drawn for
+//! Owen-scrambled Sobol points: the first three Sobol dimensions, the hash-based Owen
+//! scramble, the pair a [`SampleStream`] draws per dimension, the image position's third
+//! coordinate ([`SampleStream::with_image_position`]), and the same pairs drawn for
 //! several samples at once in SIMD lanes ([`SobolLanes`]).
 
 use super::{Pattern, SampleStream, dimension_key, mix64, pixel_key};
@@ -48,6 +49,41 @@ pub(super) fn pascal(index: u32) -> u32 {
     y ^= (y >> 8) & 0x00ff_00ff;
     y ^= (y >> 16) & 0x0000_ffff;
     y
+}
+
+/// The third Sobol dimension's direction numbers v_k = m_k / 2^k as 32-bit fractions, for
+/// index bits k = 1..32. Its primitive polynomial is x² + x + 1 (degree s = 2, a₁ = 1), with
+/// m₁ = 1, m₂ = 3 (Joe and Kuo's table) and the recurrence
+/// m_k = 2a₁·m_{k−1} ⊕ 2²·m_{k−2} ⊕ m_{k−2}.
+const SOBOL_3: [u32; 32] = {
+    let mut v = [0u32; 32];
+    let mut m = [0u64; 33];
+    m[1] = 1;
+    m[2] = 3;
+    let mut k = 3;
+    while k <= 32 {
+        m[k] = (2 * m[k - 1]) ^ (4 * m[k - 2]) ^ m[k - 2];
+        k += 1;
+    }
+    let mut k = 1;
+    while k <= 32 {
+        v[k - 1] = (m[k] << (32 - k)) as u32;
+        k += 1;
+    }
+    v
+};
+
+/// The third Sobol dimension at `index`, as a 32-bit fraction: the XOR of the direction
+/// numbers of the index's set bits.
+#[inline]
+pub fn sobol_third(index: u32) -> u32 {
+    let mut x = 0;
+    let mut bits = index;
+    while bits != 0 {
+        x ^= SOBOL_3[bits.trailing_zeros() as usize];
+        bits &= bits - 1;
+    }
+    x
 }
 
 /// A 32-bit fraction to a float in [0, 1) (its top 24 bits, exact in f32).
@@ -144,6 +180,27 @@ impl SampleStream {
     }
 }
 
+impl SampleStream {
+    /// A number in [0, 1) that is the third coordinate of the image position's point: with
+    /// the Sobol pattern, the same Owen-scrambled index as the first draw's pair (dimension
+    /// 0, the image position), taken through the third Sobol dimension and scrambled with
+    /// a seed of its own. The pixel's samples in (x, y, u) are then a scrambled 3D Sobol
+    /// net, not three independently shuffled strata: where the value depends on the image
+    /// position and u together (a wavelength seen through a prism: the colour changes
+    /// across the pixel), the error falls faster than with a padded draw. Other patterns
+    /// draw the next dimension. Either way the stream moves past one dimension, so the
+    /// draws after it are where [`SampleStream::next_1d`] would leave them.
+    pub fn with_image_position(&mut self) -> f32 {
+        if self.pattern != Pattern::Sobol {
+            return self.next_1d();
+        }
+        let key = dimension_key(self.pixel_key, 0);
+        let index = laine_karras(self.sample_reversed, key as u32).reverse_bits();
+        self.dim += 1;
+        fraction_to_f32(owen_scramble(sobol_third(index), (mix64(key) >> 32) as u32))
+    }
+}
+
 /// The Sobol streams of `N` samples begun together, their first draws made in SIMD lanes
 /// (the camera's, which every sample makes at the same dimensions): each lane's numbers are
 /// its [`SampleStream`]'s bit for bit. Only for use inside a [`crate::math::lanes::LaneKernel`]
@@ -221,6 +278,72 @@ impl<const N: usize> SobolLanes<N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_third_dimension_is_sobols() {
+        // Joe and Kuo's third dimension, as pbrt tabulates its generator matrix.
+        let expected = [
+            0x8000_0000u32,
+            0xc000_0000,
+            0x6000_0000,
+            0x9000_0000,
+            0xe800_0000,
+            0x5c00_0000,
+            0x8e00_0000,
+            0xc500_0000,
+        ];
+        assert_eq!(SOBOL_3[..8], expected);
+        for (k, &v) in expected.iter().enumerate() {
+            assert_eq!(sobol_third(1 << k), v);
+        }
+        // Index 3 is the XOR of indices 1 and 2: 1/2 ⊕ 3/4 = 1/4.
+        assert_eq!(sobol_third(3), 0x4000_0000);
+    }
+
+    /// Whether `points` (2^m of them) put exactly 2^t in every elementary box of area
+    /// 2^(t − m): a (t, m, 2)-net.
+    fn is_net(points: &[(f32, f32)], t: u32) -> bool {
+        let m = points.len().trailing_zeros();
+        (0..=m - t).all(|a| {
+            let b = m - t - a;
+            let mut count = vec![0u32; 1 << (m - t)];
+            for &(x, y) in points {
+                let (i, j) = (
+                    (x * (1u32 << a) as f32) as usize,
+                    (y * (1u32 << b) as f32) as usize,
+                );
+                count[i << b | j] += 1;
+            }
+            count.iter().all(|&c| c == 1 << t)
+        })
+    }
+
+    #[test]
+    fn the_image_positions_third_coordinate_makes_a_net_with_it() {
+        // Each pixel's first 2^m samples: (x, u) and (y, u) are (1, m, 2)-nets (t = 1 for
+        // the pairs of Sobol's first three dimensions), which they would not be if u were
+        // drawn on its own (padded).
+        for pixel in [0, 7, 1234] {
+            for m in [4u32, 6, 8] {
+                let n = 1u32 << m;
+                let (mut xu, mut yu, mut padded) = (Vec::new(), Vec::new(), Vec::new());
+                for s in 0..n {
+                    let mut stream = SampleStream::with_pattern(Pattern::Sobol, n, 9, pixel, s);
+                    let p = stream.next_2d();
+                    let mut other = stream.clone();
+                    let u = stream.with_image_position();
+                    xu.push((p.x, u));
+                    yu.push((p.y, u));
+                    padded.push((p.x, other.next_1d()));
+                    // The stream moves past one dimension, as next_1d does.
+                    assert_eq!(stream.dimension(), other.dimension());
+                }
+                assert!(is_net(&xu, 1) && is_net(&yu, 1), "pixel {pixel}, 2^{m}");
+                // (16 padded points can be a net by chance; 64 and 256 are not.)
+                assert!(m < 6 || !is_net(&padded, 1), "pixel {pixel}, 2^{m}: padded");
+            }
+        }
+    }
 
     #[test]
     fn sobol_2d_matches_the_sequence() {
