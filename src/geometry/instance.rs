@@ -26,7 +26,7 @@ pub struct SharedMesh {
 
 impl SharedMesh {
     /// Builds the BVH over `mesh`'s triangles (which must lie within
-    /// ±[`MAX_COORDINATE`]: the builder panics on bounds near 5e18). The mesh's own
+    /// ±[`MAX_COORDINATE`](super::MAX_COORDINATE): the builder panics on bounds near 5e18). The mesh's own
     /// velocity is ignored: a placement says how it moves.
     pub fn new(mut mesh: Mesh) -> Arc<SharedMesh> {
         mesh.velocity = Vec3::ZERO;
@@ -142,7 +142,7 @@ impl Instance {
         self.bounds
     }
 
-    /// Whether the placement, over the whole frame, lies within ±[`MAX_COORDINATE`].
+    /// Whether the placement, over the whole frame, lies within ±[`MAX_COORDINATE`](super::MAX_COORDINATE).
     pub fn within_limits(&self) -> bool {
         super::within_limits(self.bounds.min) && super::within_limits(self.bounds.max)
     }

@@ -9,7 +9,7 @@ use std::path::Path;
 pub const CLEAN_NOISE: f32 = 0.02;
 
 /// What a pixel has accumulated: the sum and count of its samples, and the same for the
-/// samples of one half ([`in_second_half`]): the two halves give the noise estimate.
+/// samples of one half (`in_second_half`): the two halves give the noise estimate.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Accum {
     /// Sum of every sample, added in sample order.
@@ -39,7 +39,7 @@ const _: () = assert!(std::mem::size_of::<Accum>() == 64);
 /// that way is no better spread than random points, and the estimate read 3–6 times the
 /// true error of a Sobol image. For independent samples any split is as good.
 #[inline]
-pub fn in_second_half(index: u32) -> bool {
+pub(crate) fn in_second_half(index: u32) -> bool {
     // k = the bit length of the index: 0 for sample 0, 1 for 1, 2 for 2–3, 3 for 4–7.
     (u32::BITS - index.leading_zeros()) % 2 == 1
 }
@@ -392,7 +392,7 @@ impl Film {
     /// The estimated noise of the image as shown: the standard error of each pixel's
     /// displayed value (scaled by 2^exposure, clipped to [0, 1], sRGB encoded), estimated
     /// from the difference of the means of its two halves of samples
-    /// ([`Accum::shown_error`]), as an RMS over the image divided by the mean displayed
+    /// (`Accum::shown_error`), as an RMS over the image divided by the mean displayed
     /// brightness. Displayed, not linear: a highlight far above white is clipped and its
     /// noise cannot be seen, while a dark region's noise is (the sRGB curve is steep
     /// there). `None` before two samples per pixel.

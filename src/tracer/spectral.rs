@@ -10,7 +10,10 @@ use crate::tracer::Recorder;
 impl Tracer<'_> {
     /// `shade` at the first dispersive surface on a branch, where the branch takes the
     /// wavelength it carries from there on. The ray tree splits into three, one
-    /// wavelength in each channel's box from one u (stratified): every sample brings back
+    /// wavelength in each channel's box from one u, the third coordinate of the sample's
+    /// image position ([`crate::math::SampleStream::with_image_position`]), so that a
+    /// pixel's samples are stratified in position and wavelength together (the colour
+    /// seen through a prism changes across a pixel). Every sample brings back
     /// all three colours, each from one wavelength of its box (weight 1). In stochastic
     /// mode, one path per sample, it takes one wavelength uniform over 400–700 nm and
     /// brings back its box's channel times 3. Either way each channel's mean is its box's

@@ -7,7 +7,7 @@ use crate::math::{Ray, Vec3};
 /// The most lanes any width has.
 const MAX_LANES: usize = 16;
 
-/// Records of `K` numbers kept as columns, one per number, in blocks of [`MAX_LANES`], so
+/// Records of `K` numbers kept as columns, one per number, in blocks of `MAX_LANES` (16), so
 /// that `N` records' first (or second, ...) numbers load as one row of lanes and adding a
 /// record checks for room once a block.
 #[derive(Clone, Debug)]
@@ -59,7 +59,7 @@ impl<const K: usize> Columns<K> {
         self.len += 1;
     }
 
-    /// Adds `N` records at the end, given number by number (`N` divides [`MAX_LANES`]):
+    /// Adds `N` records at the end, given number by number (`N` divides `MAX_LANES` (16)):
     /// row by row where the records so far fill whole rows of `N`, else one by one.
     #[inline(always)]
     pub fn push_lanes<const N: usize>(&mut self, numbers: [Lanes<N>; K]) {
@@ -88,7 +88,7 @@ impl<const K: usize> Columns<K> {
     }
 
     /// Number `k` of records `i..i + N` (`i` a multiple of `N`, which divides
-    /// [`MAX_LANES`]); lanes past the last record hold zeros.
+    /// `MAX_LANES` (16)); lanes past the last record hold zeros.
     #[inline(always)]
     pub fn lane<const N: usize>(&self, i: usize, k: usize) -> Lanes<N> {
         let j = i % MAX_LANES;
@@ -155,7 +155,7 @@ impl RayColumns {
         }
     }
 
-    /// Rays `i..i + N` (`i` a multiple of `N`, which divides [`MAX_LANES`]), coordinate by
+    /// Rays `i..i + N` (`i` a multiple of `N`, which divides `MAX_LANES` (16)), coordinate by
     /// coordinate: (origin, direction, time). Lanes past the last ray hold zeros.
     #[inline(always)]
     pub fn lanes<const N: usize>(&self, i: usize) -> (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>) {
