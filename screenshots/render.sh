@@ -25,6 +25,6 @@ render motion-blur -o screenshots/motion-blur.png --spp 64
 # Beyond the slides.
 render polarization -o screenshots/polarization-vertical.png --spp 64 --set polarizer=90
 render polarization -o screenshots/polarization-horizontal.png --spp 64 --set polarizer=0
-render dispersion -o screenshots/dispersion.png --spp 256
+render dispersion -o screenshots/dispersion.png
 # A real mesh.
 render bunny -o screenshots/bunny.png --spp 64
