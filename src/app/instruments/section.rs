@@ -65,16 +65,21 @@ struct IncidenceKey {
 /// them at one angle.
 struct Incidence {
     key: IncidenceKey,
-    job: Option<JoinHandle<Vec<Option<f32>>>>,
-    map: Option<Vec<Option<f32>>>,
+    job: Option<JoinHandle<AngleMap>>,
+    map: Option<AngleMap>,
     texture: Option<(f32, egui::TextureHandle)>,
 }
+
+/// The angle of incidence at each pixel's first surface, row by row, and the image size
+/// (width, height) it was computed at: the map shown while a new one is computed may be
+/// of another size (another slide's image).
+type AngleMap = (Vec<Option<f32>>, (u32, u32));
 
 impl SectionState {
     /// How many pixels the outline covers at the workbench's angle, once the angles are
     /// computed.
     pub(crate) fn outlined(&self) -> Option<usize> {
-        let map = self.incidence.as_ref()?.map.as_ref()?;
+        let (map, _) = self.incidence.as_ref()?.map.as_ref()?;
         let band = crate::render::incidence_band(map, self.angle);
         Some(band.iter().filter(|&&b| b).count())
     }
@@ -117,7 +122,8 @@ impl SectionState {
         if stale && !running {
             let (scene, camera, params) = (scene.clone(), camera.clone(), params.clone());
             let job = std::thread::spawn(move || {
-                crate::render::incidence_map(&scene, &camera, &params, size.0, size.1)
+                let map = crate::render::incidence_map(&scene, &camera, &params, size.0, size.1);
+                (map, size)
             });
             // The outline shown so far stays until the new one is ready.
             let (map, texture) = match self.incidence.take() {
@@ -139,7 +145,7 @@ impl SectionState {
         } else if i.job.is_some() || stale {
             ctx.request_repaint_after(std::time::Duration::from_millis(50));
         }
-        let map = i.map.as_ref()?;
+        let (map, (width, height)) = i.map.as_ref()?;
         if i.texture.as_ref().is_none_or(|(a, _)| *a != angle) {
             let band = crate::render::incidence_band(map, angle);
             let pixels = band
@@ -149,7 +155,7 @@ impl SectionState {
                     false => Color32::TRANSPARENT,
                 })
                 .collect();
-            let image = egui::ColorImage::new([size.0 as usize, size.1 as usize], pixels);
+            let image = egui::ColorImage::new([*width as usize, *height as usize], pixels);
             let texture = ctx.load_texture("incidence-band", image, egui::TextureOptions::NEAREST);
             i.texture = Some((angle, texture));
         }
@@ -396,6 +402,43 @@ impl Canvas for EguiCanvas<'_> {
             text,
             egui::FontId::proportional(size),
             colour(c),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_outline_computed_for_another_image_size_is_drawn_at_its_own_size() {
+        // The outline of the last image stays shown while the next one's is computed; if
+        // the next slide's image has another size, its texture must keep the old map's
+        // size (built at the new one, the window aborted in the GPU upload).
+        let ctx = egui::Context::default();
+        let scene = Arc::new(Scene::load("glass").unwrap());
+        let mut state = SectionState {
+            mode: SectionMode::Workbench,
+            ..SectionState::default()
+        };
+        let params = scene.params.clone();
+        let (small, large) = ((80, 48), (96, 54));
+        // The first map, computed to the end.
+        while state.incidence.as_ref().is_none_or(|i| i.map.is_none()) {
+            state.outline_texture(&ctx, &scene, &scene.camera, &params, small);
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        // Another size and another angle: the texture is rebuilt from the old map at once.
+        state.angle += 5.0;
+        let texture = state.outline_texture(&ctx, &scene, &scene.camera, &params, large);
+        let [w, h] = texture.unwrap().size();
+        // Usually the old map (the new one is still being computed): its texels, its size.
+        let (map, _) = state.incidence.as_ref().unwrap().map.as_ref().unwrap();
+        assert_eq!(
+            w * h,
+            map.len(),
+            "a {w}×{h} texture of {} texels",
+            map.len()
         );
     }
 }
