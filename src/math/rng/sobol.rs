@@ -76,7 +76,7 @@ const SOBOL_3: [u32; 32] = {
 /// The third Sobol dimension at `index`, as a 32-bit fraction: the XOR of the direction
 /// numbers of the index's set bits.
 #[inline]
-pub fn sobol_third(index: u32) -> u32 {
+fn sobol_third(index: u32) -> u32 {
     let mut x = 0;
     let mut bits = index;
     while bits != 0 {
@@ -92,12 +92,23 @@ pub(super) fn fraction_to_f32(x: u32) -> f32 {
     (x >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
+/// Dimension `dim`'s key in the pixel whose key is `pixel_key`, and the Owen-scrambled
+/// index of the sample whose number, bits reversed, is `sample_reversed` (a nested uniform
+/// scramble of the sample number, which keeps every power-of-two prefix a net).
+#[inline(always)]
+fn scrambled_index(pixel_key: u64, sample_reversed: u32, dim: u32) -> (u64, u32) {
+    let key = dimension_key(pixel_key, dim);
+    (
+        key,
+        laine_karras(sample_reversed, key as u32).reverse_bits(),
+    )
+}
+
 /// The first number of [`sobol_pair`], bit for bit, without the second's work (its hash,
 /// Pascal matrix and scramble): rev32(x) is the low half of the pair's 64-bit reversal.
 #[inline(always)]
 pub(super) fn sobol_first(pixel_key: u64, sample_reversed: u32, dim: u32) -> f32 {
-    let key = dimension_key(pixel_key, dim);
-    let index = laine_karras(sample_reversed, key as u32).reverse_bits();
+    let (key, index) = scrambled_index(pixel_key, sample_reversed, dim);
     fraction_to_f32(laine_karras(index, (key >> 32) as u32).reverse_bits())
 }
 
@@ -107,7 +118,7 @@ pub(super) fn sobol_first(pixel_key: u64, sample_reversed: u32, dim: u32) -> f32
 /// coordinate scrambled, all seeded per pixel and dimension ("padded" Sobol).
 #[inline(always)]
 pub(super) fn sobol_pair(pixel_key: u64, sample_reversed: u32, dim: u32) -> Vec2 {
-    let key = dimension_key(pixel_key, dim);
+    let (key, index) = scrambled_index(pixel_key, sample_reversed, dim);
     let (sx, sy) = ((key >> 32) as u32, mix64(key) as u32);
     // In full: index = owen_scramble(sample, key), (x, y) = sobol_2d(index), then each
     // Owen-scrambled. With owen_scramble(v, s) = rev(LK(rev(v), s)) and sobol_2d(i) =
@@ -115,7 +126,6 @@ pub(super) fn sobol_pair(pixel_key: u64, sample_reversed: u32, dim: u32) -> Vec2
     // the same bits. The last two are one 64-bit reversal of the pair side by side
     // (rev64(a·2³² + b) = rev32(b)·2³² + rev32(a)): a reversal costs some twenty
     // instructions where the processor has no instruction for it, as x86 has not.
-    let index = laine_karras(sample_reversed, key as u32).reverse_bits();
     let x = laine_karras(index, sx);
     let y = laine_karras(pascal(index), sy);
     let both = ((x as u64) << 32 | y as u64).reverse_bits();
@@ -178,9 +188,7 @@ impl SampleStream {
         self.dim += 1;
         Pair::Later(later)
     }
-}
 
-impl SampleStream {
     /// A number in [0, 1) that is the third coordinate of the image position's point: with
     /// the Sobol pattern, the same Owen-scrambled index as the first draw's pair (dimension
     /// 0, the image position), taken through the third Sobol dimension and scrambled with
@@ -194,8 +202,7 @@ impl SampleStream {
         if self.pattern != Pattern::Sobol {
             return self.next_1d();
         }
-        let key = dimension_key(self.pixel_key, 0);
-        let index = laine_karras(self.sample_reversed, key as u32).reverse_bits();
+        let (key, index) = scrambled_index(self.pixel_key, self.sample_reversed, 0);
         self.dim += 1;
         fraction_to_f32(owen_scramble(sobol_third(index), (mix64(key) >> 32) as u32))
     }
