@@ -91,7 +91,7 @@ pub(crate) fn decide(film: &mut Film, target_percent: f32) -> bool {
     let shown: Vec<f64> = film
         .pixels
         .par_iter()
-        .map(|a| a.shown_error(1.0).map_or(0.0, |(shown, _)| shown))
+        .map(|a| a.shown(1.0).unwrap_or(0.0))
         .collect();
     // (ε, σ) of each pixel.
     let spread: Vec<(f64, f64)> = film

@@ -44,6 +44,14 @@ pub(crate) fn in_second_half(index: u32) -> bool {
     (u32::BITS - index.leading_zeros()) % 2 == 1
 }
 
+/// The luma of the mean of `count` samples summing to `sum`, scaled by `scale`, each
+/// channel clipped to [0, 1] and sRGB encoded (Rec. 709 weights on the encoded values:
+/// brightness as shown).
+fn shown_luma(sum: [f64; 3], count: u32, scale: f64) -> f64 {
+    let shown = |v: f64| srgb_encode_table((v * scale / count as f64) as f32) as f64;
+    0.2126 * shown(sum[0]) + 0.7152 * shown(sum[1]) + 0.0722 * shown(sum[2])
+}
+
 impl Accum {
     /// Adds sample number `index` with radiance `c`.
     #[inline]
@@ -62,25 +70,29 @@ impl Accum {
         }
     }
 
-    /// The pixel as shown (scaled by `scale`, clipped to [0, 1], sRGB encoded; its Rec. 709
-    /// luma) and the standard error of that, estimated from the difference of its two
-    /// halves' means as shown: for halves of a and b samples of n, |A − B|·√(ab)/n (the
-    /// error of the whole mean if each half's error falls as one over the square root of
-    /// its count; |A − B|/2 for equal halves). `None` until each half has a sample.
+    /// The pixel as shown: its mean scaled by `scale`, clipped to [0, 1], sRGB encoded, its
+    /// Rec. 709 luma. `None` until each half has a sample, as for [`Accum::shown_error`],
+    /// so that both count the same pixels.
+    pub(crate) fn shown(&self, scale: f64) -> Option<f64> {
+        let halves = self.half_count > 0 && self.count > self.half_count;
+        halves.then(|| shown_luma(self.sum, self.count, scale))
+    }
+
+    /// The pixel as shown ([`Accum::shown`]) and the standard error of that, estimated
+    /// from the difference of its two halves' means as shown: for halves of a and b
+    /// samples of n, |A − B|·√(ab)/n (the error of the whole mean if each half's error
+    /// falls as one over the square root of its count; |A − B|/2 for equal halves). `None`
+    /// until each half has a sample.
     pub(crate) fn shown_error(&self, scale: f64) -> Option<(f64, f64)> {
         let (b, a) = (self.half_count, self.count - self.half_count);
-        if a == 0 || b == 0 {
-            return None;
-        }
-        // Rec. 709 weights on the encoded values (luma): brightness as shown.
-        let luma = |c: [f64; 3], count: u32| {
-            let shown = |v: f64| srgb_encode_table((v * scale / count as f64) as f32) as f64;
-            0.2126 * shown(c[0]) + 0.7152 * shown(c[1]) + 0.0722 * shown(c[2])
-        };
+        let shown = self.shown(scale)?;
         let first_sum = [0, 1, 2].map(|i| self.sum[i] - self.half_sum[i]);
-        let (second, first) = (luma(self.half_sum, b), luma(first_sum, a));
+        let (second, first) = (
+            shown_luma(self.half_sum, b, scale),
+            shown_luma(first_sum, a, scale),
+        );
         let weight = (a as f64 * b as f64).sqrt() / self.count as f64;
-        Some((luma(self.sum, self.count), (second - first).abs() * weight))
+        Some((shown, (second - first).abs() * weight))
     }
 
     /// The mean radiance; black before any sample.
