@@ -106,8 +106,10 @@ impl FilmCache {
         }
     }
 
-    /// How many films it holds, and their memory.
-    pub fn usage(&self) -> (usize, usize) {
+    /// How many films it holds, and their memory (for the tests: the window does not
+    /// show it).
+    #[cfg(test)]
+    fn usage(&self) -> (usize, usize) {
         self.0
             .lock()
             .map(|f| (f.films.len(), f.films.iter().map(|(_, f)| bytes(f)).sum()))
