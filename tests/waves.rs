@@ -8,7 +8,7 @@
 use raylab::lecture::{LECTURE, slide_setup};
 use raylab::math::Color;
 use raylab::math::lanes::Width;
-use raylab::params::Params;
+use raylab::params::{Params, TreeMode};
 use raylab::render::{Film, render_pass_by, render_preview};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use raylab::tracer::{Stats, Tracer, Traversal};
@@ -69,7 +69,7 @@ fn widths() -> Vec<Width> {
 
 #[test]
 fn every_width_and_the_recursion_give_every_scene_and_slide_bit_for_bit() {
-    let mut waves = 0;
+    let mut dispersive = 0;
     for (name, scene, params) in cases() {
         let (reference, reference_stats) = render(&scene, &params, Traversal::Recursive);
         for w in widths() {
@@ -78,10 +78,14 @@ fn every_width_and_the_recursion_give_every_scene_and_slide_bit_for_bit() {
             assert_eq!(film.cost(), reference.cost(), "{name}: rays per pixel");
             assert_eq!(stats, reference_stats, "{name}: {w:?} lanes");
         }
-        waves += Tracer::new(&scene, &params, SIZE.0, SIZE.1).traces_waves() as u32;
+        // Only paths, photons and the polariser take the recursion.
+        let in_waves = Tracer::new(&scene, &params, SIZE.0, SIZE.1).traces_waves();
+        let tree = !params.transport.traces_paths() && params.polarizer.is_none();
+        assert_eq!(in_waves, tree, "{name}");
+        dispersive += scene.materials.iter().any(|m| m.disperses()) as u32;
     }
-    // Only the polariser's and dispersion's scenes and slides take the recursion.
-    assert!(waves >= 35, "{waves} cases in waves");
+    // Dispersion's scene and slide, where the waves split into wavelengths, among them.
+    assert!(dispersive >= 2, "{dispersive} dispersive cases");
 }
 
 #[test]
@@ -180,4 +184,72 @@ fn where_the_numbers_are_drawn_in_another_order_the_image_is_the_same_within_noi
         "mean difference {mean} against a standard error of {}",
         sd / n.sqrt()
     );
+}
+
+/// A crown-glass ball inside a flint one, over a floor under a point light (which draws
+/// no numbers, so that the waves draw in the recursion's order): a ray meets
+/// the flint, splits into its wavelengths, and each then meets the crown from inside the
+/// flint, whose index there is its wavelength's. Lanes that split hits at one index for
+/// every ray would refract it there at n_d.
+const NESTED_PRISMS: &str = r#"
+description = "a crown ball inside a flint one"
+[image]
+width = 40
+height = 30
+[params]
+spp = 4
+max_depth = 6
+[camera]
+position = [0.0, 1.0, 4.0]
+look_at = [0.0, 1.0, 0.0]
+fov = 40
+[material.flint]
+type = "dielectric"
+ior = 1.785
+abbe = 25.8
+[material.crown]
+type = "dielectric"
+ior = 1.52
+[material.floor]
+type = "diffuse"
+color = [0.8, 0.7, 0.6]
+[[sphere]]
+center = [0.0, 1.0, 0.0]
+radius = 1.0
+material = "flint"
+[[sphere]]
+center = [0.2, 1.1, 0.3]
+radius = 0.45
+material = "crown"
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+[[point_light]]
+position = [1.0, 3.0, 2.0]
+intensity = 30.0
+"#;
+
+#[test]
+fn the_waves_split_into_wavelengths_as_the_recursion_does_in_either_tree() {
+    let nested = Scene::from_toml_str(NESTED_PRISMS, "nested.toml", Path::new(".")).unwrap();
+    let dispersion = Scene::load("dispersion").unwrap();
+    for (name, scene) in [("nested", &nested), ("dispersion", &dispersion)] {
+        for tree in [TreeMode::Split, TreeMode::Stochastic] {
+            let params = Params {
+                spp: 4,
+                tree,
+                ..scene.params.clone()
+            };
+            assert!(Tracer::new(scene, &params, SIZE.0, SIZE.1).traces_waves());
+            let (reference, reference_stats) = render(scene, &params, Traversal::Recursive);
+            for w in widths() {
+                let (film, stats) = render(scene, &params, Traversal::Waves(w));
+                let (a, b) = (bits(&film), bits(&reference));
+                let differ = a.iter().zip(&b).filter(|(a, b)| a != b).count();
+                assert_eq!(differ, 0, "{name}, {tree:?}: {w:?}: pixels that differ");
+                assert_eq!(stats, reference_stats, "{name}, {tree:?}: {w:?}");
+            }
+        }
+    }
 }

@@ -164,18 +164,17 @@ impl Dielectric {
 
 /// [`Dielectric::scatter`] for `N` hits at once, made in lanes: hit i on `dielectrics[i]`,
 /// the rays' directions `dir`, the normals facing them (`n_geom`, `n_shade`), whether each
-/// is `entering`, and the index on the surface's outer side (`outside_ior`). For samples of
-/// one wavelength only (no dispersion). Lane i's split is what `scatter` gives for hit i,
-/// bit for bit.
+/// is `entering`, and the indices inside the dielectric and on its outer side at each
+/// ray's wavelength (`ior`, `outside_ior`). Lane i's split is what `scatter` gives for hit
+/// i, bit for bit.
 #[inline(always)]
 pub(crate) fn split_lanes<'d, const N: usize>(
     dielectrics: [&'d Dielectric; N],
     dir: V3<Lanes<N>>,
     (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
     entering: Mask<N>,
-    outside_ior: Lanes<N>,
+    (ior, outside_ior): (Lanes<N>, Lanes<N>),
 ) -> impl Iterator<Item = Split> + 'd {
-    let ior = Lanes::from_fn(|i| dielectrics[i].ior);
     let n1 = Lanes::select(entering, outside_ior, ior);
     let n2 = Lanes::select(entering, ior, outside_ior);
     let split = split_of::<Lanes<N>>(dir, n_geom, n_shade, n1, n2);
@@ -334,6 +333,11 @@ mod tests {
             ior: 1.33,
             ..glass(FresnelMode::Schlick)
         };
+        // A dispersive flint, the rays of its lanes carrying wavelengths of their own.
+        let flint = Dielectric {
+            abbe: 25.8,
+            ..glass(FresnelMode::Exact)
+        };
         // Entering and leaving, head-on to grazing, beyond the critical angle (45° and 80°
         // from inside), with a shading normal tilted off the geometric one (at 60° and 89.9°
         // entering, 45° leaving), so that both refractions (about the shading normal, and
@@ -350,6 +354,7 @@ mod tests {
                     Vec3::Y
                 },
                 outside_ior: if i == 1 { 1.2 } else { 1.0 },
+                wavelength: (i % 3 != 0).then_some(400.0 + 37.5 * i as f32),
                 ..hit_at(theta)
             }
         });
@@ -371,6 +376,7 @@ mod tests {
         for kinds in [
             [&exact; 8],
             std::array::from_fn(|i| [&exact, &schlick][i % 2]),
+            std::array::from_fn(|i| [&flint, &schlick][i % 2]),
         ] {
             let v3 = |f: &dyn Fn(&Interaction) -> Vec3| V3::from_fn(|i| f(&hits[i]));
             let entering = Mask(
@@ -378,8 +384,9 @@ mod tests {
                     .map(|h| if h.entering { u32::MAX } else { 0 }),
             );
             let outside = Lanes::from_fn(|i| hits[i].outside_ior);
+            let ior = Lanes::from_fn(|i| kinds[i].ior_at(hits[i].wavelength));
             let normals = (v3(&|h| h.n_geom), v3(&|h| h.n_shade));
-            let lanes = split_lanes(kinds, v3(&|h| h.dir), normals, entering, outside);
+            let lanes = split_lanes(kinds, v3(&|h| h.dir), normals, entering, (ior, outside));
             for (i, split) in lanes.enumerate() {
                 let (a, b) = (split.scatter(), kinds[i].scatter(&hits[i]));
                 let bits = |s: &Scatter| {
