@@ -38,3 +38,14 @@ pub mod tracer;
 
 /// The version of raylab, as written into snapshot sidecars.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The commit raylab was built from (12 hex digits), if it could be known: git's `HEAD`
+/// when built in a clone, or the one a registry's package records (see `build.rs`).
+pub const COMMIT: Option<&str> = match env!("RAYLAB_COMMIT").as_bytes() {
+    [] => None,
+    _ => Some(env!("RAYLAB_COMMIT")),
+};
+
+/// The version and, where known, the commit: "0.2.0 (commit 1a2b3c4d5e6f)". What
+/// `raylab --version` says and what images name as their software.
+pub const VERSION_LINE: &str = env!("RAYLAB_VERSION_LINE");

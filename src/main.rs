@@ -58,7 +58,7 @@ fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
 #[derive(Parser)]
 #[command(
     name = "raylab",
-    version,
+    version = raylab::VERSION_LINE,
     about = "An interactive lab for dielectrics and distribution ray tracing",
     after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
                   Scenes are TOML files (see docs/scenes.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\

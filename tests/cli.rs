@@ -47,6 +47,33 @@ fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
         serde_json::from_str(&std::fs::read_to_string(d.join("a.png.json")).unwrap()).unwrap();
     assert_eq!(sidecar["scene"], "builtin:default");
     assert_eq!(sidecar["raylab_version"], env!("CARGO_PKG_VERSION"));
+    // The commit the binary was built from, where git knows it: this clone's HEAD.
+    let head = std::process::Command::new("git")
+        .args(["rev-parse", "--short=12", "HEAD"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    if let Some(head) = &head {
+        assert_eq!(sidecar["raylab_commit"], head.as_str());
+    }
+    // The PNG names its software with the same version and commit.
+    let png = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(d.join("a.png")).unwrap(),
+    ))
+    .read_info()
+    .unwrap();
+    let software = png
+        .info()
+        .uncompressed_latin1_text
+        .iter()
+        .find(|t| t.keyword == "Software");
+    let expected = match &head {
+        Some(head) => format!("raylab {} (commit {head})", env!("CARGO_PKG_VERSION")),
+        None => format!("raylab {}", env!("CARGO_PKG_VERSION")),
+    };
+    assert_eq!(software.map(|t| t.text.as_str()), Some(expected.as_str()));
     assert_eq!(
         (sidecar["width"].as_u64(), sidecar["height"].as_u64()),
         (Some(64), Some(36))

@@ -42,7 +42,7 @@ pub(crate) fn exr_bytes(
     sidecar: Option<&Sidecar>,
 ) -> Result<Vec<u8>, exr::error::Error> {
     let mut attributes = LayerAttributes {
-        software_name: Some(text(&format!("raylab {}", crate::VERSION))),
+        software_name: Some(text(&format!("raylab {}", crate::VERSION_LINE))),
         ..LayerAttributes::default()
     };
     if let Some(sidecar) = sidecar {
@@ -100,6 +100,7 @@ mod tests {
         let pixels: Vec<Color> = (0..6).map(|i| Color::splat(i as f32 * 0.25)).collect();
         let sidecar = Sidecar {
             raylab_version: crate::VERSION.into(),
+            raylab_commit: Some("1a2b3c4d5e6f".into()),
             scene: "scènes/glass.toml".into(),
             width: 3,
             height: 2,
@@ -134,6 +135,13 @@ mod tests {
         assert_eq!(get("raylab:scene"), "sc\\u00e8nes/glass.toml");
         let back: Sidecar = serde_json::from_str(&get("raylab:sidecar")).unwrap();
         assert_eq!(back.scene, "scènes/glass.toml");
+        assert_eq!(back.raylab_commit.as_deref(), Some("1a2b3c4d5e6f"));
+        // The software: the version and, where known, the commit.
+        let software = header.own_attributes.software_name.as_ref().unwrap();
+        assert_eq!(
+            software.to_string(),
+            format!("raylab {}", crate::VERSION_LINE)
+        );
         assert_eq!(back.params, sidecar.params);
         // And the pixels, as the image crate reads them back.
         let image = image::load_from_memory(&bytes).unwrap().into_rgb32f();

@@ -26,7 +26,7 @@ pub(crate) fn png_bytes(
     });
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-    encoder.add_text_chunk("Software".into(), format!("raylab {}", crate::VERSION))?;
+    encoder.add_text_chunk("Software".into(), format!("raylab {}", crate::VERSION_LINE))?;
     if let Some(json) = sidecar {
         encoder.add_itxt_chunk(SIDECAR_KEY.into(), json.into())?;
     }

@@ -15,6 +15,9 @@ use std::path::{Path, PathBuf};
 pub struct Sidecar {
     /// The raylab version that wrote it.
     pub raylab_version: String,
+    /// The commit that raylab was built from, where it was known ([`crate::COMMIT`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub raylab_commit: Option<String>,
     /// The scene: `builtin:NAME`, or the file's path relative to the sidecar's folder
     /// (absolute where no relative path leads there), so that a folder of scenes and
     /// renders can move as a whole. [`Sidecar::read`] resolves it.
@@ -110,6 +113,7 @@ impl Sidecar {
     pub fn new(image: &Path, r: &Rendered) -> Sidecar {
         Sidecar {
             raylab_version: crate::VERSION.to_string(),
+            raylab_commit: crate::COMMIT.map(str::to_string),
             scene: Sidecar::scene_reference(&r.scene.source, &sidecar_path(image)),
             width: r.width,
             height: r.height,
