@@ -16,12 +16,29 @@ fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The page's text, its line ends as the code writes them (a checkout may end lines with
-/// CR LF).
+/// The page's text, its line ends as the code writes them.
 fn read(page: &str) -> String {
-    std::fs::read_to_string(repo().join(page))
-        .unwrap_or_else(|e| panic!("{page}: {e}"))
-        .replace("\r\n", "\n")
+    line_ends(&std::fs::read_to_string(repo().join(page)).unwrap_or_else(|e| panic!("{page}: {e}")))
+}
+
+/// `text` with LF line ends: a checkout may end lines with CR LF (.gitattributes asks for
+/// LF, but an archive or an editor may not keep it).
+fn line_ends(text: &str) -> String {
+    text.replace("\r\n", "\n")
+}
+
+#[test]
+fn the_checks_read_a_page_with_cr_lf_line_ends_as_the_page() {
+    for page in RUN.iter().chain(&["docs/scenes.md"]) {
+        let lf = read(page);
+        let crlf = lf.replace('\n', "\r\n");
+        assert_eq!(line_ends(&crlf), lf, "{page}");
+        assert_eq!(shell_lines(&crlf), shell_lines(&lf), "{page}");
+        assert!(
+            !shell_lines(&crlf).iter().any(|l| l.contains('\r')),
+            "{page}"
+        );
+    }
 }
 
 /// The lines of the page's ```sh blocks, comments cut off, blank lines left out.
