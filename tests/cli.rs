@@ -125,7 +125,32 @@ fn thread_count_does_not_change_a_single_byte() {
             d,
         );
         assert!(o.status.success(), "{}", stderr(&o));
+        // A sweep takes --threads too.
+        let sheet = format!("sheet-{out}");
+        let o = raylab(
+            &[
+                "sweep",
+                "glass",
+                "--param",
+                "ior=1.2,1.5",
+                "--size",
+                "40x30",
+                "--spp",
+                "4",
+                "--threads",
+                threads,
+                "-q",
+                "-o",
+                &sheet,
+            ],
+            d,
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
     }
+    assert_eq!(
+        std::fs::read(d.join("sheet-t1.png")).unwrap(),
+        std::fs::read(d.join("sheet-t2.png")).unwrap()
+    );
     assert_eq!(
         std::fs::read(d.join("t1.png")).unwrap(),
         std::fs::read(d.join("t2.png")).unwrap()

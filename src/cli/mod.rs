@@ -9,3 +9,4 @@ pub mod render;
 pub mod section;
 pub mod streams;
 pub mod sweep;
+pub mod threads;

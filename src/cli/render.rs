@@ -33,9 +33,8 @@ pub struct RenderArgs {
     /// Random seed (same as --set seed=S).
     #[arg(long, value_name = "S")]
     seed: Option<u64>,
-    /// Worker threads [default: all cores].
-    #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    threads: Option<u32>,
+    #[command(flatten)]
+    threads: crate::cli::threads::Threads,
     /// Set any parameter by name, e.g. --set max_depth=3 --set min_weight=0.01 (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
@@ -128,14 +127,9 @@ impl Job {
         })
     }
 
-    /// Renders it on `threads` workers (all cores if `None`), a slide that compares things
-    /// as its split image: side A left of the first divider, B (and C) after it.
-    fn render(&self, threads: Option<u32>, bar: &ProgressBar) -> Result<(Film, Stats)> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads.unwrap_or(0) as usize)
-            .build()
-            .context("cannot start the worker threads")
-            .map_err(runtime)?;
+    /// Renders it on `pool`, a slide that compares things as its split image: side A left
+    /// of the first divider, B (and C) after it.
+    fn render(&self, pool: &rayon::ThreadPool, bar: &ProgressBar) -> Result<(Film, Stats)> {
         let (scene, camera, w, h) = (&self.scene, &self.camera, self.width, self.height);
         pool.install(|| {
             let mut film = Film::new(w, h);
@@ -194,7 +188,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     let rows = job.height as u64 * (1 + job.others.len() as u64);
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();
-    let (film, stats) = job.render(args.threads, &bar)?;
+    let (film, stats) = job.render(&args.threads.pool()?, &bar)?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 

@@ -35,6 +35,8 @@ pub struct SweepArgs {
     /// Set other parameters for every image (repeatable).
     #[arg(long = "set", value_name = "NAME=VALUE")]
     set: Vec<String>,
+    #[command(flatten)]
+    threads: crate::cli::threads::Threads,
     /// How long an animation shows each frame, in milliseconds.
     #[arg(long, value_name = "MS", default_value_t = 1000, value_parser = clap::value_parser!(u32).range(20..=60_000))]
     frame_ms: u32,
@@ -87,6 +89,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     };
     raylab::scene::memory::check(needed, &format!("{} values: {what}", values.len()))
         .map_err(anyhow::Error::msg)?;
+    args.threads.install_global()?;
     let start = Instant::now();
     let bar = progress_bar(args.quiet, h as u64 * values.len() as u64, "sweeping");
     let progress = Progress(bar.clone());
