@@ -109,6 +109,10 @@ enum Command {
     /// every reflected, refracted and shadow ray with the lecture's quantities where it
     /// meets a surface.
     Inspect(InspectArgs),
+    /// Compare an image with a reference of the same size: MSE and relative MSE over
+    /// linear RGB, the RMS error of the brightness as shown, and (with -o) where they
+    /// differ in false colour.
+    Compare(cli::compare::CompareArgs),
     /// Draw the lecture's 2D diagram of one pixel's ray tree (the scene cut by the plane of
     /// its camera ray and first normal, the angles and indices at each interface), or the
     /// interface workbench at one angle (--angle), as an SVG or a PNG.
@@ -254,6 +258,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Sweep(args)) => sweep_command(&args),
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Section(args)) => section_command(&args),
+        Some(Command::Compare(args)) => cli::compare::compare_command(&args),
         Some(Command::Lecture { markdown: true }) => {
             say_raw!("{}", raylab::lecture::markdown()?);
             Ok(())

@@ -391,3 +391,59 @@ fn a_model_format_raylab_does_not_read_is_named_as_such() {
     }
     assert!(!d.join("x.png").exists());
 }
+
+/// A flat linear-RGB EXR of `value` everywhere, `w` × `h`, written by the image crate.
+fn flat_exr(path: &Path, (w, h): (u32, u32), value: f32) {
+    image::Rgb32FImage::from_pixel(w, h, image::Rgb([value; 3]))
+        .save(path)
+        .unwrap();
+}
+
+#[test]
+fn compare_prints_the_closed_form_metrics_and_draws_the_difference() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    flat_exr(&d.join("half.exr"), (8, 4), 0.5);
+    flat_exr(&d.join("quarter.exr"), (8, 4), 0.25);
+    let o = raylab(&["compare", "half.exr", "quarter.exr", "-o", "diff.png"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    // (0.5 − 0.25)² = 0.0625; over 0.25² + 0.01 = 0.0725.
+    assert!(out.contains("MSE 6.2500e-2"), "{out}");
+    assert!(
+        out.contains(&format!("relative MSE {:.4e}", 0.0625 / 0.0725)),
+        "{out}"
+    );
+    let diff = image::open(d.join("diff.png")).unwrap().into_rgb8();
+    assert_eq!(diff.dimensions(), (8, 4));
+    // Differing everywhere by the scale: the false colour's top everywhere.
+    assert!(
+        diff.pixels()
+            .all(|p| p.0 == diff.get_pixel(0, 0).0 && p.0[0] > 200)
+    );
+
+    // A render against itself: nothing differs.
+    let o = raylab(
+        &[
+            "render", "glass", "--size", "32x18", "--spp", "2", "-o", "a.png", "-q",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = raylab(&["compare", "a.png", "a.png"], d);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("MSE 0.0000e0") && out.contains("RMS error 0.000 %"),
+        "{out}"
+    );
+
+    // Images of two sizes, and a file that is not an image: one line, exit 2.
+    let err = fails(&["compare", "a.png", "half.exr"], d, "32x18");
+    assert!(err.contains("8x4") && err.contains("a.png") && err.contains("half.exr"));
+    std::fs::write(d.join("notes.png"), "not an image").unwrap();
+    fails(
+        &["compare", "notes.png", "a.png"],
+        d,
+        "notes.png: cannot read the image",
+    );
+}

@@ -70,7 +70,7 @@ fn raylab_args(line: &str) -> Option<Vec<String>> {
         .unwrap_or_else(|| line.to_string());
     let words: Vec<String> = line.split_whitespace().map(String::from).collect();
     const COMMANDS: &[&str] = &[
-        "render", "scenes", "params", "fresnel", "sweep", "bench", "lecture", "inspect",
+        "render", "scenes", "params", "fresnel", "sweep", "bench", "lecture", "inspect", "compare",
     ];
     match words.as_slice() {
         [first, command, ..] if first == "raylab" && COMMANDS.contains(&command.as_str()) => {

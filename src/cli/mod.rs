@@ -2,6 +2,7 @@
 
 pub mod bench;
 mod bench_slides;
+pub mod compare;
 pub mod inspect;
 pub mod output;
 pub mod progress;

@@ -1,7 +1,8 @@
-//! Rendering: the film, the render kernel, the progressive engine, and snapshots with
-//! their sidecars.
+//! Rendering: the film, the render kernel, the progressive engine, snapshots with their
+//! sidecars, and images compared.
 
 pub mod adaptive;
+pub mod compare;
 mod controller;
 mod drag;
 mod engine;
@@ -14,6 +15,7 @@ pub mod output;
 mod pace;
 mod png_file;
 mod prerender;
+pub mod ramp;
 mod sheet;
 mod snapshot;
 pub(crate) mod text;
