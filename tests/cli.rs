@@ -447,3 +447,66 @@ fn compare_prints_the_closed_form_metrics_and_draws_the_difference() {
         "notes.png: cannot read the image",
     );
 }
+
+#[test]
+fn render_with_a_reference_measures_each_pass_and_keeps_the_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let base = ["render", "glass", "--size", "48x27", "-q"];
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = base.iter().chain(extra).copied().collect();
+        let o = raylab(&args, d);
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    run(&["--spp", "16", "-o", "same.exr"]);
+    run(&["--spp", "256", "-o", "reference.exr"]);
+    // Against itself: the last pass has no error at all.
+    let out = run(&["--spp", "16", "--reference", "same.exr", "-o", "again.exr"]);
+    assert!(
+        out.lines().last().unwrap().contains("MSE 0.0000e0"),
+        "{out}"
+    );
+    // Against 256 samples: a line and a sidecar entry per pass, at 1, 2, 4, 8, 16 samples,
+    // the error falling with them, and the image the same as without a reference.
+    let out = run(&[
+        "--spp",
+        "16",
+        "--reference",
+        "reference.exr",
+        "-o",
+        "measured.png",
+    ]);
+    assert_eq!(out.lines().count(), 5, "{out}");
+    let sidecar = common::read_json(&d.join("measured.png.json"));
+    let passes = sidecar["reference"]["passes"].as_array().unwrap();
+    let samples: Vec<u64> = passes
+        .iter()
+        .map(|p| p["samples"].as_u64().unwrap())
+        .collect();
+    assert_eq!(samples, [1, 2, 4, 8, 16]);
+    let error = |i: usize| passes[i]["rms_shown"].as_f64().unwrap();
+    // 16 times the samples: at least √16 / 2 = 2 times less error, whatever the pattern.
+    assert!(error(4) < error(0) / 2.0, "{passes:?}");
+    run(&["--spp", "16", "-o", "plain.png"]);
+    assert_eq!(
+        std::fs::read(d.join("measured.png")).unwrap(),
+        std::fs::read(d.join("plain.png")).unwrap()
+    );
+    // A reference of another size: one line, exit 2, nothing rendered.
+    fails(
+        &[
+            "render",
+            "glass",
+            "--size",
+            "20x10",
+            "--reference",
+            "same.exr",
+            "-o",
+            "x.png",
+        ],
+        d,
+        "same.exr is 48x27 and the render is 20x10",
+    );
+    assert!(!d.join("x.png").exists());
+}

@@ -37,7 +37,7 @@ pub fn compare_command(args: &CompareArgs) -> Result<()> {
     if let Some(out) = &args.output {
         check_writable(out, false)?;
     }
-    let m = compare(&a, &b);
+    let m = compare(&a, &b, 0.0);
     say!(
         "{} against {}: MSE {:.4e}, relative MSE {:.4e}, RMS error {:.3} % of the mean as shown; \
          largest difference {:.4} at ({}, {})",

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod inspect;
 pub mod output;
 pub mod progress;
+mod reference;
 pub mod render;
 pub mod section;
 pub mod streams;

@@ -2,6 +2,7 @@
 
 use crate::cli::output::{check_output, default_output};
 use crate::cli::progress::{Progress, progress_bar};
+use crate::cli::reference::Reference;
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
@@ -51,10 +52,19 @@ pub struct RenderArgs {
     /// With --slide: the slide's caption under the image, in a strip of its own (PNG only).
     #[arg(long, requires = "slide")]
     caption: bool,
+    /// Measure the render against a reference image of the same size (an EXR of linear
+    /// radiance, as `-o REF.exr` writes one) after each pass, the passes doubling (1, 2,
+    /// 4, … samples): MSE, relative MSE, the RMS error as shown and the noise estimate,
+    /// printed and written to the sidecar.
+    #[arg(long, value_name = "REF.exr")]
+    reference: Option<PathBuf>,
     /// No progress bar and no summary line.
     #[arg(short, long)]
     quiet: bool,
 }
+
+/// What is done with the film after each pass of a render.
+type AfterPass<'a> = dyn FnMut(&Film) + Send + 'a;
 
 /// What a render is of: the scene, the camera, the parameters, the size and the samples to
 /// take, from the options (a scene, a sidecar or a slide, then the overrides).
@@ -127,21 +137,25 @@ impl Job {
         })
     }
 
-    /// Renders it on `pool`, a slide that compares things as its split image: side A left
-    /// of the first divider, B (and C) after it.
-    fn render(&self, pool: &rayon::ThreadPool, bar: &ProgressBar) -> Result<(Film, Stats)> {
+    /// Renders it on `pool` in `passes` (the samples each adds), `after` called on the
+    /// film after each; a slide that compares things as its split image: side A left of
+    /// the first divider, B (and C) after it.
+    fn render(
+        &self,
+        pool: &rayon::ThreadPool,
+        bar: &ProgressBar,
+        passes: &[u32],
+        after: &mut AfterPass,
+    ) -> Result<(Film, Stats)> {
         let (scene, camera, w, h) = (&self.scene, &self.camera, self.width, self.height);
         pool.install(|| {
             let mut film = Film::new(w, h);
             let observer = Progress(bar.clone());
-            let mut stats = render_pass(
-                scene,
-                camera,
-                &self.params,
-                &mut film,
-                self.samples,
-                &observer,
-            )?;
+            let mut stats = Stats::default();
+            for &n in passes {
+                stats += render_pass(scene, camera, &self.params, &mut film, n, &observer)?;
+                after(&film);
+            }
             // The A/B view's panes, at the window's starting dividers.
             let dividers = self.slide.map_or_else(Vec::new, |s| s.dividers());
             let column = |d: &f32| (w as f32 * d).round() as u32;
@@ -185,10 +199,29 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         &format!("a {}x{} render's film and file", job.width, job.height),
     )
     .map_err(anyhow::Error::msg)?;
-    let rows = job.height as u64 * (1 + job.others.len() as u64);
+    let mut reference = match &args.reference {
+        Some(_) if !job.others.is_empty() => anyhow::bail!(
+            "--reference: slide {} is a split of {} images, not one to measure",
+            args.slide.unwrap_or(0),
+            1 + job.others.len()
+        ),
+        Some(path) => Some(Reference::open(path, (job.width, job.height))?),
+        None => None,
+    };
+    let passes = match reference {
+        Some(_) => Reference::passes(job.samples),
+        None => vec![job.samples],
+    };
+    let rows = job.height as u64 * (passes.len() + job.others.len()) as u64;
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();
-    let (film, stats) = job.render(&args.threads.pool()?, &bar)?;
+    let exposure = job.params.exposure;
+    let mut after = |film: &Film| {
+        if let Some(r) = reference.as_mut() {
+            r.after_pass(film, exposure, &bar);
+        }
+    };
+    let (film, stats) = job.render(&args.threads.pool()?, &bar, &passes, &mut after)?;
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
@@ -211,7 +244,10 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
             seconds,
             stats,
         };
-        Sidecar::new(&output, &rendered)
+        Sidecar {
+            reference: reference.map(Reference::errors),
+            ..Sidecar::new(&output, &rendered)
+        }
     });
     match job.slide.filter(|_| args.caption) {
         // The caption as it reads for the parameters rendered (after any --set).

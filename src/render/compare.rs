@@ -103,8 +103,11 @@ pub struct Metrics {
     pub largest: (f64, u32, u32),
 }
 
-/// `a`'s difference from `reference`: the two must be the same size.
-pub fn compare(a: &LinearImage, reference: &LinearImage) -> Metrics {
+/// `a`'s difference from `reference` (the two must be the same size), shown at
+/// `exposure` (stops: both scaled by 2^exposure before they are clamped and encoded).
+pub fn compare(a: &LinearImage, reference: &LinearImage, exposure: f32) -> Metrics {
+    let scale = exposure.exp2();
+    let shown = |c: Color| shown(scale * c);
     let n = a.pixels.len().max(1) as f64;
     let (mut se, mut rel, mut shown_se, mut shown_sum) = (0.0, 0.0, 0.0, 0.0);
     let mut largest = (0.0, 0, 0);
@@ -199,14 +202,19 @@ mod tests {
     #[test]
     fn the_metrics_of_two_flat_images_are_their_closed_forms() {
         let (a, b) = (flat(0.5, 4), flat(0.25, 4));
-        let m = compare(&a, &b);
+        let m = compare(&a, &b, 0.0);
         // (0.5 − 0.25)² = 0.0625; over 0.25² + 0.01 = 0.0725.
         assert_eq!(m.mse, 0.0625);
         assert!((m.rel_mse - 0.0625 / 0.0725).abs() < 1e-12);
         let (ya, yb) = (srgb_encode(0.5) as f64, srgb_encode(0.25) as f64);
         assert!((m.rms_shown - (ya - yb) / yb).abs() < 1e-6, "{m:?}");
-        assert_eq!(compare(&a, &a).mse, 0.0);
-        assert_eq!(compare(&a, &a).rms_shown, 0.0);
+        assert_eq!(compare(&a, &a, 0.0).mse, 0.0);
+        assert_eq!(compare(&a, &a, 1.0).rms_shown, 0.0);
+        // Shown a stop brighter, 0.5 clips to white.
+        let brighter = compare(&a, &b, 1.0);
+        let (ya, yb) = (1.0, srgb_encode(0.5) as f64);
+        assert!((brighter.rms_shown - (ya - yb) / yb).abs() < 1e-6);
+        assert_eq!(brighter.mse, m.mse);
     }
 
     #[test]
@@ -219,7 +227,7 @@ mod tests {
             ..a
         };
         b.pixels[4] = Color::splat(0.9);
-        let m = compare(&b, &a);
+        let m = compare(&b, &a, 0.0);
         assert_eq!((m.largest.1, m.largest.2), (1, 1));
         assert!(m.largest.0 > 0.3);
     }

@@ -113,6 +113,7 @@ mod tests {
             image: Some("a.exr".into()),
             seconds: None,
             stats: None,
+            reference: None,
         };
         let bytes = exr_bytes(3, 2, &pixels, Some(&sidecar)).unwrap();
         let meta =

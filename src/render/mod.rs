@@ -31,7 +31,7 @@ pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by
 pub use png_file::{SIDECAR_KEY, embedded_sidecar};
 pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
-pub use snapshot::{Rendered, Sidecar, SidecarError, sidecar_path};
+pub use snapshot::{PassError, ReferenceErrors, Rendered, Sidecar, SidecarError, sidecar_path};
 pub use text::with_caption;
 
 use crate::params::Params;

@@ -44,6 +44,33 @@ pub struct Sidecar {
     /// Rays and pruning counters of the render.
     #[serde(default)]
     pub stats: Option<Stats>,
+    /// Its error against a reference image, pass by pass (`raylab render --reference`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceErrors>,
+}
+
+/// A render's error against a reference image after each of its passes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ReferenceErrors {
+    /// The reference, as it was named.
+    pub image: String,
+    /// After each pass, in order.
+    pub passes: Vec<PassError>,
+}
+
+/// The error after one pass (see [`crate::render::compare::Metrics`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PassError {
+    /// Samples per pixel so far.
+    pub samples: u32,
+    /// Mean squared error, linear RGB.
+    pub mse: f64,
+    /// Relative mean squared error, linear RGB.
+    pub rel_mse: f64,
+    /// RMS error of the brightness as shown, over its mean.
+    pub rms_shown: f64,
+    /// The noise the render estimated of itself then (as the status bar shows it).
+    pub noise: Option<f32>,
 }
 
 /// A sidecar that cannot be read or written.
@@ -123,6 +150,7 @@ impl Sidecar {
             image: image.file_name().map(|n| n.to_string_lossy().into_owned()),
             seconds: Some(r.seconds),
             stats: Some(r.stats),
+            reference: None,
         }
     }
 
@@ -281,6 +309,7 @@ impl Sidecar {
         let reproducible = Sidecar {
             image: None,
             seconds: None,
+            reference: None,
             ..self.clone()
         };
         serde_json::to_string(&reproducible).unwrap_or_default()

@@ -1,0 +1,99 @@
+//! `raylab render --reference REF`: the render measured against a reference image after
+//! each pass, as pbrt's `--mse-reference-image` measures it at the end.
+
+use anyhow::Result;
+use indicatif::ProgressBar;
+use raylab::render::compare::{LinearImage, compare, same_size};
+use raylab::render::{Film, PassError, ReferenceErrors};
+use std::path::Path;
+
+/// A reference, and the render's error against it so far.
+pub struct Reference {
+    image: LinearImage,
+    errors: ReferenceErrors,
+}
+
+impl Reference {
+    /// The reference at `path`, for a render of `size`: one line and exit status 2 if it
+    /// cannot be read or is another size.
+    pub fn open(path: &Path, size: (u32, u32)) -> Result<Reference> {
+        let image = LinearImage::read(path)?;
+        let render = LinearImage {
+            width: size.0,
+            height: size.1,
+            pixels: Vec::new(),
+        };
+        same_size((&image, path), (&render, Path::new("the render")))?;
+        Ok(Reference {
+            image,
+            errors: ReferenceErrors {
+                image: path.display().to_string(),
+                passes: Vec::new(),
+            },
+        })
+    }
+
+    /// The samples each pass adds to reach `samples`: 1, then doubling (1, 1, 2, 4, …),
+    /// the last pass what is left, so that the error is read at every power of two.
+    pub fn passes(samples: u32) -> Vec<u32> {
+        let mut passes = Vec::new();
+        let mut done = 0u32;
+        while done < samples {
+            let next = (done.max(1) * 2).min(samples).max(1);
+            let add = if done == 0 { 1 } else { next - done };
+            passes.push(add);
+            done += add;
+        }
+        passes
+    }
+
+    /// Measures `film` after a pass, shown at `exposure`, and prints the line (above the
+    /// progress `bar`).
+    pub fn after_pass(&mut self, film: &Film, exposure: f32, bar: &ProgressBar) {
+        let image = LinearImage {
+            width: film.width(),
+            height: film.height(),
+            pixels: film.pixels().collect(),
+        };
+        let m = compare(&image, &self.image, exposure);
+        let pass = PassError {
+            samples: film.spp(),
+            mse: m.mse,
+            rel_mse: m.rel_mse,
+            rms_shown: m.rms_shown,
+            noise: film.noise(exposure),
+        };
+        let noise = pass.noise.map_or(String::new(), |n| {
+            format!("; noise estimate {:.3} %", n * 100.0)
+        });
+        bar.suspend(|| {
+            say!(
+                "{:>6} spp: MSE {:.4e}, relative MSE {:.4e}, RMS error {:.3} % as shown{noise}",
+                pass.samples,
+                pass.mse,
+                pass.rel_mse,
+                pass.rms_shown * 100.0
+            )
+        });
+        self.errors.passes.push(pass);
+    }
+
+    /// What the sidecar records.
+    pub fn errors(self) -> ReferenceErrors {
+        self.errors
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_passes_double_to_the_target() {
+        assert_eq!(Reference::passes(1), [1]);
+        assert_eq!(Reference::passes(8), [1, 1, 2, 4]);
+        assert_eq!(Reference::passes(10), [1, 1, 2, 4, 2]);
+        assert_eq!(Reference::passes(0), Vec::<u32>::new());
+        assert_eq!(Reference::passes(100).iter().sum::<u32>(), 100);
+    }
+}
