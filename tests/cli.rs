@@ -147,14 +147,8 @@ fn thread_count_does_not_change_a_single_byte() {
         );
         assert!(o.status.success(), "{}", stderr(&o));
     }
-    assert_eq!(
-        std::fs::read(d.join("sheet-t1.png")).unwrap(),
-        std::fs::read(d.join("sheet-t2.png")).unwrap()
-    );
-    assert_eq!(
-        std::fs::read(d.join("t1.png")).unwrap(),
-        std::fs::read(d.join("t2.png")).unwrap()
-    );
+    same_bytes(d, "sheet-t1.png", "sheet-t2.png");
+    same_bytes(d, "t1.png", "t2.png");
 }
 
 #[test]
@@ -489,10 +483,7 @@ fn render_with_a_reference_measures_each_pass_and_keeps_the_image() {
     // 16 times the samples: at least √16 / 2 = 2 times less error, whatever the pattern.
     assert!(error(4) < error(0) / 2.0, "{passes:?}");
     run(&["--spp", "16", "-o", "plain.png"]);
-    assert_eq!(
-        std::fs::read(d.join("measured.png")).unwrap(),
-        std::fs::read(d.join("plain.png")).unwrap()
-    );
+    same_bytes(d, "measured.png", "plain.png");
     // A reference of another size: one line, exit 2, nothing rendered.
     fails(
         &[
@@ -509,4 +500,66 @@ fn render_with_a_reference_measures_each_pass_and_keeps_the_image() {
         "same.exr is 48x27 and the render is 20x10",
     );
     assert!(!d.join("x.png").exists());
+}
+
+#[test]
+fn a_crop_is_the_whole_renders_pixels_and_its_sidecar_renders_it_again() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let run = |extra: &[&str]| {
+        let base = [
+            "render",
+            "depth-of-field",
+            "--size",
+            "64x36",
+            "--spp",
+            "4",
+            "-q",
+        ];
+        let args: Vec<&str> = base.iter().chain(extra).copied().collect();
+        let o = raylab(&args, d);
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    run(&["-o", "full.png"]);
+    run(&["--crop", "10,5,50,30", "-o", "crop.png"]);
+    let full = image::open(d.join("full.png")).unwrap().into_rgb8();
+    let crop = image::open(d.join("crop.png")).unwrap().into_rgb8();
+    assert_eq!(crop.dimensions(), (40, 25));
+    for (x, y, p) in crop.enumerate_pixels() {
+        assert_eq!(p, full.get_pixel(x + 10, y + 5), "({x}, {y})");
+    }
+    let sidecar = common::read_json(&d.join("crop.png.json"));
+    assert_eq!(sidecar["crop"], serde_json::json!([10, 5, 50, 30]));
+    assert_eq!(
+        (sidecar["width"].as_u64(), sidecar["height"].as_u64()),
+        (Some(64), Some(36))
+    );
+    let o = raylab(
+        &["render", "--params", "crop.png", "-o", "again.png", "-q"],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    same_bytes(d, "crop.png", "again.png");
+    // Outside the image, not four numbers, or with adaptive sampling (which decides by
+    // the whole image): one line, exit 2.
+    for (crop, set, words) in [
+        (
+            "0,0,65,10",
+            "seed=0",
+            "not a rectangle inside the 64x36 image",
+        ),
+        ("0,0,8", "seed=0", "four whole numbers"),
+        ("0,0,8,8", "noise_target=2", "noise_target=off"),
+    ] {
+        let args = [
+            "render", "glass", "--size", "64x36", "--set", set, "--crop", crop,
+        ];
+        fails(&args, d, words);
+    }
+}
+
+/// Asserts that files `a` and `b` of folder `d` hold the same bytes.
+fn same_bytes(d: &Path, a: &str, b: &str) {
+    let read = |f: &str| std::fs::read(d.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+    assert!(read(a) == read(b), "{a} and {b} differ");
 }

@@ -12,7 +12,7 @@ use raylab::light::{Background, Light};
 use raylab::material::{Diffuse, Emissive, Material, Mirror, Texture};
 use raylab::math::{Color, Vec3};
 use raylab::params::{Params, Transport};
-use raylab::render::{Film, render, render_pass};
+use raylab::render::{Crop, Film, render, render_crop_pass, render_pass};
 use raylab::scene::{Scene, SceneDesc};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -76,6 +76,40 @@ fn same_image_for_any_split_into_passes_in(transport: Transport) {
         .unwrap()
         .0;
     assert_ne!(bits(&whole), bits(&other));
+}
+
+#[test]
+fn a_crop_holds_the_whole_images_pixels_bit_for_bit() {
+    // Lens and wavelength samples, paths with photons: every draw of a sample is the
+    // whole image's (the same pixel, the same sample number).
+    let cases = [
+        ("depth-of-field", Transport::Whitted),
+        ("dispersion", Transport::Whitted),
+        ("default", Transport::Photons),
+    ];
+    let (w, h) = (40, 30);
+    let (x0, y0, x1, y1) = (7u32, 5u32, 29u32, 21u32);
+    for (name, transport) in cases {
+        let scene = Scene::load(name).unwrap();
+        let params = Params {
+            spp: 3,
+            transport,
+            ..scene.params.clone()
+        };
+        let whole = render(&scene, &params, w, h, &()).unwrap().0;
+        let mut crop = Film::new(x1 - x0, y1 - y0);
+        let at = Crop {
+            size: (w, h),
+            origin: (x0, y0),
+        };
+        render_crop_pass(&scene, &scene.camera, &params, &mut crop, at, 3, &()).unwrap();
+        let whole_bits = bits(&whole);
+        let expected: Vec<[u32; 3]> = (y0..y1)
+            .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+            .map(|(x, y)| whole_bits[(y * w + x) as usize])
+            .collect();
+        assert_eq!(bits(&crop), expected, "{name}");
+    }
 }
 
 fn grey(albedo: f32) -> Material {

@@ -3,6 +3,7 @@
 pub mod bench;
 mod bench_slides;
 pub mod compare;
+mod crop;
 pub mod inspect;
 pub mod output;
 pub mod progress;

@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use raylab::lecture::Slide;
 use raylab::params::Params;
-use raylab::render::{Film, Rendered, Sidecar, render_pass, sidecar_path};
+use raylab::render::{Crop, Film, Rendered, Sidecar, render_crop_pass, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use raylab::tracer::Stats;
 use std::path::{Path, PathBuf};
@@ -58,6 +58,10 @@ pub struct RenderArgs {
     /// printed and written to the sidecar.
     #[arg(long, value_name = "REF.exr")]
     reference: Option<PathBuf>,
+    /// Render only the rectangle from pixel (x0, y0) up to (x1, y1) of the image, its
+    /// pixels bit for bit the whole render's (the sidecar keeps it, for --params).
+    #[arg(long, value_name = "x0,y0,x1,y1", value_parser = crate::cli::crop::parse_crop)]
+    crop: Option<[u32; 4]>,
     /// No progress bar and no summary line.
     #[arg(short, long)]
     quiet: bool,
@@ -79,6 +83,8 @@ struct Job {
     height: u32,
     // Samples per pixel to take (a snapshot still refining holds fewer than its target).
     samples: u32,
+    // The rectangle rendered (x0, y0, x1, y1), where not the whole image.
+    crop: Option<[u32; 4]>,
 }
 
 impl Job {
@@ -125,7 +131,14 @@ impl Job {
             params.seed = seed;
         }
         params.set_all(&args.set).context("--set")?;
+        let crop = args
+            .crop
+            .or_else(|| sidecar.as_ref().and_then(|sc| sc.crop));
+        if let Some(c) = crop {
+            crate::cli::crop::check(c, (width, height), &params)?;
+        }
         Ok(Job {
+            crop,
             others: slide.map_or_else(Vec::new, |s| s.others(&params)),
             samples: samples.unwrap_or(params.spp),
             scene,
@@ -135,6 +148,14 @@ impl Job {
             width,
             height,
         })
+    }
+
+    /// The size of the image written: the crop's, or the whole.
+    fn image_size(&self) -> (u32, u32) {
+        match self.crop {
+            Some([x0, y0, x1, y1]) => (x1 - x0, y1 - y0),
+            None => (self.width, self.height),
+        }
     }
 
     /// Renders it on `pool` in `passes` (the samples each adds), `after` called on the
@@ -148,12 +169,19 @@ impl Job {
         after: &mut AfterPass,
     ) -> Result<(Film, Stats)> {
         let (scene, camera, w, h) = (&self.scene, &self.camera, self.width, self.height);
+        let [x0, y0, ..] = self.crop.unwrap_or_default();
+        let crop = Crop {
+            size: (w, h),
+            origin: (x0, y0),
+        };
         pool.install(|| {
-            let mut film = Film::new(w, h);
+            let (cw, ch) = self.image_size();
+            let mut film = Film::new(cw, ch);
             let observer = Progress(bar.clone());
             let mut stats = Stats::default();
             for &n in passes {
-                stats += render_pass(scene, camera, &self.params, &mut film, n, &observer)?;
+                let params = &self.params;
+                stats += render_crop_pass(scene, camera, params, &mut film, crop, n, &observer)?;
                 after(&film);
             }
             // The A/B view's panes, at the window's starting dividers.
@@ -193,26 +221,34 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
             output.display()
         );
     }
-    let pixels = job.width as u64 * job.height as u64;
+    let (w, h) = job.image_size();
+    let pixels = w as u64 * h as u64;
     raylab::scene::memory::check(
         pixels * raylab::scene::memory::BYTES_PER_PIXEL,
-        &format!("a {}x{} render's film and file", job.width, job.height),
+        &format!("a {w}x{h} render's film and file"),
     )
     .map_err(anyhow::Error::msg)?;
+    if job.crop.is_some() && !job.others.is_empty() {
+        anyhow::bail!(
+            "--crop: slide {} is a split of {} images; crop one of its sides' scenes instead",
+            args.slide.unwrap_or(0),
+            1 + job.others.len()
+        );
+    }
     let mut reference = match &args.reference {
         Some(_) if !job.others.is_empty() => anyhow::bail!(
             "--reference: slide {} is a split of {} images, not one to measure",
             args.slide.unwrap_or(0),
             1 + job.others.len()
         ),
-        Some(path) => Some(Reference::open(path, (job.width, job.height))?),
+        Some(path) => Some(Reference::open(path, job.image_size())?),
         None => None,
     };
     let passes = match reference {
         Some(_) => Reference::passes(job.samples),
         None => vec![job.samples],
     };
-    let rows = job.height as u64 * (passes.len() + job.others.len()) as u64;
+    let rows = h as u64 * (passes.len() + job.others.len()) as u64;
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();
     let exposure = job.params.exposure;
@@ -246,6 +282,7 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         };
         Sidecar {
             reference: reference.map(Reference::errors),
+            crop: job.crop,
             ..Sidecar::new(&output, &rendered)
         }
     });
@@ -294,7 +331,8 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
 /// noise can be judged without a window. Seconds to the millisecond: a benchmark's render
 /// takes a fifth of a second (tests/mitsuba/speed.py reads them).
 fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
-    let pixels = (job.width as u64 * job.height as u64) as f64;
+    let (w, h) = job.image_size();
+    let pixels = (w as u64 * h as u64) as f64;
     let noise = film
         .noise(job.params.exposure)
         .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
@@ -308,10 +346,13 @@ fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
     };
     let rays = stats.total_rays();
     format!(
-        "{} {}x{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}{adaptive}",
+        "{} {}x{}{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}{adaptive}",
         job.scene.name,
         job.width,
         job.height,
+        job.crop.map_or(String::new(), |[x0, y0, x1, y1]| format!(
+            " (crop {x0},{y0} to {x1},{y1})"
+        )),
         job.samples,
         seconds,
         stats.samples as f64 / 1e6,

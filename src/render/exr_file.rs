@@ -114,6 +114,7 @@ mod tests {
             seconds: None,
             stats: None,
             reference: None,
+            crop: None,
         };
         let bytes = exr_bytes(3, 2, &pixels, Some(&sidecar)).unwrap();
         let meta =

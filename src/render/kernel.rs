@@ -68,9 +68,64 @@ pub fn render_pass_by(
     samples: u32,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
-    let (width, height) = (film.width(), film.height());
+    let whole = Crop {
+        size: (film.width(), film.height()),
+        origin: (0, 0),
+    };
+    pass_of(
+        traversal,
+        (scene, camera, params),
+        film,
+        whole,
+        samples,
+        observer,
+    )
+}
+
+/// Where a film lies in the image it is cut from: the image's size, and the pixel of the
+/// image at the film's top left. A crop's pixels are the whole image's, bit for bit (its
+/// samples are the same numbers of the same pixels), but where adaptive sampling decides:
+/// it decides by the film it is given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    /// The whole image's size.
+    pub size: (u32, u32),
+    /// The whole image's pixel at the film's top left.
+    pub origin: (u32, u32),
+}
+
+/// [`render_pass`] for a film cut from a larger image at `crop`.
+pub fn render_crop_pass(
+    scene: &Scene,
+    camera: &Camera,
+    params: &Params,
+    film: &mut Film,
+    crop: Crop,
+    samples: u32,
+    observer: &dyn PassObserver,
+) -> Result<Stats, Cancelled> {
+    let traversal = Traversal::best();
+    pass_of(
+        traversal,
+        (scene, camera, params),
+        film,
+        crop,
+        samples,
+        observer,
+    )
+}
+
+/// [`render_pass_by`] for a film at `crop` of its image.
+fn pass_of(
+    traversal: Traversal,
+    (scene, camera, params): (&Scene, &Camera, &Params),
+    film: &mut Film,
+    crop: Crop,
+    samples: u32,
+    observer: &dyn PassObserver,
+) -> Result<Stats, Cancelled> {
     let first = film.spp();
-    let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
+    let mut tracer = Tracer::with_camera(scene, camera, params, crop.size.0, crop.size.1);
     let waves = traversal.for_tracer(&tracer);
     if first == 0 {
         // A new image: no pixel is done (the flags may be an earlier image's).
@@ -105,11 +160,12 @@ pub fn render_pass_by(
         if tracer.gathers_photons() {
             tracer.prepare_photons(start);
         }
+        let at = crop.origin;
         total += match waves {
             Traversal::Waves(lanes) => {
-                pass_in_waves(&tracer, lanes, film, start, count, skip, observer)?
+                pass_in_waves((&tracer, at), lanes, film, start, count, skip, observer)?
             }
-            _ => pass(&tracer, film, start, count, skip, observer)?,
+            _ => pass((&tracer, at), film, start, count, skip, observer)?,
         };
     }
     Ok(total)
@@ -138,9 +194,9 @@ impl PassObserver for Share<'_> {
 }
 
 /// Samples `first..first + samples` of every pixel (but those adaptive sampling has
-/// stopped, where `skip`), by `tracer`.
+/// stopped, where `skip`), by `tracer`, the film's pixel (0, 0) being the image's `at`.
 fn pass(
-    tracer: &Tracer,
+    (tracer, (ox, oy)): (&Tracer, (u32, u32)),
     film: &mut Film,
     first: u32,
     samples: u32,
@@ -164,7 +220,7 @@ fn pass(
                 }
                 for s in first..first + samples {
                     let before = stats.total_rays();
-                    let c = tracer.sample(x, y, s, stats);
+                    let c = tracer.sample(ox + x, oy + y, s, stats);
                     add(pixel, s, c, (stats.total_rays() - before) as u32, stats);
                 }
             }
@@ -180,7 +236,7 @@ const WAVE_SAMPLES: usize = 256;
 /// [`pass`] with each band's samples traced in waves of [`WAVE_SAMPLES`], `lanes` rays at
 /// a time.
 fn pass_in_waves(
-    tracer: &Tracer,
+    (tracer, (ox, oy)): (&Tracer, (u32, u32)),
     lanes: Width,
     film: &mut Film,
     first: u32,
@@ -191,9 +247,13 @@ fn pass_in_waves(
     let width = film.width();
     over_bands(film, first, samples, observer, |y0, pixels, done, stats| {
         // Pixel by pixel (but those stopped, where `skip`), each pixel's samples in order.
+        // (The image's coordinates: the film's, moved to where it lies in the image.)
         let all = (0..pixels.len() as u32)
             .filter(|&i| !(skip && done[i as usize]))
-            .flat_map(|i| (first..first + samples).map(move |s| (i % width, y0 + i / width, s)));
+            .flat_map(|i| {
+                let (x, y) = (ox + i % width, oy + y0 + i / width);
+                (first..first + samples).map(move |s| (x, y, s))
+            });
         in_waves(
             tracer,
             lanes,
@@ -206,7 +266,7 @@ fn pass_in_waves(
                 // store (measured: a tenth of the depth-of-field scene's time).
                 let mut samples = wave.iter().zip(traced).peekable();
                 while let Some((&(x, y, s), t)) = samples.next() {
-                    let pixel = &mut pixels[((y - y0) * width + x) as usize];
+                    let pixel = &mut pixels[((y - oy - y0) * width + x - ox) as usize];
                     let mut sums = *pixel;
                     add(&mut sums, s, t.radiance, t.rays, stats);
                     while let Some((&(_, _, s), t)) =

@@ -27,7 +27,10 @@ pub use film::{
 };
 pub use frame::{Frame, Progress};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
-pub use kernel::{BAND_ROWS, Cancelled, PassObserver, render_pass, render_pass_by, render_preview};
+pub use kernel::{
+    BAND_ROWS, Cancelled, Crop, PassObserver, render_crop_pass, render_pass, render_pass_by,
+    render_preview,
+};
 pub use png_file::{SIDECAR_KEY, embedded_sidecar};
 pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};

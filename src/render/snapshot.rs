@@ -47,6 +47,10 @@ pub struct Sidecar {
     /// Its error against a reference image, pass by pass (`raylab render --reference`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceErrors>,
+    /// The rectangle of the `width` × `height` image the file holds, x0, y0, x1, y1
+    /// (`raylab render --crop`): the whole image where absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crop: Option<[u32; 4]>,
 }
 
 /// A render's error against a reference image after each of its passes.
@@ -151,6 +155,7 @@ impl Sidecar {
             seconds: Some(r.seconds),
             stats: Some(r.stats),
             reference: None,
+            crop: None,
         }
     }
 
