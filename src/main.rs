@@ -199,7 +199,10 @@ fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()>
         close_after,
         ..Default::default()
     };
-    raylab::app::run(options).map_err(|e| runtime(anyhow::anyhow!("cannot open the window: {e}")))
+    raylab::app::run(options).map_err(|e| {
+        let why = raylab::app::open_failure::explain(&e);
+        runtime(anyhow::anyhow!("cannot open the window: {why}"))
+    })
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

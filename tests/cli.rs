@@ -563,3 +563,28 @@ fn same_bytes(d: &Path, a: &str, b: &str) {
     let read = |f: &str| std::fs::read(d.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
     assert!(read(a) == read(b), "{a} and {b} differ");
 }
+
+/// Without a display (Linux: neither DISPLAY nor WAYLAND_DISPLAY), the window cannot
+/// open: one line saying what to do, no source path of the machine that built it.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_window_that_cannot_open_says_why_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .current_dir(dir.path())
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        // (Should a window open after all, it closes.)
+        .env("RAYLAB_CLOSE_AFTER", "1")
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: cannot open the window: no display to open it on"),
+        "{err}"
+    );
+    assert!(!err.contains(".rs:") && !err.contains(".cargo"), "{err}");
+}

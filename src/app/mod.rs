@@ -16,6 +16,7 @@ mod history;
 mod instruments;
 mod lecture;
 mod loader;
+pub mod open_failure;
 mod persist;
 mod present;
 mod sheet;
