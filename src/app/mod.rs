@@ -4,9 +4,8 @@
 //! The window never waits. Each frame, [`eframe::App::logic`] takes what arrived (the
 //! engines' frames, loaded scenes, a finished contact sheet), tells the engines what the
 //! controls changed and uploads textures; [`eframe::App::ui`] only draws and edits state.
-//! One module per concern: a `side::Side` is an engine and its image (the main view,
-//! and side B of the A/B view); the loader, the lecture slides, the contact sheet,
-//! snapshots, toasts, the toolbar and each instrument live in files of their own.
+//! One file per concern: a `side::Side` is an engine and its image (the main view, the A/B
+//! view's B); the loader, slides, contact sheet, snapshots, toasts, toolbar, instruments.
 
 mod compare;
 mod controls;

@@ -3,7 +3,7 @@
 use crate::cli::output::check_writable;
 use crate::runtime;
 use anyhow::{Context, Result};
-use raylab::render::compare::{LinearImage, compare, difference_image, percentile_99, same_size};
+use raylab::render::compare::{LinearImage, compare, difference_image, percentile_99};
 use raylab::render::output::save_image;
 use std::path::PathBuf;
 
@@ -33,7 +33,11 @@ fn parse_scale(s: &str) -> Result<f64, String> {
 pub fn compare_command(args: &CompareArgs) -> Result<()> {
     let a = LinearImage::read(&args.image)?;
     let b = LinearImage::read(&args.reference)?;
-    same_size((&a, &args.image), (&b, &args.reference))?;
+    let b_name = args.reference.display().to_string();
+    a.check_size(
+        &args.image.display().to_string(),
+        (&b_name, (b.width, b.height)),
+    )?;
     if let Some(out) = &args.output {
         check_writable(out, false)?;
     }

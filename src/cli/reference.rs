@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 use indicatif::ProgressBar;
-use raylab::render::compare::{LinearImage, compare, same_size};
+use raylab::render::compare::{LinearImage, compare};
 use raylab::render::{Film, PassError, ReferenceErrors};
 use std::path::Path;
 
@@ -18,12 +18,7 @@ impl Reference {
     /// cannot be read or is another size.
     pub fn open(path: &Path, size: (u32, u32)) -> Result<Reference> {
         let image = LinearImage::read(path)?;
-        let render = LinearImage {
-            width: size.0,
-            height: size.1,
-            pixels: Vec::new(),
-        };
-        same_size((&image, path), (&render, Path::new("the render")))?;
+        image.check_size(&path.display().to_string(), ("the render", size))?;
         Ok(Reference {
             image,
             errors: ReferenceErrors {

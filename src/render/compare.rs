@@ -171,20 +171,24 @@ pub fn percentile_99(a: &LinearImage, reference: &LinearImage) -> f64 {
     *v
 }
 
-/// Checks that `a` (from `a_path`) and `b` can be compared.
-pub fn same_size(
-    (a, a_path): (&LinearImage, &Path),
-    (b, b_path): (&LinearImage, &Path),
-) -> Result<(), CompareError> {
-    if (a.width, a.height) == (b.width, b.height) {
-        return Ok(());
+impl LinearImage {
+    /// Checks that it (named `name`) is `size` (that of what `other` names): one line
+    /// naming both where not.
+    pub fn check_size(
+        &self,
+        name: &str,
+        (other, size): (&str, (u32, u32)),
+    ) -> Result<(), CompareError> {
+        if (self.width, self.height) == size {
+            return Ok(());
+        }
+        Err(CompareError::Size {
+            a: name.to_string(),
+            a_size: (self.width, self.height),
+            b: other.to_string(),
+            b_size: size,
+        })
     }
-    Err(CompareError::Size {
-        a: a_path.display().to_string(),
-        a_size: (a.width, a.height),
-        b: b_path.display().to_string(),
-        b_size: (b.width, b.height),
-    })
 }
 
 #[cfg(test)]
