@@ -2,7 +2,7 @@
 //! Fresnel table and the engine benchmark.
 
 use anyhow::{Context, Result};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use raylab::scene::BUILTIN_SCENES;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -117,6 +117,14 @@ enum Command {
     /// its camera ray and first normal, the angles and indices at each interface), or the
     /// interface workbench at one angle (--angle), as an SVG or a PNG.
     Section(SectionArgs),
+    /// Print the completion script for a shell (bash, zsh, fish, powershell, elvish), e.g.
+    /// `raylab completions bash > ~/.local/share/bash-completion/completions/raylab`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page (roff): `raylab man > raylab.1`, then `man ./raylab.1`.
+    Man,
 }
 
 #[derive(clap::Args)]
@@ -262,6 +270,8 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Section(args)) => section_command(&args),
         Some(Command::Compare(args)) => cli::compare::compare_command(&args),
+        Some(Command::Completions { shell }) => cli::shell::completions(shell, Cli::command()),
+        Some(Command::Man) => cli::shell::man(Cli::command()),
         Some(Command::Lecture { markdown: true }) => {
             say_raw!("{}", raylab::lecture::markdown()?);
             Ok(())

@@ -536,3 +536,36 @@ fn the_workbench_shows_what_raylab_fresnel_prints_at_every_angle() {
         }
     }
 }
+
+#[test]
+fn completions_and_the_manual_page_are_made_from_the_command_line_itself() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = |args: &[&str]| {
+        let o = raylab(args, d);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    // Every shell's script knows the subcommands and their options, the newest too.
+    for shell in ["bash", "zsh", "fish", "powershell", "elvish"] {
+        let script = out(&["completions", shell]);
+        // (Fish names a long option without its dashes: `-l crop`.)
+        for word in ["render", "compare", "crop", "reference", "threads"] {
+            assert!(script.contains(word), "{shell}: no `{word}`");
+        }
+    }
+    let bash = out(&["completions", "bash"]);
+    assert!(bash.contains("complete -F _raylab"), "{bash}");
+    assert!(bash.contains("--crop") && bash.contains("--reference"));
+    // The manual page: roff, titled with the version and commit `--version` prints.
+    let page = out(&["man"]);
+    let version = out(&["--version"]);
+    let version = version.trim().strip_prefix("raylab ").unwrap();
+    assert!(
+        page.contains(&format!(".TH raylab 1  \"raylab {version}\"")),
+        "{}",
+        &page[..page.len().min(300)]
+    );
+    assert!(page.contains(".SH NAME") && page.contains("render"));
+    fails(&["completions", "tcsh"], d, "tcsh");
+}

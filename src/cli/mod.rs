@@ -10,6 +10,7 @@ pub mod progress;
 mod reference;
 pub mod render;
 pub mod section;
+pub mod shell;
 pub mod streams;
 pub mod sweep;
 pub mod threads;
