@@ -18,13 +18,12 @@ mod prerender;
 pub mod ramp;
 mod sheet;
 mod snapshot;
+mod srgb;
 pub(crate) mod text;
 
 pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
-pub use film::{
-    Accum, CLEAN_NOISE, Film, FilmError, srgb_encode, srgb8, to_srgba8, write_image, write_png,
-};
+pub use film::{Accum, CLEAN_NOISE, Film, FilmError, to_srgba8, write_image, write_png};
 pub use frame::{Frame, Progress};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{
@@ -35,6 +34,7 @@ pub use png_file::{SIDECAR_KEY, embedded_sidecar};
 pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
 pub use snapshot::{PassError, ReferenceErrors, Rendered, Sidecar, SidecarError, sidecar_path};
+pub use srgb::{srgb_encode, srgb8};
 pub use text::with_caption;
 
 use crate::params::Params;
