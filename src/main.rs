@@ -70,7 +70,7 @@ struct Cli {
     command: Option<Command>,
     /// The scene to open in the window: a scene file (.toml), a model (.obj, .gltf, .glb) or a built-in name.
     scene: Option<std::ffi::OsString>,
-    /// Worker threads for the window [default: all cores but one].
+    /// Worker threads for the window, below its own priority [default: every core].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
 }

@@ -21,7 +21,7 @@ fn engine(scene: &Arc<Scene>, params: Params) -> Engine {
         params,
         W,
         H,
-        EngineConfig { threads: 2 },
+        EngineConfig::with_threads(2),
         || {},
     )
     .unwrap()
@@ -211,13 +211,68 @@ fn pause_holds_and_resume_finishes_and_unlimited_runs_on() {
 /// Names of this process's threads (Linux only: read from /proc).
 #[cfg(target_os = "linux")]
 fn thread_names() -> Vec<String> {
+    threads().into_iter().map(|(name, _)| name).collect()
+}
+
+/// This process's threads: each one's name and nice value (Linux only: read from /proc).
+#[cfg(target_os = "linux")]
+fn threads() -> Vec<(String, i64)> {
+    let read = |task: std::path::PathBuf| {
+        let name = std::fs::read_to_string(task.join("comm")).ok()?;
+        // stat: "pid (comm) state ppid ...": nice is the 19th field, the 17th after comm.
+        let stat = std::fs::read_to_string(task.join("stat")).ok()?;
+        let after_comm = &stat[stat.rfind(')')? + 1..];
+        let nice = after_comm.split_whitespace().nth(16)?.parse().ok()?;
+        Some((name.trim().to_string(), nice))
+    };
     std::fs::read_dir("/proc/self/task")
-        .map(|d| {
-            d.filter_map(|t| std::fs::read_to_string(t.ok()?.path().join("comm")).ok())
-                .map(|s| s.trim().to_string())
-                .collect()
-        })
+        .map(|d| d.filter_map(|t| read(t.ok()?.path())).collect())
         .unwrap_or_default()
+}
+
+#[test]
+#[cfg(target_os = "linux")]
+fn the_windows_workers_run_on_every_core_below_its_priority_and_headless_ones_do_not() {
+    let scene = Arc::new(Scene::load("default").unwrap());
+    let start = |config| {
+        Engine::new(
+            Arc::clone(&scene),
+            scene.params.clone(),
+            W,
+            H,
+            config,
+            || {},
+        )
+    };
+    let window = start(EngineConfig::with_ui()).unwrap();
+    let headless = start(EngineConfig::headless()).unwrap();
+    let cores = std::thread::available_parallelism().unwrap().get();
+    let nice_of = |e: &Engine, role: char| -> Vec<i64> {
+        let prefix = e.thread_prefix();
+        threads()
+            .into_iter()
+            .filter(|(n, _)| n.strip_prefix(&prefix).is_some_and(|r| r.starts_with(role)))
+            .map(|(_, nice)| nice)
+            .collect()
+    };
+    let own = threads()[0].1; // the process's first thread: what the others started from
+    // Each worker lowers itself as it starts, which may be a moment after the engine is.
+    let lowered = vec![10.max(own); cores];
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while nice_of(&window, 'w') != lowered && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    assert_eq!(nice_of(&window, 'w'), lowered, "every core, at nice 10");
+    assert_eq!(
+        nice_of(&window, 'c'),
+        vec![own],
+        "the controller only waits"
+    );
+    assert_eq!(
+        nice_of(&headless, 'w'),
+        vec![own; cores],
+        "headless: normal priority"
+    );
 }
 
 #[test]
@@ -235,7 +290,7 @@ fn shutdown_mid_pass_leaves_no_thread() {
         p,
         480,
         270,
-        EngineConfig { threads: 2 },
+        EngineConfig::with_threads(2),
         move || {
             counter.fetch_add(1, Ordering::Relaxed);
         },
@@ -365,4 +420,57 @@ fn an_image_rendered_ahead_shows_at_once_finished_and_a_finished_one_comes_back(
     let back = frames.last().unwrap();
     assert!(!back.is_preview() && back.progress.done());
     assert_eq!(bits(&back.pixels), bits(&reference(&first, &a, 8)));
+}
+
+#[test]
+fn an_image_left_half_rendered_ahead_keeps_its_samples_when_it_is_asked_for() {
+    use raylab::render::{FilmCache, Prerender};
+    let first = Arc::new(Scene::load("default").unwrap());
+    let next = Arc::new(Scene::load("glass").unwrap());
+    let a = Params {
+        spp: 1,
+        ..first.params.clone()
+    };
+    // A target far beyond what the test waits for: the pre-render is mid-way when asked.
+    let b = Params {
+        spp: 1 << 16,
+        ..next.params.clone()
+    };
+    let mut e = engine(&first, a);
+    let cache = FilmCache::default();
+    let job = Prerender {
+        scene: Arc::clone(&next),
+        camera: next.camera.clone(),
+        params: b.clone(),
+        size: (W, H),
+    };
+    e.prerender(&cache, vec![job.clone()]);
+    frames_until(&e, Duration::from_secs(60), |f| f.progress.done());
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while cache.samples(&job) < 8 {
+        assert!(Instant::now() < deadline, "nothing rendered ahead");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    // Asked for mid-pass: the pass in hand is cancelled, the samples before it are kept.
+    let ahead = cache.samples(&job);
+    let generation = e.generation() + 2;
+    e.set_scene(Arc::clone(&next));
+    e.set_params(b.clone());
+    let frames = frames_until(&e, Duration::from_secs(60), |f| f.generation == generation);
+    let shown = frames.last().unwrap();
+    assert!(
+        !shown.is_preview(),
+        "a preview: the samples rendered ahead were lost"
+    );
+    assert!(
+        shown.progress.spp >= ahead,
+        "{} < {ahead}",
+        shown.progress.spp
+    );
+    let mut film = Film::new(W, H);
+    render_pass(&next, &next.camera, &b, &mut film, shown.progress.spp, &()).unwrap();
+    assert_eq!(
+        bits(&shown.pixels),
+        bits(&film.pixels().collect::<Vec<_>>())
+    );
 }

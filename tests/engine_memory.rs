@@ -35,7 +35,7 @@ fn memory_does_not_grow_over_ten_thousand_restarts() {
         base.clone(),
         160,
         90,
-        EngineConfig { threads: 2 },
+        EngineConfig::with_threads(2),
         || {},
     )
     .unwrap();

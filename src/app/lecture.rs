@@ -148,6 +148,11 @@ impl RaylabApp {
         let slide = &LECTURE[i];
         self.lecture.pending = Some(slide);
         self.lecture.current = Some(i);
+        // The last slide's neighbours are not this one's: their work is dropped (what they
+        // have is kept in the cache) until this slide is finished and asks for its own.
+        self.lecture.ahead = None;
+        self.lecture.ahead_jobs.clear();
+        self.main.engine().prerender(self.main.cache(), Vec::new());
         self.open_scene(slide.reference());
     }
 

@@ -58,7 +58,7 @@ pub struct AppOptions {
     pub snapshot_dir: PathBuf,
     /// Where the scene picker looks for scene files.
     pub scenes_dir: PathBuf,
-    /// Worker threads; `None` leaves one core to the window.
+    /// Worker threads; `None` renders on every core (below the window's priority).
     pub threads: Option<usize>,
     /// Close the window after this long (for scripted runs).
     pub close_after: Option<Duration>,
@@ -208,7 +208,10 @@ impl RaylabApp {
         };
         let config = options
             .threads
-            .map_or_else(EngineConfig::with_ui, |threads| EngineConfig { threads });
+            .map_or_else(EngineConfig::with_ui, |threads| EngineConfig {
+                threads,
+                ..EngineConfig::with_ui()
+            });
         let told = Told {
             scene: Arc::clone(&scene),
             camera: settings.camera.clone(),

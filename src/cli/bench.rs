@@ -17,7 +17,7 @@ pub struct BenchArgs {
     /// Parameter changes to time.
     #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     changes: u32,
-    /// Worker threads [default: all cores but one, as with the window].
+    /// Worker threads [default: every core, below normal priority, as with the window].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
     /// Instead: the time each lecture slide takes to reach its target (all its sides),
@@ -31,9 +31,7 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
     use std::sync::Arc;
     use std::time::Duration;
     let config = match args.threads {
-        Some(t) => EngineConfig {
-            threads: t as usize,
-        },
+        Some(t) => EngineConfig::with_threads(t as usize),
         None => EngineConfig::with_ui(),
     };
     if args.slides {

@@ -3,7 +3,7 @@
 
 use super::engine::{Command, MAX_PASS_SPP, PASS_BUDGET, PREVIEW_LEVELS};
 use super::pace::Pace;
-use super::prerender::{self, FilmCache, Key, Prerender};
+use super::prerender::{Ahead, FilmCache, Key};
 use super::{Film, Frame, PassObserver, Progress, render_pass, render_preview};
 use crate::camera::Camera;
 use crate::math::Color;
@@ -87,7 +87,7 @@ pub(super) struct Controller {
     failure: Option<String>,
     // Images rendered ahead, and those still to render once idle.
     cache: Option<FilmCache>,
-    jobs: Vec<Prerender>,
+    ahead: Ahead,
 }
 
 impl Controller {
@@ -126,7 +126,7 @@ impl Controller {
             wake,
             failure: None,
             cache,
-            jobs: Vec::new(),
+            ahead: Ahead::default(),
         }
     }
 
@@ -185,7 +185,7 @@ impl Controller {
                     requested: &self.requested,
                     generation: self.generation,
                 };
-                prerender::step(&mut self.jobs, cache, &pool, &watch);
+                self.ahead.step(cache, &pool, &watch);
             }
         }
         drop(pool);
@@ -198,7 +198,7 @@ impl Controller {
 
     /// Whether there are images to render ahead.
     fn has_jobs(&self) -> bool {
-        self.cache.is_some() && !self.jobs.is_empty()
+        self.cache.is_some() && !self.ahead.is_empty()
     }
 
     /// The key of the image being made.
@@ -276,7 +276,7 @@ impl Controller {
             }
             Command::Prerender(cache, jobs) => {
                 self.cache = Some(cache);
-                self.jobs = jobs;
+                self.ahead = Ahead::new(jobs);
                 false
             }
         };

@@ -32,23 +32,35 @@ pub const PASS_BUDGET: Duration = Duration::from_millis(250);
 /// Frames the channel holds before the newest waits in the engine for room.
 const FRAME_CAPACITY: usize = 4;
 
-/// How many worker threads render.
+/// How many worker threads render, and whether they yield to a window.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EngineConfig {
     /// Worker threads (at least 1).
     pub threads: usize,
+    /// The workers run below normal priority, so the window's thread never waits for them.
+    pub below_window: bool,
 }
 
 impl EngineConfig {
-    /// Every core: for headless rendering.
+    /// Every core at normal priority: for headless rendering.
     pub fn headless() -> Self {
-        EngineConfig { threads: cores() }
+        EngineConfig::with_threads(cores())
     }
 
-    /// Every core but one, which the window keeps for itself (at least one worker).
+    /// `threads` workers at normal priority.
+    pub fn with_threads(threads: usize) -> Self {
+        EngineConfig {
+            threads,
+            below_window: false,
+        }
+    }
+
+    /// Every core, below the window's priority: a 2-core laptop renders on both cores and
+    /// its interface still keeps its frames (measured in `priority.rs`).
     pub fn with_ui() -> Self {
         EngineConfig {
-            threads: cores().saturating_sub(1).max(1),
+            threads: cores(),
+            below_window: true,
         }
     }
 }
@@ -123,7 +135,12 @@ impl Engine {
                 .spawn_handler(move |thread| {
                     let handle = std::thread::Builder::new()
                         .name(format!("rl{id}w{}", thread.index()))
-                        .spawn(|| thread.run())?;
+                        .spawn(move || {
+                            if config.below_window {
+                                super::priority::below_window();
+                            }
+                            thread.run()
+                        })?;
                     workers
                         .lock()
                         .map_err(|_| std::io::Error::other("worker list poisoned"))?

@@ -15,6 +15,7 @@ pub mod output;
 mod pace;
 mod png_file;
 mod prerender;
+mod priority;
 pub mod ramp;
 mod sheet;
 mod snapshot;

@@ -10,6 +10,7 @@ use crate::camera::Camera;
 use crate::params::Params;
 use crate::scene::{Scene, SceneSource};
 use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
 /// The most memory the cache holds: about seven films of 960 × 540, or two of 1920 ×
 /// 1080. The oldest go first.
@@ -92,6 +93,29 @@ impl FilmCache {
         (film.spp() > 0).then_some(film)
     }
 
+    /// A copy of the film of `key`, if there is one, left in the cache.
+    fn copy(&self, key: &Key) -> Option<Film> {
+        let films = self.0.lock().ok()?;
+        films
+            .films
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, film)| film.clone())
+    }
+
+    /// Samples per pixel of `job`'s image so far (0 when there is none).
+    pub fn samples(&self, job: &Prerender) -> u32 {
+        let Some(key) = job.key() else {
+            return 0;
+        };
+        self.0.lock().map_or(0, |f| {
+            f.films
+                .iter()
+                .find(|(k, _)| *k == key)
+                .map_or(0, |(_, film)| film.spp())
+        })
+    }
+
     /// Puts `film` in as the newest, dropping the oldest beyond the memory bound.
     pub(crate) fn put(&self, key: Key, film: Film) {
         let Ok(mut films) = self.0.lock() else {
@@ -133,39 +157,83 @@ impl FilmCache {
     }
 }
 
-/// Renders one pass of the first of `jobs` not yet finished in `cache`, on `pool`,
-/// stopped by `observer` (a newer generation of the engine: the current image comes
-/// first). Finished jobs leave the list; a cancelled pass loses that film's samples.
-pub(crate) fn step(
-    jobs: &mut Vec<Prerender>,
-    cache: &FilmCache,
-    pool: &rayon::ThreadPool,
-    observer: &dyn super::PassObserver,
-) {
-    jobs.retain(|job| {
-        job.key()
-            .is_some_and(|key| !cache.finished(&key, job.params.spp))
-    });
-    let Some(job) = jobs.first() else {
-        return;
-    };
-    let Some(key) = job.key() else {
-        return;
-    };
-    let (w, h) = job.size;
-    let mut film = cache.take(&key).unwrap_or_else(|| Film::new(w, h));
-    let n = super::engine::MAX_PASS_SPP.min(job.params.spp.saturating_sub(film.spp()).max(1));
-    let result = crate::guard::caught(|| {
-        pool.install(|| {
-            super::render_pass(&job.scene, &job.camera, &job.params, &mut film, n, observer)
-        })
-    });
-    match result {
-        Ok(Ok(_)) => cache.put(key, film),
-        Ok(Err(super::Cancelled)) => {}
-        // A bug: not this job again.
-        Err(_) => {
-            jobs.remove(0);
+/// A pass rendered ahead is kept about this long: the image shown waits for none (a change
+/// stops the pass at the next pixel), but a cancelled pass's samples are lost.
+const AHEAD_PASS: Duration = Duration::from_millis(500);
+
+/// The images an engine renders ahead, in order, and the pace of the one in hand.
+#[derive(Default)]
+pub(crate) struct Ahead {
+    jobs: Vec<Prerender>,
+    // Seconds per sample per pixel of the first job's last pass, to size its next.
+    per_spp: Option<f64>,
+}
+
+impl Ahead {
+    pub(crate) fn new(jobs: Vec<Prerender>) -> Ahead {
+        Ahead {
+            jobs,
+            per_spp: None,
+        }
+    }
+
+    /// Whether nothing is left to render (as of the last step).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.jobs.is_empty()
+    }
+
+    /// Renders one pass of the first job not yet finished in `cache`, on `pool`, stopped
+    /// by `observer` (a newer generation of the engine: the image shown comes first).
+    /// Finished jobs leave the list.
+    ///
+    /// The pass is rendered on a copy of the cached film, put back when the pass is
+    /// whole: a cancelled pass loses its own samples (at most [`AHEAD_PASS`]), never the
+    /// film's. Passes grow to fill [`AHEAD_PASS`] at the job's measured pace.
+    pub(crate) fn step(
+        &mut self,
+        cache: &FilmCache,
+        pool: &rayon::ThreadPool,
+        observer: &dyn super::PassObserver,
+    ) {
+        let first = self.jobs.first().and_then(Prerender::key);
+        self.jobs.retain(|job| {
+            job.key()
+                .is_some_and(|key| !cache.finished(&key, job.params.spp))
+        });
+        let Some(job) = self.jobs.first() else {
+            return;
+        };
+        let Some(key) = job.key() else {
+            return;
+        };
+        if Some(&key) != first.as_ref() {
+            self.per_spp = None;
+        }
+        let (w, h) = job.size;
+        let mut film = cache.copy(&key).unwrap_or_else(|| Film::new(w, h));
+        let within = self
+            .per_spp
+            .map_or(1, |s| (AHEAD_PASS.as_secs_f64() / s) as u32);
+        let n = super::engine::MAX_PASS_SPP
+            .min(job.params.spp.saturating_sub(film.spp()))
+            .min(within)
+            .max(1);
+        let start = Instant::now();
+        let result = crate::guard::caught(|| {
+            pool.install(|| {
+                super::render_pass(&job.scene, &job.camera, &job.params, &mut film, n, observer)
+            })
+        });
+        match result {
+            Ok(Ok(_)) => {
+                self.per_spp = Some(start.elapsed().as_secs_f64() / f64::from(n));
+                cache.put(key, film);
+            }
+            Ok(Err(super::Cancelled)) => {}
+            // A bug: not this job again.
+            Err(_) => {
+                self.jobs.remove(0);
+            }
         }
     }
 }
@@ -207,5 +275,45 @@ mod tests {
         };
         let brighter = Key::of(&scene, &scene.camera, &shown, (960, 540)).unwrap();
         assert!(cache.take(&brighter).is_some());
+    }
+
+    #[test]
+    fn a_pass_cancelled_ahead_loses_its_own_samples_and_no_others() {
+        /// Stops the pass at its first pixel, as a Page Down to another image does.
+        struct Stop;
+        impl crate::render::PassObserver for Stop {
+            fn keep_going(&self) -> bool {
+                false
+            }
+        }
+        let scene = Arc::new(Scene::load("glass").unwrap());
+        let job = Prerender {
+            camera: scene.camera.clone(),
+            params: Params {
+                spp: 64,
+                ..scene.params.clone()
+            },
+            scene,
+            size: (48, 27),
+        };
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let cache = FilmCache::default();
+        let mut ahead = Ahead::new(vec![job.clone()]);
+        // The first pass is 1 sample (nothing is measured yet); the next fill the budget.
+        ahead.step(&cache, &pool, &());
+        assert_eq!(cache.samples(&job), 1);
+        ahead.step(&cache, &pool, &());
+        let kept = cache.samples(&job);
+        assert!(kept > 2, "the passes grow to the budget: {kept}");
+        ahead.step(&cache, &pool, &Stop);
+        assert_eq!(cache.samples(&job), kept, "the film's samples are kept");
+        let film = cache.take(&job.key().unwrap()).unwrap();
+        let mut whole = Film::new(48, 27);
+        crate::render::render_pass(&job.scene, &job.camera, &job.params, &mut whole, kept, &())
+            .unwrap();
+        assert_eq!(film, whole, "a whole film, as if never stopped");
     }
 }
