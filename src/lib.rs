@@ -8,7 +8,8 @@
 //! [`optics`] (the lecture's formulas), [`geometry`] (shapes and the BVH), [`material`],
 //! [`light`] and [`camera`], [`scene`] (files, OBJ meshes, built-in scenes), [`tracer`] (the
 //! ray tree), [`render`] (the film, the one render kernel, the progressive engine), and
-//! [`app`] (the egui previewer, the only module that knows egui).
+//! `app` (the egui previewer, the only module that knows egui; built with the `gui`
+//! feature, on by default).
 //!
 //! ```
 //! use raylab::{params::Params, render::render, scene::Scene};
@@ -18,9 +19,10 @@
 //! assert_eq!(film.spp(), 1);
 //! assert_eq!(stats.camera_rays, 32 * 18);
 //! ```
-// Lints (no unsafe code but the one measured exception, SSE2 in
-// `math::offset_ray_origin`; documented public items; no unwrap outside tests): Cargo.toml.
+// Lints (no unsafe code but the measured exceptions Cargo.toml lists; documented public
+// items; no unwrap outside tests): Cargo.toml.
 
+#[cfg(feature = "gui")]
 pub mod app;
 pub mod camera;
 pub mod geometry;

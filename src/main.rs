@@ -1,7 +1,7 @@
 //! The `raylab` command: the previewer window, and headless rendering, scene listing, the
 //! Fresnel table and the engine benchmark.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{CommandFactory, Parser, Subcommand};
 use raylab::scene::BUILTIN_SCENES;
 use std::path::{Path, PathBuf};
@@ -188,7 +188,9 @@ fn parse_step(s: &str) -> Result<f64, String> {
     }
 }
 
+#[cfg(feature = "gui")]
 fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()> {
+    use anyhow::Context;
     let close_after = match std::env::var("RAYLAB_CLOSE_AFTER") {
         Ok(v) => Some(
             v.trim()
@@ -211,6 +213,15 @@ fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()>
         let why = raylab::app::open_failure::explain(&e);
         runtime(anyhow::anyhow!("cannot open the window: {why}"))
     })
+}
+
+/// Built without the `gui` feature: there is no window to open.
+#[cfg(not(feature = "gui"))]
+fn window(_scene: Option<std::ffi::OsString>, _threads: Option<u32>) -> Result<()> {
+    Err(runtime(anyhow::anyhow!(
+        "this raylab was built without its window (cargo's `gui` feature): \
+         `raylab render` and the other commands work; `raylab --help` lists them"
+    )))
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

@@ -1,6 +1,8 @@
 //! The previewer window, driven through its accessibility tree as a user would: by the
 //! labels of its controls (egui_kittest, no display needed). Its instruments and its
 //! lecture have files of their own (instruments.rs, lecture_window.rs).
+// The window's own: built with the window (the `gui` feature) only.
+#![cfg(feature = "gui")]
 
 #[path = "common/window.rs"]
 mod window;

@@ -566,7 +566,7 @@ fn same_bytes(d: &Path, a: &str, b: &str) {
 
 /// Without a display (Linux: neither DISPLAY nor WAYLAND_DISPLAY), the window cannot
 /// open: one line saying what to do, no source path of the machine that built it.
-#[cfg(target_os = "linux")]
+#[cfg(all(target_os = "linux", feature = "gui"))]
 #[test]
 fn a_window_that_cannot_open_says_why_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
@@ -587,4 +587,27 @@ fn a_window_that_cannot_open_says_why_in_one_line() {
         "{err}"
     );
     assert!(!err.contains(".rs:") && !err.contains(".cargo"), "{err}");
+}
+
+/// Built without the window (`--no-default-features`): `raylab` alone says so in one
+/// line and what works instead; the commands work.
+#[cfg(not(feature = "gui"))]
+#[test]
+fn without_the_window_raylab_says_so_and_its_commands_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    assert!(err.contains("without its window") && err.contains("raylab render"), "{err}");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
+        .current_dir(dir.path())
+        .args(["render", "default", "--size", "32x18", "--spp", "1", "-o", "a.png"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(dir.path().join("a.png").is_file());
 }

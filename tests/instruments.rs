@@ -1,5 +1,7 @@
 //! The window's instruments, driven as a user would: the ray-tree inspector, the A/B view,
 //! the contact sheet, the cost heat map, the Fresnel plot.
+// The window's own: built with the window (the `gui` feature) only.
+#![cfg(feature = "gui")]
 
 #[path = "common/window.rs"]
 mod window;

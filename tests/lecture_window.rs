@@ -1,5 +1,7 @@
 //! The lecture in the window, driven as a lecturer would: the Lecture menu, presentation
 //! mode and a clicker's keys, every slide's caption, the shortcut list.
+// The window's own: built with the window (the `gui` feature) only.
+#![cfg(feature = "gui")]
 // Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]

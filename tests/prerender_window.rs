@@ -1,5 +1,7 @@
 //! Presentation mode: once a slide is finished, its neighbours are rendered ahead, and
 //! Page Down shows the next slide finished in its first frame.
+// The window's own: built with the window (the `gui` feature) only.
+#![cfg(feature = "gui")]
 // Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]

@@ -1,5 +1,7 @@
 //! The section view and the interface workbench in the window, driven as a student would:
 //! pick a pixel, hover its rays, drag the workbench's angle.
+// The window's own: built with the window (the `gui` feature) only.
+#![cfg(feature = "gui")]
 
 #[path = "common/window.rs"]
 mod window;
