@@ -62,7 +62,8 @@ fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
     about = "An interactive lab for dielectrics and distribution ray tracing",
     after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
                   Scenes are TOML files (see docs/scenes.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\
-                  RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).",
+                  RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).\n\
+                  RUST_LOG=info (or debug, trace, raylab=debug, ...) logs what raylab does to stderr.",
     args_conflicts_with_subcommands = true
 )]
 struct Cli {
@@ -238,8 +239,25 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+/// RUST_LOG turns on the log of what raylab does (`info`: the SIMD width, the engines and
+/// the slides shown; `debug`: scenes loaded and images finished or taken from those
+/// rendered ahead; `trace`: each pass rendered ahead), on stderr with the seconds since
+/// start. Nothing without it, as the commands' own output is what they say.
+fn start_log() {
+    let start = std::time::Instant::now();
+    let _ = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("off"))
+        .format(move |out, record| {
+            use std::io::Write;
+            let t = start.elapsed().as_secs_f64();
+            let (level, target) = (record.level(), record.target());
+            writeln!(out, "{t:9.3} {level:5} {target}: {}", record.args())
+        })
+        .try_init();
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    start_log();
     // Ctrl-C (or a termination request) mid-write leaves no temporary file behind; one
     // left by a kill -9 is removed by the next write to its folder.
     let _ = ctrlc::set_handler(|| {

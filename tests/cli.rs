@@ -602,12 +602,61 @@ fn without_the_window_raylab_says_so_and_its_commands_work() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
-    assert!(err.contains("without its window") && err.contains("raylab render"), "{err}");
+    assert!(
+        err.contains("without its window") && err.contains("raylab render"),
+        "{err}"
+    );
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
         .current_dir(dir.path())
-        .args(["render", "default", "--size", "32x18", "--spp", "1", "-o", "a.png"])
+        .args([
+            "render", "default", "--size", "32x18", "--spp", "1", "-o", "a.png",
+        ])
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.path().join("a.png").is_file());
+}
+
+/// RUST_LOG turns on the log of what raylab does, on stderr with the time since start;
+/// without it the commands say only what they say.
+#[test]
+fn rust_log_logs_what_raylab_does_and_nothing_without_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |log: Option<&str>| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"));
+        c.current_dir(dir.path()).args([
+            "render", "glass", "--size", "16x9", "--spp", "1", "-q", "-o", "a.png",
+        ]);
+        match log {
+            Some(filter) => c.env("RUST_LOG", filter),
+            None => c.env_remove("RUST_LOG"),
+        };
+        let o = c.output().unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let err = run(Some("debug"));
+    let lines: Vec<&str> = err.lines().collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("DEBUG raylab::scene: builtin:glass: loaded in")),
+        "{err}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("INFO  raylab::math::lanes::width: SIMD: ")),
+        "{err}"
+    );
+    // Each line starts with the seconds since start.
+    for l in &lines {
+        let t: f64 = l.split_whitespace().next().unwrap().parse().unwrap();
+        assert!((0.0..60.0).contains(&t), "{l}");
+    }
+    assert!(
+        !run(Some("warn")).contains("SIMD"),
+        "info is not logged at warn"
+    );
+    assert_eq!(run(None), "", "nothing is logged without RUST_LOG");
 }

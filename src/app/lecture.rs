@@ -146,6 +146,7 @@ impl RaylabApp {
     /// Opens slide `i` of the lecture: its scene, then its parameters and caption.
     pub(super) fn go_to_slide(&mut self, i: usize) {
         let slide = &LECTURE[i];
+        log::info!("slide {}: {}", i + 1, slide.title);
         self.lecture.pending = Some(slide);
         self.lecture.current = Some(i);
         // The last slide's neighbours are not this one's: their work is dropped (what they

@@ -216,6 +216,11 @@ impl Controller {
         let Some(film) = self.key().and_then(|k| self.cache.as_ref()?.take(&k)) else {
             return false;
         };
+        log::debug!(
+            "{}: {} samples per pixel taken from the images rendered ahead",
+            self.scene.source.reference(),
+            film.spp()
+        );
         self.film = film;
         self.preview_level = PREVIEW_LEVELS.len();
         self.finished = self.target_reached().then(|| self.started.elapsed());
@@ -392,7 +397,14 @@ impl Controller {
             self.pace.pass(start, Instant::now(), n);
             self.stats += stats;
             if self.target_reached() {
-                self.finished = Some(self.started.elapsed());
+                let took = self.started.elapsed();
+                log::debug!(
+                    "{}: finished at {} samples per pixel in {:.2} s",
+                    self.scene.source.reference(),
+                    self.film.spp(),
+                    took.as_secs_f64()
+                );
+                self.finished = Some(took);
             }
             self.send_frame();
         }

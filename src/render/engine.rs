@@ -159,6 +159,15 @@ impl Engine {
             Box::new(wake),
             cache,
         );
+        log::info!(
+            "engine {id}: {} workers{}, {width}x{height}",
+            config.threads.max(1),
+            if config.below_window {
+                ", below the window's priority"
+            } else {
+                ""
+            }
+        );
         let controller = std::thread::Builder::new()
             .name(format!("rl{id}c"))
             .spawn(move || controller.run(command_rx, pool, workers))?;

@@ -227,9 +227,17 @@ impl Ahead {
         match result {
             Ok(Ok(_)) => {
                 self.per_spp = Some(start.elapsed().as_secs_f64() / f64::from(n));
+                log::trace!(
+                    "ahead: {} at {} of {} samples per pixel",
+                    job.scene.source.reference(),
+                    film.spp(),
+                    job.params.spp
+                );
                 cache.put(key, film);
             }
-            Ok(Err(super::Cancelled)) => {}
+            Ok(Err(super::Cancelled)) => {
+                log::trace!("ahead: a pass of {} stopped", job.scene.source.reference());
+            }
             // A bug: not this job again.
             Err(_) => {
                 self.jobs.remove(0);

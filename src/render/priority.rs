@@ -23,7 +23,13 @@ pub(super) fn below_window() {
         const NICE: libc::c_int = 10;
         // Safety: `setpriority` reads only its three integer arguments.
         #[allow(unsafe_code)]
-        let _ = unsafe { libc::setpriority(libc::PRIO_PROCESS, 0, NICE) };
+        let failed = unsafe { libc::setpriority(libc::PRIO_PROCESS, 0, NICE) } != 0;
+        if failed {
+            log::debug!(
+                "a render worker stays at normal priority: {}",
+                std::io::Error::last_os_error()
+            );
+        }
     }
 }
 

@@ -233,7 +233,20 @@ impl Scene {
     /// path (any path the system allows, UTF-8 or not). A bare name that is both a
     /// built-in and an existing file means the file.
     pub fn load(name_or_path: impl AsRef<std::ffi::OsStr>) -> Result<Scene, SceneError> {
-        let given = name_or_path.as_ref();
+        let start = std::time::Instant::now();
+        let scene = Scene::find_and_load(name_or_path.as_ref())?;
+        log::debug!(
+            "{}: loaded in {:.1} ms, {} objects, {} primitives",
+            scene.source.reference(),
+            start.elapsed().as_secs_f64() * 1e3,
+            scene.shapes.len(),
+            scene.primitive_count()
+        );
+        Ok(scene)
+    }
+
+    /// [`Scene::load`], untimed.
+    fn find_and_load(given: &std::ffi::OsStr) -> Result<Scene, SceneError> {
         let text = given.to_str();
         if let Some(name) = text.and_then(|t| t.strip_prefix("builtin:")) {
             return match builtin(name) {

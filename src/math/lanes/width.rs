@@ -78,7 +78,20 @@ impl Width {
     /// The widest this processor runs, at most [`asked_lanes`] if that is 1, 4, 8 or 16.
     pub fn best() -> Width {
         let asked = asked_lanes().and_then(Width::of_lanes);
-        Width::widest().min(asked.unwrap_or(Width::Sixteen))
+        let best = Width::widest().min(asked.unwrap_or(Width::Sixteen));
+        static SAID: std::sync::Once = std::sync::Once::new();
+        SAID.call_once(|| {
+            let widest = Width::widest();
+            log::info!(
+                "SIMD: {} lanes, {} (this processor's widest: {}, {}; RAYLAB_LANES: {:?})",
+                best.lanes(),
+                best.extension(),
+                widest.lanes(),
+                widest.extension(),
+                asked_lanes()
+            );
+        });
+        best
     }
 
     /// Runs `kernel` at this width: compiled for the width's vector extension, when this
