@@ -29,16 +29,32 @@ fn render_writes_the_image_and_a_sidecar_that_reproduces_it() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let summary = stderr(&o);
-    assert_eq!(summary.lines().count(), 1, "one summary line: {summary}");
+    // The summary and what was written, each within 80 columns.
+    let lines: Vec<&str> = summary.lines().collect();
+    assert_eq!(lines.len(), 2, "{summary}");
+    assert!(lines.iter().all(|l| l.len() <= 80), "{summary}");
+    for word in ["64x36", "2 spp", "M rays/s", "noise"] {
+        assert!(lines[0].contains(word), "`{word}` missing from: {summary}");
+    }
+    assert_eq!(lines[1], "wrote a.png and a.png.json");
+    // -v adds the details between them, each line within 80 columns too.
+    let o = raylab(
+        &[
+            "render", "-o", "v.png", "--size", "64x36", "--spp", "2", "-v",
+        ],
+        d,
+    );
+    let verbose = stderr(&o);
+    let lines: Vec<&str> = verbose.lines().collect();
+    assert!(lines.len() >= 5, "{verbose}");
+    assert!(lines.iter().all(|l| l.len() <= 80), "{verbose}");
     for word in [
-        "64x36",
-        "2 spp",
-        "rays/s",
         "rays/pixel",
+        "total internal reflections",
         "pruned",
-        "wrote a.png",
+        "non-finite",
     ] {
-        assert!(summary.contains(word), "`{word}` missing from: {summary}");
+        assert!(verbose.contains(word), "`{word}` missing from: {verbose}");
     }
     let img = image::open(d.join("a.png")).unwrap();
     assert_eq!((img.width(), img.height()), (64, 36));

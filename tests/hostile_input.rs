@@ -215,6 +215,7 @@ fn a_ray_tree_without_a_weight_limit_is_cut_by_the_ray_budget() {
             "max_depth=64",
             "--set",
             "min_weight=0",
+            "-v",
         ],
         dir,
     );

@@ -13,7 +13,8 @@ pub fn progress_bar(quiet: bool, rows: u64, what: &str) -> ProgressBar {
     let bar = ProgressBar::new(rows);
     bar.set_style(
         ProgressStyle::with_template(&format!(
-            "{{spinner}} {what} [{{bar:40}}] {{percent}}% rows, {{elapsed}} elapsed, ~{{eta}} left"
+            // The bar takes what the terminal's width leaves, so the line never wraps.
+            "{{spinner}} {what} [{{wide_bar}}] {{percent}}%, {{elapsed}}, ~{{eta}} left"
         ))
         .unwrap_or_else(|_| ProgressStyle::default_bar())
         .progress_chars("=> "),

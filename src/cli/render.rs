@@ -62,9 +62,13 @@ pub struct RenderArgs {
     /// pixels bit for bit the whole render's (the sidecar keeps it, for --params).
     #[arg(long, value_name = "x0,y0,x1,y1", value_parser = crate::cli::crop::parse_crop)]
     crop: Option<[u32; 4]>,
-    /// No progress bar and no summary line.
-    #[arg(short, long)]
+    /// No progress bar and no summary.
+    #[arg(short, long, conflicts_with = "verbose")]
     quiet: bool,
+    /// The summary's details too: samples and rays, total internal reflections, the
+    /// branches pruned, the samples dropped and what adaptive sampling did.
+    #[arg(short, long)]
+    verbose: bool,
 }
 
 /// What is done with the film after each pass of a render.
@@ -317,9 +321,12 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         return Ok(());
     }
     if !args.quiet {
+        tell!("{}", summary(&job, &film, &stats, seconds));
+        if args.verbose {
+            tell!("{}", details(&job, &film, &stats));
+        }
         tell!(
-            "{} wrote {}{replaced} and {}",
-            summary(&job, &film, &stats, seconds),
+            "wrote {}{replaced} and {}",
             output.display(),
             json.display()
         );
@@ -327,26 +334,16 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// What a render took and found, in one line: the status bar's figures, so a render's
-/// noise can be judged without a window. Seconds to the millisecond: a benchmark's render
-/// takes a fifth of a second (tests/mitsuba/speed.py reads them).
+/// What a render took and found, in a line that fits 80 columns for a scene name of up to
+/// about 16 letters: the size, the samples, the time, the speed and the noise (the status
+/// bar's), so a render can be judged without a window. Seconds to the millisecond: a
+/// benchmark's render takes a fifth of a second (tests/mitsuba/speed.py reads them).
 fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
-    let (w, h) = job.image_size();
-    let pixels = (w as u64 * h as u64) as f64;
     let noise = film
         .noise(job.params.exposure)
-        .map_or(String::new(), |n| format!(" noise {:.2}%;", n * 100.0));
-    let adaptive = match raylab::render::adaptive::acts(&job.params) {
-        true => format!(
-            " adaptive: {:.0}% of pixels done early, {:.1} samples a pixel on average;",
-            100.0 * film.done_pixels() as f64 / pixels,
-            stats.samples as f64 / pixels
-        ),
-        false => String::new(),
-    };
-    let rays = stats.total_rays();
+        .map_or(String::new(), |n| format!(", noise {:.2}%", n * 100.0));
     format!(
-        "{} {}x{}{} at {} spp: {:.3} s, {:.2} M samples, {:.2} M rays ({:.2} M rays/s, {:.1} rays/pixel); {} total internal reflections; pruned {} by depth, {} by weight, {} by the ray budget; {} non-finite samples dropped;{noise}{adaptive}",
+        "{} {}x{}{} at {} spp: {:.3} s, {:.2} M rays/s{noise}",
         job.scene.name,
         job.width,
         job.height,
@@ -355,14 +352,37 @@ fn summary(job: &Job, film: &Film, stats: &Stats, seconds: f64) -> String {
         )),
         job.samples,
         seconds,
-        stats.samples as f64 / 1e6,
-        rays as f64 / 1e6,
-        rays as f64 / seconds.max(1e-9) / 1e6,
-        rays as f64 / pixels,
-        stats.tir_events,
-        stats.pruned_by_depth,
-        stats.pruned_by_weight,
-        stats.pruned_by_budget,
-        stats.non_finite,
+        stats.total_rays() as f64 / seconds.max(1e-9) / 1e6,
     )
+}
+
+/// The summary's details (`--verbose`), each line within 80 columns.
+fn details(job: &Job, film: &Film, stats: &Stats) -> String {
+    let (w, h) = job.image_size();
+    let pixels = (w as u64 * h as u64) as f64;
+    let rays = stats.total_rays();
+    let mut lines = vec![
+        format!(
+            "  {:.2} M samples, {:.2} M rays, {:.1} rays/pixel",
+            stats.samples as f64 / 1e6,
+            rays as f64 / 1e6,
+            rays as f64 / pixels,
+        ),
+        format!(
+            "  {} total internal reflections, {} non-finite samples dropped",
+            stats.tir_events, stats.non_finite
+        ),
+        format!(
+            "  pruned {} by depth, {} by weight, {} by the ray budget",
+            stats.pruned_by_depth, stats.pruned_by_weight, stats.pruned_by_budget
+        ),
+    ];
+    if raylab::render::adaptive::acts(&job.params) {
+        lines.push(format!(
+            "  adaptive: {:.0}% of pixels done early, {:.1} samples/pixel on average",
+            100.0 * film.done_pixels() as f64 / pixels,
+            stats.samples as f64 / pixels
+        ));
+    }
+    lines.join("\n")
 }
