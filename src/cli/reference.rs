@@ -28,20 +28,6 @@ impl Reference {
         })
     }
 
-    /// The samples each pass adds to reach `samples`: 1, then doubling (1, 1, 2, 4, …),
-    /// the last pass what is left, so that the error is read at every power of two.
-    pub fn passes(samples: u32) -> Vec<u32> {
-        let mut passes = Vec::new();
-        let mut done = 0u32;
-        while done < samples {
-            let next = (done.max(1) * 2).min(samples).max(1);
-            let add = if done == 0 { 1 } else { next - done };
-            passes.push(add);
-            done += add;
-        }
-        passes
-    }
-
     /// Measures `film` after a pass, shown at `exposure`, and prints the line (above the
     /// progress `bar`).
     pub fn after_pass(&mut self, film: &Film, exposure: f32, bar: &ProgressBar) {
@@ -76,19 +62,5 @@ impl Reference {
     /// What the sidecar records.
     pub fn errors(self) -> ReferenceErrors {
         self.errors
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_passes_double_to_the_target() {
-        assert_eq!(Reference::passes(1), [1]);
-        assert_eq!(Reference::passes(8), [1, 1, 2, 4]);
-        assert_eq!(Reference::passes(10), [1, 1, 2, 4, 2]);
-        assert_eq!(Reference::passes(0), Vec::<u32>::new());
-        assert_eq!(Reference::passes(100).iter().sum::<u32>(), 100);
     }
 }

@@ -62,6 +62,12 @@ pub struct RenderArgs {
     /// pixels bit for bit the whole render's (the sidecar keeps it, for --params).
     #[arg(long, value_name = "x0,y0,x1,y1", value_parser = crate::cli::crop::parse_crop)]
     crop: Option<[u32; 4]>,
+    /// Stream each pass into a running tev (its default address 127.0.0.1:14158, or
+    /// --tev=HOST:PORT): the image named as the output file, refining as the passes double
+    /// (1, 1, 2, 4, ... samples).
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, require_equals = true,
+          default_missing_value = raylab::render::tev::TEV_ADDRESS)]
+    tev: Option<String>,
     /// No progress bar and no summary.
     #[arg(short, long, conflicts_with = "verbose")]
     quiet: bool,
@@ -248,17 +254,45 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         Some(path) => Some(Reference::open(path, job.image_size())?),
         None => None,
     };
-    let passes = match reference {
-        Some(_) => Reference::passes(job.samples),
-        None => vec![job.samples],
+    let mut tev = match &args.tev {
+        Some(_) if !job.others.is_empty() => anyhow::bail!(
+            "--tev: slide {} is a split of {} images; stream one of its sides' scenes instead",
+            args.slide.unwrap_or(0),
+            1 + job.others.len()
+        ),
+        Some(address) => {
+            let name = output.file_name().map_or_else(
+                || output.display().to_string(),
+                |n| n.to_string_lossy().into_owned(),
+            );
+            let (w, h) = job.image_size();
+            Some(raylab::render::tev::Tev::connect(address, &name, w, h).map_err(runtime)?)
+        }
+        None => None,
+    };
+    // Measured or watched, the samples come in passes that double, so that each is seen.
+    let passes = match reference.is_some() || tev.is_some() {
+        true => doubling(job.samples),
+        false => vec![job.samples],
     };
     let rows = h as u64 * (passes.len() + job.others.len()) as u64;
     let bar = progress_bar(args.quiet, rows, "rendering");
     let start = Instant::now();
     let exposure = job.params.exposure;
+    let quiet = args.quiet;
     let mut after = |film: &Film| {
         if let Some(r) = reference.as_mut() {
             r.after_pass(film, exposure, &bar);
+        }
+        if let Some(t) = tev.as_mut() {
+            let pixels: Vec<_> = film.pixels().collect();
+            if let Err(e) = t.update(&pixels) {
+                // tev closed: the render goes on, to its file.
+                if !quiet {
+                    bar.suspend(|| tell!("warning: {e}; the render goes on without it"));
+                }
+                tev = None;
+            }
         }
     };
     let (film, stats) = job.render(&args.threads.pool()?, &bar, &passes, &mut after)?;
@@ -334,6 +368,19 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     Ok(())
 }
 
+/// The samples each pass adds to reach `samples`: 1, then doubling (1, 1, 2, 4, …), the
+/// last pass what is left, so that the image is seen (and measured) at every power of two.
+fn doubling(samples: u32) -> Vec<u32> {
+    let mut passes = Vec::new();
+    let mut done = 0u32;
+    while done < samples {
+        let add = done.max(1).min(samples - done);
+        passes.push(add);
+        done += add;
+    }
+    passes
+}
+
 /// What a render took and found, in a line that fits 80 columns for a scene name of up to
 /// about 16 letters: the size, the samples, the time, the speed and the noise (the status
 /// bar's), so a render can be judged without a window. Seconds to the millisecond: a
@@ -385,4 +432,16 @@ fn details(job: &Job, film: &Film, stats: &Stats) -> String {
         ));
     }
     lines.join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_passes_double_to_the_target() {
+        assert_eq!(super::doubling(1), [1]);
+        assert_eq!(super::doubling(8), [1, 1, 2, 4]);
+        assert_eq!(super::doubling(10), [1, 1, 2, 4, 2]);
+        assert_eq!(super::doubling(0), Vec::<u32>::new());
+        assert_eq!(super::doubling(100).iter().sum::<u32>(), 100);
+    }
 }

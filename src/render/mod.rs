@@ -20,6 +20,7 @@ pub mod ramp;
 mod sheet;
 mod snapshot;
 mod srgb;
+pub mod tev;
 pub(crate) mod text;
 
 pub use drag::{DragReport, simulate_drag};
