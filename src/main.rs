@@ -74,6 +74,11 @@ struct Cli {
     /// Worker threads for the window, below its own priority [default: every core].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
+    /// Stream the window's image into a running tev from the start (127.0.0.1:14158, or
+    /// --tev=HOST:PORT; View > Stream to tev turns it on and off).
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, require_equals = true,
+          default_missing_value = raylab::render::tev::TEV_ADDRESS)]
+    tev: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -190,7 +195,13 @@ fn parse_step(s: &str) -> Result<f64, String> {
 }
 
 #[cfg(feature = "gui")]
-fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()> {
+fn window(cli: Cli) -> Result<()> {
+    let Cli {
+        scene,
+        threads,
+        tev,
+        ..
+    } = cli;
     use anyhow::Context;
     let close_after = match std::env::var("RAYLAB_CLOSE_AFTER") {
         Ok(v) => Some(
@@ -208,6 +219,7 @@ fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()>
         scene,
         threads: threads.map(|t| t as usize),
         close_after,
+        tev,
         ..Default::default()
     };
     raylab::app::run(options).map_err(|e| {
@@ -218,7 +230,7 @@ fn window(scene: Option<std::ffi::OsString>, threads: Option<u32>) -> Result<()>
 
 /// Built without the `gui` feature: there is no window to open.
 #[cfg(not(feature = "gui"))]
-fn window(_scene: Option<std::ffi::OsString>, _threads: Option<u32>) -> Result<()> {
+fn window(_cli: Cli) -> Result<()> {
     Err(runtime(anyhow::anyhow!(
         "this raylab was built without its window (cargo's `gui` feature): \
          `raylab render` and the other commands work; `raylab --help` lists them"
@@ -315,7 +327,7 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        None => window(cli.scene, cli.threads),
+        None => window(cli),
     }
 }
 

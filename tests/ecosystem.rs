@@ -197,3 +197,55 @@ fn without_the_window_raylab_says_so_and_its_commands_work() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.path().join("a.png").is_file());
 }
+
+/// The window streams its image into tev from the start with `raylab --tev`, and View >
+/// Stream to tev turns it off: a listener standing in for tev receives the image made at
+/// the render's size, then its pixels.
+#[cfg(feature = "gui")]
+#[test]
+fn the_window_streams_its_image_into_tev_until_turned_off() {
+    #[path = "common/window.rs"]
+    mod window;
+    use std::io::Read;
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap().to_string();
+    // Reads messages until the first update: (type, name, width, height) of the create.
+    let tev = std::thread::spawn(move || {
+        let (mut stream, _) = listener.accept().unwrap();
+        let mut created = None;
+        loop {
+            let mut len = [0u8; 4];
+            stream.read_exact(&mut len).unwrap();
+            let mut m = vec![0u8; u32::from_le_bytes(len) as usize - 4];
+            stream.read_exact(&mut m).unwrap();
+            let name_end = 2 + m[2..].iter().position(|&b| b == 0).unwrap();
+            let name = String::from_utf8(m[2..name_end].to_vec()).unwrap();
+            let int = |at: usize| i32::from_le_bytes(m[at..at + 4].try_into().unwrap());
+            match m[0] {
+                4 => created = Some((name, int(name_end + 1), int(name_end + 5))),
+                6 => return (created, name),
+                other => panic!("message type {other}"),
+            }
+        }
+    });
+    let dir = tempfile::tempdir().unwrap();
+    let options = raylab::app::AppOptions {
+        scene: Some("glass".into()),
+        snapshot_dir: dir.path().to_path_buf(),
+        threads: Some(1),
+        persist: false,
+        tev: Some(address),
+        ..Default::default()
+    };
+    let mut h = egui_kittest::Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .build_eframe(move |cc| raylab::app::RaylabApp::new(cc, options.clone()).unwrap());
+    assert!(h.state().streams_to_tev());
+    window::step_until(&mut h, "an image streamed", |_| tev.is_finished());
+    let (created, updated) = tev.join().unwrap();
+    let (w, h_) = h.state().latest_frame().unwrap().grid_size();
+    assert_eq!(created, Some(("raylab".to_string(), w as i32, h_ as i32)));
+    assert_eq!(updated, "raylab");
+    window::choose_from_menu(&mut h, "View", "Stream to tev");
+    assert!(!h.state().streams_to_tev(), "turned off");
+}

@@ -21,6 +21,7 @@ mod present;
 mod sheet;
 mod side;
 mod snapshot;
+mod tev;
 mod toasts;
 mod toolbar;
 mod view;
@@ -64,6 +65,8 @@ pub struct AppOptions {
     pub close_after: Option<Duration>,
     /// Remember the scene, parameters and camera between runs.
     pub persist: bool,
+    /// Stream the image into tev at this address (HOST:PORT) from the start.
+    pub tev: Option<String>,
 }
 
 impl Default for AppOptions {
@@ -75,6 +78,7 @@ impl Default for AppOptions {
             threads: None,
             close_after: None,
             persist: true,
+            tev: None,
         }
     }
 }
@@ -123,6 +127,7 @@ pub struct RaylabApp {
     history: History,
     // Whether the first window was checked against its screen (`fit.rs`).
     fitted: bool,
+    tev: Option<crate::render::tev::TevStream>,
 }
 
 /// Opens the previewer window and runs it until it is closed.
@@ -237,8 +242,13 @@ impl RaylabApp {
         scene.warnings.iter().for_each(|w| toasts.warn(w));
         let mut loader = Loader::new(&cc.egui_ctx);
         loader.watch(&scene);
+        let tev = options
+            .tev
+            .as_deref()
+            .map(|address| crate::render::tev::TevStream::start(address, tev::TEV_IMAGE));
         Ok(RaylabApp {
             close_at: options.close_after.map(|d| Instant::now() + d),
+            tev,
             options,
             scene,
             settings,
@@ -490,10 +500,11 @@ impl eframe::App for RaylabApp {
         self.sync_engines();
         // A pass that failed inside raylab stops its generation: the banner says so (once
         // a frame, so that Dismiss holds until the next failure).
-        if self.main.receive()
-            && let Some(failure) = self.main.frame().and_then(|f| f.progress.failure.clone())
-        {
-            self.error = Some(format!("The render stopped: {failure}"));
+        if self.main.receive() {
+            self.stream_to_tev();
+            if let Some(failure) = self.main.frame().and_then(|f| f.progress.failure.clone()) {
+                self.error = Some(format!("The render stopped: {failure}"));
+            }
         }
         for side in self.compare.iter_mut().flat_map(|c| &mut c.sides) {
             side.receive();

@@ -342,7 +342,7 @@ impl RaylabApp {
         self.hall.help &= open;
     }
 
-    /// The View menu: presentation mode, the UI scale, help.
+    /// The View menu: presentation mode, the UI scale, streaming to tev, help.
     pub(super) fn view_menu_ui(&mut self, ui: &mut egui::Ui) {
         if ui.button("Presentation mode (F5)").clicked() {
             self.set_presenting(ui.ctx(), true);
@@ -362,6 +362,8 @@ impl RaylabApp {
                 ui.ctx().set_zoom_factor(*scale);
             }
         }
+        ui.separator();
+        self.tev_menu_ui(ui);
         ui.separator();
         if ui.button("Keyboard shortcuts (F1)").clicked() {
             self.hall.help = true;

@@ -18,6 +18,7 @@
 use crate::math::Color;
 use std::io::Write;
 use std::net::{TcpStream, ToSocketAddrs};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 /// Where tev listens unless told otherwise (`tev --hostname`).
@@ -111,6 +112,78 @@ impl Tev {
     /// The image's size.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+}
+
+/// One image to send: its width, its height and its pixels.
+type Image = (u32, u32, Arc<Vec<Color>>);
+
+/// A stream into tev on a thread of its own, for the window: sending never waits. Each
+/// image replaces the one not yet sent, so tev always gets the newest and the window never
+/// queues images behind a slow connection. The image is named `name` in tev and made again
+/// when its size changes.
+pub struct TevStream {
+    images: crossbeam_channel::Sender<Image>,
+    // To drop an image not yet sent in favour of a newer one.
+    unsent: crossbeam_channel::Receiver<Image>,
+    error: Arc<Mutex<Option<String>>>,
+    address: String,
+}
+
+impl TevStream {
+    /// Starts streaming to tev at `address`; it connects with the first image.
+    pub fn start(address: &str, name: &str) -> TevStream {
+        let (images, unsent) = crossbeam_channel::bounded::<Image>(1);
+        let error = Arc::new(Mutex::new(None));
+        let (rx, failed) = (unsent.clone(), Arc::clone(&error));
+        let (address_, name) = (address.to_string(), name.to_string());
+        let spawned = std::thread::Builder::new()
+            .name("raylab-tev".into())
+            .spawn(move || {
+                let mut tev: Option<Tev> = None;
+                for (w, h, pixels) in rx.iter() {
+                    let sent = match tev.as_mut().filter(|t| t.size() == (w, h)) {
+                        Some(t) => t.update(&pixels),
+                        None => Tev::connect(&address_, &name, w, h)
+                            .and_then(|t| tev.insert(t).update(&pixels)),
+                    };
+                    if let Err(e) = sent {
+                        log::debug!("{e}");
+                        *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+                        return;
+                    }
+                }
+            });
+        if let Err(e) = spawned {
+            *error.lock().unwrap_or_else(|p| p.into_inner()) =
+                Some(format!("tev at {address}: cannot start its thread: {e}"));
+        }
+        TevStream {
+            images,
+            unsent,
+            error,
+            address: address.to_string(),
+        }
+    }
+
+    /// Sends `pixels` (`width` × `height`, row by row), replacing an image not yet sent.
+    pub fn send(&self, width: u32, height: u32, pixels: Arc<Vec<Color>>) {
+        if let Err(crossbeam_channel::TrySendError::Full(image)) =
+            self.images.try_send((width, height, pixels))
+        {
+            let _ = self.unsent.try_recv();
+            let _ = self.images.try_send(image);
+        }
+    }
+
+    /// Why the stream stopped (tev not there, or closed), once it has.
+    pub fn error(&self) -> Option<String> {
+        self.error.lock().ok().and_then(|e| e.clone())
+    }
+
+    /// Where it streams to.
+    pub fn address(&self) -> &str {
+        &self.address
     }
 }
 
