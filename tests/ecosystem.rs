@@ -209,13 +209,18 @@ fn the_window_streams_its_image_into_tev_until_turned_off() {
     use std::io::Read;
     let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let address = listener.local_addr().unwrap().to_string();
-    // Reads messages until the first update: (type, name, width, height) of the create.
+    // Reads messages until the first update and says what came: the create's name, width
+    // and height, and the update's name; then holds the connection until the window lets
+    // it go (tev keeps listening), and closes (tev quits).
+    let (said, heard) = std::sync::mpsc::channel();
     let tev = std::thread::spawn(move || {
         let (mut stream, _) = listener.accept().unwrap();
         let mut created = None;
         loop {
             let mut len = [0u8; 4];
-            stream.read_exact(&mut len).unwrap();
+            if stream.read_exact(&mut len).is_err() {
+                return; // the window closed the stream
+            }
             let mut m = vec![0u8; u32::from_le_bytes(len) as usize - 4];
             stream.read_exact(&mut m).unwrap();
             let name_end = 2 + m[2..].iter().position(|&b| b == 0).unwrap();
@@ -223,7 +228,9 @@ fn the_window_streams_its_image_into_tev_until_turned_off() {
             let int = |at: usize| i32::from_le_bytes(m[at..at + 4].try_into().unwrap());
             match m[0] {
                 4 => created = Some((name, int(name_end + 1), int(name_end + 5))),
-                6 => return (created, name),
+                6 => {
+                    let _ = said.send((created.clone(), name));
+                }
                 other => panic!("message type {other}"),
             }
         }
@@ -241,11 +248,23 @@ fn the_window_streams_its_image_into_tev_until_turned_off() {
         .with_size(egui::vec2(1280.0, 800.0))
         .build_eframe(move |cc| raylab::app::RaylabApp::new(cc, options.clone()).unwrap());
     assert!(h.state().streams_to_tev());
-    window::step_until(&mut h, "an image streamed", |_| tev.is_finished());
-    let (created, updated) = tev.join().unwrap();
+    let first = std::cell::RefCell::new(None);
+    window::step_until(&mut h, "an image streamed", |_| {
+        let mut f = first.borrow_mut();
+        if f.is_none() {
+            *f = heard.try_recv().ok();
+        }
+        f.is_some()
+    });
+    let (created, updated) = first.into_inner().unwrap();
     let (w, h_) = h.state().latest_frame().unwrap().grid_size();
     assert_eq!(created, Some(("raylab".to_string(), w as i32, h_ as i32)));
     assert_eq!(updated, "raylab");
     window::choose_from_menu(&mut h, "View", "Stream to tev");
     assert!(!h.state().streams_to_tev(), "turned off");
+    tev.join().unwrap();
+    // On again with tev gone (the listener closed): it says so and turns itself off,
+    // the finished image it had sent at once being refused.
+    window::choose_from_menu(&mut h, "View", "Stream to tev");
+    window::step_until(&mut h, "the stream turned off", |a| !a.streams_to_tev());
 }

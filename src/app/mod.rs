@@ -245,7 +245,7 @@ impl RaylabApp {
         let tev = options
             .tev
             .as_deref()
-            .map(|address| crate::render::tev::TevStream::start(address, tev::TEV_IMAGE));
+            .map(|address| tev::start(&cc.egui_ctx, address));
         Ok(RaylabApp {
             close_at: options.close_after.map(|d| Instant::now() + d),
             tev,
@@ -500,6 +500,7 @@ impl eframe::App for RaylabApp {
         self.sync_engines();
         // A pass that failed inside raylab stops its generation: the banner says so (once
         // a frame, so that Dismiss holds until the next failure).
+        self.check_tev();
         if self.main.receive() {
             self.stream_to_tev();
             if let Some(failure) = self.main.frame().and_then(|f| f.progress.failure.clone()) {

@@ -5,7 +5,13 @@ use super::RaylabApp;
 use crate::render::tev::{TEV_ADDRESS, TevStream};
 
 /// The image's name in tev: one image, made again when the render's size changes.
-pub(super) const TEV_IMAGE: &str = "raylab";
+const TEV_IMAGE: &str = "raylab";
+
+/// A stream to tev at `address` that wakes the window if it stops.
+pub(super) fn start(ctx: &egui::Context, address: &str) -> TevStream {
+    let ctx = ctx.clone();
+    TevStream::start(address, TEV_IMAGE, move || ctx.request_repaint())
+}
 
 impl RaylabApp {
     /// The View menu's toggle.
@@ -20,21 +26,25 @@ impl RaylabApp {
             ))
             .changed()
         {
-            self.tev = on.then(|| TevStream::start(&address, TEV_IMAGE));
+            self.tev = on.then(|| start(ui.ctx(), &address));
+            // The image shown goes at once (a finished one sends no more frames).
+            self.stream_to_tev();
         }
     }
 
-    /// Sends the newest frame after a pass (not a preview) to tev, if streaming; a stream
-    /// that stopped (tev not there, or closed) is turned off with a message.
+    /// Stops a stream that stopped on its own (tev not there, or closed), with a message.
+    pub(super) fn check_tev(&mut self) {
+        if let Some(error) = self.tev.as_ref().and_then(TevStream::error) {
+            self.toasts.error(format!("Streaming stopped: {error}"));
+            self.tev = None;
+        }
+    }
+
+    /// Sends the newest frame after a pass (not a preview) to tev, if streaming.
     pub(super) fn stream_to_tev(&mut self) {
         let Some(tev) = &self.tev else {
             return;
         };
-        if let Some(error) = tev.error() {
-            self.toasts.error(format!("Streaming stopped: {error}"));
-            self.tev = None;
-            return;
-        }
         if let Some(frame) = self.main.frame().filter(|f| !f.is_preview()) {
             let (w, h) = frame.grid_size();
             tev.send(w, h, std::sync::Arc::clone(&frame.pixels));

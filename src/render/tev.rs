@@ -131,8 +131,10 @@ pub struct TevStream {
 }
 
 impl TevStream {
-    /// Starts streaming to tev at `address`; it connects with the first image.
-    pub fn start(address: &str, name: &str) -> TevStream {
+    /// Starts streaming to tev at `address`; it connects with the first image. `stopped`
+    /// is called if the stream stops (then [`TevStream::error`] says why), so that a
+    /// window can say so at once.
+    pub fn start(address: &str, name: &str, stopped: impl Fn() + Send + 'static) -> TevStream {
         let (images, unsent) = crossbeam_channel::bounded::<Image>(1);
         let error = Arc::new(Mutex::new(None));
         let (rx, failed) = (unsent.clone(), Arc::clone(&error));
@@ -150,6 +152,7 @@ impl TevStream {
                     if let Err(e) = sent {
                         log::debug!("{e}");
                         *failed.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+                        stopped();
                         return;
                     }
                 }
