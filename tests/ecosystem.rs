@@ -176,10 +176,7 @@ fn rust_log_logs_what_raylab_does_and_nothing_without_it() {
 #[test]
 fn without_the_window_raylab_says_so_and_its_commands_work() {
     let dir = tempfile::tempdir().unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
+    let o = raylab(&[], dir.path());
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
@@ -187,13 +184,10 @@ fn without_the_window_raylab_says_so_and_its_commands_work() {
         err.contains("without its window") && err.contains("raylab render"),
         "{err}"
     );
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_raylab"))
-        .current_dir(dir.path())
-        .args([
-            "render", "default", "--size", "32x18", "--spp", "1", "-o", "a.png",
-        ])
-        .output()
-        .unwrap();
+    let render = [
+        "render", "default", "--size", "32x18", "--spp", "1", "-o", "a.png",
+    ];
+    let o = raylab(&render, dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.path().join("a.png").is_file());
 }

@@ -363,9 +363,28 @@ fn a_pass_that_panics_stops_its_generation_with_a_message_and_the_engine_goes_on
     assert!(again.last().unwrap().progress.failure.is_some());
 }
 
+/// An engine on `first` at `a`, asked to render `next` at `b` ahead into a cache of its
+/// own: the engine, the cache and the job.
+fn rendering_ahead(
+    first: &Arc<Scene>,
+    a: Params,
+    next: &Arc<Scene>,
+    b: &Params,
+) -> (Engine, raylab::render::FilmCache, raylab::render::Prerender) {
+    let e = engine(first, a);
+    let cache = raylab::render::FilmCache::default();
+    let job = raylab::render::Prerender {
+        scene: Arc::clone(next),
+        camera: next.camera.clone(),
+        params: b.clone(),
+        size: (W, H),
+    };
+    e.prerender(&cache, vec![job.clone()]);
+    (e, cache, job)
+}
+
 #[test]
 fn an_image_rendered_ahead_shows_at_once_finished_and_a_finished_one_comes_back() {
-    use raylab::render::{FilmCache, Prerender};
     let first = Arc::new(Scene::load("default").unwrap());
     let next = Arc::new(Scene::load("glass").unwrap());
     let a = Params {
@@ -378,15 +397,7 @@ fn an_image_rendered_ahead_shows_at_once_finished_and_a_finished_one_comes_back(
         noise_target: Some(3.0),
         ..next.params.clone()
     };
-    let mut e = engine(&first, a.clone());
-    let cache = FilmCache::default();
-    let job = Prerender {
-        scene: Arc::clone(&next),
-        camera: next.camera.clone(),
-        params: b.clone(),
-        size: (W, H),
-    };
-    e.prerender(&cache, vec![job.clone()]);
+    let (mut e, cache, job) = rendering_ahead(&first, a.clone(), &next, &b);
     frames_until(&e, Duration::from_secs(60), |f| f.progress.done());
     // The workers go on to the next image once this one is finished.
     let deadline = Instant::now() + Duration::from_secs(60);
@@ -424,7 +435,6 @@ fn an_image_rendered_ahead_shows_at_once_finished_and_a_finished_one_comes_back(
 
 #[test]
 fn an_image_left_half_rendered_ahead_keeps_its_samples_when_it_is_asked_for() {
-    use raylab::render::{FilmCache, Prerender};
     let first = Arc::new(Scene::load("default").unwrap());
     let next = Arc::new(Scene::load("glass").unwrap());
     let a = Params {
@@ -436,15 +446,7 @@ fn an_image_left_half_rendered_ahead_keeps_its_samples_when_it_is_asked_for() {
         spp: 1 << 16,
         ..next.params.clone()
     };
-    let mut e = engine(&first, a);
-    let cache = FilmCache::default();
-    let job = Prerender {
-        scene: Arc::clone(&next),
-        camera: next.camera.clone(),
-        params: b.clone(),
-        size: (W, H),
-    };
-    e.prerender(&cache, vec![job.clone()]);
+    let (mut e, cache, job) = rendering_ahead(&first, a, &next, &b);
     frames_until(&e, Duration::from_secs(60), |f| f.progress.done());
     let deadline = Instant::now() + Duration::from_secs(60);
     while cache.samples(&job) < 8 {
