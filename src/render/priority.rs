@@ -1,7 +1,7 @@
 //! The window's render workers yield to the window's own thread.
 //!
-//! The window renders on every core, so a 2-core laptop renders at twice the speed of
-//! one worker; its workers run a little below normal priority, so a frame of the
+//! The window renders on every core, so a 2-core laptop renders on both cores, not one;
+//! its workers run a little below normal priority, so a frame of the
 //! interface seldom waits for a pass. Measured on this 2-core machine with two busy
 //! threads beside a thread doing 6 ms of work per 16 ms frame, that frame ran late by
 //! (median, 95th percentile, two runs each): 4.0 and 8.0 ms with the busy threads at
