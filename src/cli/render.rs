@@ -238,36 +238,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         &format!("a {w}x{h} render's film and file"),
     )
     .map_err(anyhow::Error::msg)?;
-    if job.crop.is_some() && !job.others.is_empty() {
-        anyhow::bail!(
-            "--crop: slide {} is a split of {} images; crop one of its sides' scenes instead",
-            args.slide.unwrap_or(0),
-            1 + job.others.len()
-        );
-    }
+    split_refuses(&args, &job)?;
     let mut reference = match &args.reference {
-        Some(_) if !job.others.is_empty() => anyhow::bail!(
-            "--reference: slide {} is a split of {} images, not one to measure",
-            args.slide.unwrap_or(0),
-            1 + job.others.len()
-        ),
         Some(path) => Some(Reference::open(path, job.image_size())?),
         None => None,
     };
     let mut tev = match &args.tev {
-        Some(_) if !job.others.is_empty() => anyhow::bail!(
-            "--tev: slide {} is a split of {} images; stream one of its sides' scenes instead",
-            args.slide.unwrap_or(0),
-            1 + job.others.len()
-        ),
-        Some(address) => {
-            let name = output.file_name().map_or_else(
-                || output.display().to_string(),
-                |n| n.to_string_lossy().into_owned(),
-            );
-            let (w, h) = job.image_size();
-            Some(raylab::render::tev::Tev::connect(address, &name, w, h).map_err(runtime)?)
-        }
+        Some(address) => Some(connect_tev(address, &output, &job)?),
         None => None,
     };
     // Measured or watched, the samples come in passes that double, so that each is seen.
@@ -366,6 +343,50 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// A split slide (its sides side by side) is one image of several renders: refused with
+/// the options that need one render (`--crop`, `--reference`, `--tev`), naming it.
+fn split_refuses(args: &RenderArgs, job: &Job) -> Result<()> {
+    if job.others.is_empty() {
+        return Ok(());
+    }
+    let refused = [
+        (
+            args.crop.is_some(),
+            "--crop",
+            "crop one of its sides' scenes instead",
+        ),
+        (
+            args.reference.is_some(),
+            "--reference",
+            "not one to measure",
+        ),
+        (
+            args.tev.is_some(),
+            "--tev",
+            "stream one of its sides' scenes instead",
+        ),
+    ];
+    match refused.iter().find(|(given, ..)| *given) {
+        Some((_, option, instead)) => anyhow::bail!(
+            "{option}: slide {} is a split of {} images; {instead}",
+            args.slide.unwrap_or(0),
+            1 + job.others.len()
+        ),
+        None => Ok(()),
+    }
+}
+
+/// tev at `address`, showing the image named as `output`'s file: one line if it is not
+/// there.
+fn connect_tev(address: &str, output: &Path, job: &Job) -> Result<raylab::render::tev::Tev> {
+    let name = output.file_name().map_or_else(
+        || output.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let (w, h) = job.image_size();
+    raylab::render::tev::Tev::connect(address, &name, w, h).map_err(runtime)
 }
 
 /// The samples each pass adds to reach `samples`: 1, then doubling (1, 1, 2, 4, …), the
