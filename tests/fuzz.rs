@@ -249,6 +249,35 @@ const GLTF: &str = r#"{
 "min": [0, 0, 0], "max": [1, 1, 0]}]
 }"#;
 
+/// A glTF file of one textured triangle (its picture a PNG data URI), seen by a camera
+/// and lit by a point, a spot and a directional light, a key a line.
+const GLTF_LIT: &str = r#"{
+"asset": {"version": "2.0"},
+"extensionsUsed": ["KHR_lights_punctual"],
+"extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1, 0.8, 0.6], "intensity": 12},
+{"name": "cone", "type": "spot", "intensity": 5, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+{"type": "directional"}]}},
+"scene": 0,
+"scenes": [{"nodes": [0, 1, 2, 3]}],
+"nodes": [{"mesh": 0},
+{"camera": 0, "translation": [0, 0, 3]},
+{"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 2, 1]},
+{"extensions": {"KHR_lights_punctual": {"light": 1}}, "rotation": [-0.70710677, 0, 0, 0.70710677], "children": [4]},
+{"extensions": {"KHR_lights_punctual": {"light": 2}}}],
+"cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1}}],
+"materials": [{"name": "paint", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0,
+"baseColorTexture": {"index": 0}}, "emissiveTexture": {"index": 0}, "emissiveFactor": [0, 0, 0]}],
+"textures": [{"source": 0, "sampler": 0}],
+"samplers": [{"wrapS": 33648, "wrapT": 33071}],
+"images": [{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGN4JsLFpXECAActAf81Yl0PAAAAAElFTkSuQmCC"}],
+"meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+"buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}],
+"bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+"accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+"min": [0, 0, 0], "max": [1, 1, 0]},
+{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]
+}"#;
+
 /// The unmutated inputs of each target.
 fn seeds(target: Target) -> Vec<String> {
     let read_dir = |dir: &str, ext: &str| -> Vec<String> {
@@ -268,7 +297,7 @@ fn seeds(target: Target) -> Vec<String> {
         Target::Obj => read_dir("scenes/models", ".obj"),
         Target::Mtl => vec!["newmtl a\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\nNs 40\nillum 2\nnewmtl b\nKe 1 1 1\n".into()],
         Target::Sidecar => read_dir("screenshots", ".png.json"),
-        Target::Gltf => vec![GLTF.into()],
+        Target::Gltf => vec![GLTF.into(), GLTF_LIT.into()],
         Target::Params => vec![
             "spp=4\nmax_depth=3\nmin_weight=0.01\nior=1.5\naperture=0.1\nfocus_distance=5\nshutter_open=0\nshutter=1\npattern=sobol\ntree=split\nsize=64x36".into(),
             "abbe=20\npolarizer=45\ntransport=transmissive_shadows\nior=2.4\nsize=64x36".into(),
@@ -330,7 +359,15 @@ fn run_case(target: Target, input: &str, dir: &Path) -> Result<bool, String> {
         }
         Target::Gltf => {
             let no_files = |_: &str| Err("no files beside it".to_string());
-            raylab::scene::load_gltf(input.as_bytes(), "fuzz.gltf", &no_files).is_ok()
+            let model = raylab::scene::load_gltf(input.as_bytes(), "fuzz.gltf", &no_files);
+            // Opened as a user opens it: its camera, lights and textures rendered.
+            if model.is_ok() {
+                let path = dir.join("fuzz.gltf");
+                std::fs::write(&path, input).map_err(|e| e.to_string())?;
+                let scene = Scene::load(&path).map_err(|e| format!("read, then refused: {e}"))?;
+                check_render(&scene, &scene.params)?;
+            }
+            model.is_ok()
         }
         Target::Sidecar => {
             let path = dir.join("fuzz.png.json");

@@ -5,7 +5,8 @@
 //! side; a sphere of radius r has L = intensity / (π r²) all round. Scaling a light (the
 //! `light_size` parameter) keeps its intensity, so the scene stays as bright while shadows
 //! soften; at size 0 every light is a point, with hard shadows (a rectangle or disk then
-//! still emits only forwards, with intensity × cos θ).
+//! still emits only forwards, with intensity × cos θ). A spot is a point at every size,
+//! its intensity shaped by a cone.
 
 use crate::geometry::{Quad, Sphere};
 use crate::math::lanes::{Real, Vector};
@@ -44,6 +45,42 @@ pub enum LightShape {
         /// Radius.
         radius: f32,
     },
+    /// A point shining into a cone about `cone.axis` (glTF's spot light): a point at
+    /// every `light_size`.
+    Spot {
+        /// Position.
+        center: Vec3,
+        /// Where it shines, and how the light falls off towards the cone's edge.
+        cone: Cone,
+    },
+}
+
+/// A spot light's cone: full intensity within `cos_inner` of the axis, none beyond
+/// `cos_outer`, and between them glTF's (KHR_lights_punctual) falloff
+/// t², t = clamp((cos θ − cos θ_outer) / max(cos θ_inner − cos θ_outer, 0.001), 0, 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cone {
+    /// Unit direction the spot shines along.
+    pub axis: Vec3,
+    /// Cosine of the angle within which it shines at full intensity.
+    pub cos_inner: f32,
+    /// Cosine of the angle beyond which it is dark (at most `cos_inner`).
+    pub cos_outer: f32,
+}
+
+impl Cone {
+    /// The share of the spot's intensity that leaves along the unit direction `dir`,
+    /// given as its cosine with the axis, for one direction or one per lane.
+    #[inline(always)]
+    pub(crate) fn falloff<R: Real>(&self, cos: R) -> R {
+        let scale = 1.0 / (self.cos_inner - self.cos_outer).max(0.001);
+        let t = (cos - R::splat(self.cos_outer)) * R::splat(scale);
+        let (zero, one) = (R::splat(0.0), R::splat(1.0));
+        // A NaN cosine (a direction of zero length) is dark, as beyond the cone.
+        let t = R::select(t.less(one), t, one);
+        let t = R::select(zero.less(t), t, zero);
+        t * t
+    }
 }
 
 /// A light.
@@ -86,12 +123,26 @@ impl Light {
         }
     }
 
+    /// A spot light at `position` of radiant intensity `intensity` along its axis, shaped
+    /// by `cone`.
+    pub fn spot(position: Vec3, cone: Cone, intensity: Color) -> Self {
+        Light {
+            shape: LightShape::Spot {
+                center: position,
+                cone,
+            },
+            intensity,
+            scale: 1.0,
+        }
+    }
+
     /// The light's centre.
     pub fn center(&self) -> Vec3 {
         match self.shape {
             LightShape::Rect { center, .. }
             | LightShape::Disk { center, .. }
-            | LightShape::Sphere { center, .. } => center,
+            | LightShape::Sphere { center, .. }
+            | LightShape::Spot { center, .. } => center,
         }
     }
 
@@ -110,21 +161,22 @@ impl Light {
                 Some(edge_u.cross(*edge_v).normalize_or_zero())
             }
             LightShape::Disk { normal, .. } => Some(*normal),
-            LightShape::Sphere { .. } => None,
+            LightShape::Sphere { .. } | LightShape::Spot { .. } => None,
         }
     }
 
-    /// For a light drawn as a point (a point light, or any light at size 0): its radiant
-    /// intensity towards the unit direction `dir`, all round for a sphere, intensity × cos θ
-    /// in front of a rectangle or disk. `None` for a light with an area, which paths can
-    /// find by themselves.
+    /// For a light drawn as a point (a point light, a spot, or any light at size 0): its
+    /// radiant intensity towards the unit direction `dir`, all round for a sphere,
+    /// intensity × cos θ in front of a rectangle or disk, intensity × the cone's falloff
+    /// for a spot. `None` for a light with an area, which paths can find by themselves.
     pub fn point_intensity(&self, dir: Vec3) -> Option<Color> {
         if self.area() > 0.0 {
             return None;
         }
-        Some(match self.normal() {
-            Some(n) => self.intensity * dir.dot(n).max(0.0),
-            None => self.intensity,
+        Some(match (&self.shape, self.normal()) {
+            (LightShape::Spot { cone, .. }, _) => self.intensity * cone.falloff(dir.dot(cone.axis)),
+            (_, Some(n)) => self.intensity * dir.dot(n).max(0.0),
+            (_, None) => self.intensity,
         })
     }
 
@@ -135,6 +187,7 @@ impl Light {
             LightShape::Rect { edge_u, edge_v, .. } => edge_u.cross(*edge_v).length(),
             LightShape::Disk { radius, .. } => PI * radius * radius,
             LightShape::Sphere { radius, .. } => 4.0 * PI * radius * radius,
+            LightShape::Spot { .. } => 0.0,
         }
     }
 
@@ -164,11 +217,16 @@ impl Light {
             }
             _ => None,
         };
+        let cone = match &self.shape {
+            LightShape::Spot { cone, .. } => Some(*cone),
+            _ => None,
+        };
         PreparedLight {
             area: self.area(),
             normal: self.normal(),
             radiance: self.radiance(),
             quad,
+            cone,
             light: self.clone(),
         }
     }
@@ -183,6 +241,7 @@ pub struct PreparedLight {
     normal: Option<Vec3>,
     radiance: Color,
     quad: Option<Quad>,
+    cone: Option<Cone>,
 }
 
 impl PreparedLight {
@@ -215,6 +274,7 @@ impl PreparedLight {
     fn has_extent(&self) -> bool {
         match &self.light.shape {
             LightShape::Sphere { radius, .. } => radius * self.light.scale > 0.0,
+            LightShape::Spot { .. } => false,
             _ => self.light.scale > 0.0,
         }
     }
@@ -273,6 +333,7 @@ impl PreparedLight {
                     Some(R::V3::splat(*center))
                 }
             }
+            LightShape::Spot { center, .. } => Some(R::V3::splat(*center)),
             LightShape::Disk { .. } => None,
         }
     }
@@ -286,8 +347,9 @@ impl PreparedLight {
     /// From `p` towards the light's point `q`, for one sample or one per lane: the unit
     /// direction, the distance, the factor on the light's [`PreparedLight::base`]
     /// (A cos θ_l / d² for an area, cos θ_l / d² for a point: per solid angle the area
-    /// density 1/A becomes d² / (A cos θ_l), and L A = intensity), and whether the point
-    /// is seen from its emitting side at a distance.
+    /// density 1/A becomes d² / (A cos θ_l), and L A = intensity; a spot's falloff / d²),
+    /// and whether the point is seen from its emitting side (inside a spot's cone) at a
+    /// distance.
     #[inline(always)]
     pub(crate) fn toward<R: Real>(&self, p: R::V3, q: R::V3) -> (R::V3, R, R, R::Mask) {
         let to = q - p;
@@ -306,7 +368,13 @@ impl PreparedLight {
         } else {
             cos_l / dd
         };
-        (dir, dist, factor, valid)
+        match &self.cone {
+            Some(cone) => {
+                let falloff = cone.falloff(-dir.dot(R::V3::splat(cone.axis)));
+                (dir, dist, factor * falloff, valid & !falloff.less_eq(zero))
+            }
+            None => (dir, dist, factor, valid),
+        }
     }
 
     /// What a sample's radiance over its density is made of: the light's radiance (an
@@ -427,7 +495,7 @@ impl PreparedLight {
                 let sphere = Sphere::new(*center, radius * self.light.scale);
                 Some(sphere.nearest(o, d, time, t_max))
             }
-            LightShape::Disk { .. } => None,
+            LightShape::Disk { .. } | LightShape::Spot { .. } => None,
         }
     }
 

@@ -41,8 +41,18 @@ fn lanes_aim_at_each_samples_point_bit_for_bit() {
         scale: 0.0,
         ..rect.clone()
     };
+    // A spot among the points: those outside its cone are dark.
+    let spot = Light::spot(
+        Vec3::new(0.5, 1.0, 0.0),
+        Cone {
+            axis: Vec3::new(0.0, -1.0, 0.0),
+            cos_inner: 0.8,
+            cos_outer: 0.5,
+        },
+        Color::new(40.0, 30.0, 20.0),
+    );
     const N: usize = 8;
-    for light in [rect, point, tiny].map(|l| l.prepare()) {
+    for light in [rect, point, tiny, spot].map(|l| l.prepare()) {
         assert!(light.aims_at_points());
         let (mut lit, mut dark) = (0, 0);
         for k in 0..64 {
@@ -82,7 +92,11 @@ fn lanes_aim_at_each_samples_point_bit_for_bit() {
             }
         }
         assert!(lit > 100, "{lit} lit");
-        assert!(dark > 0 || light.normal.is_none(), "{dark} from behind");
+        let shaped = light.normal.is_some() || light.cone.is_some();
+        assert!(
+            dark > 0 || !shaped,
+            "{dark} from behind or outside the cone"
+        );
     }
 }
 
@@ -180,4 +194,50 @@ fn rect_light_at_size_zero_is_a_forward_point_light() {
             "size {size}: {e}"
         );
     }
+}
+
+#[test]
+fn a_spot_lights_its_cone_as_gltf_says_and_nothing_outside() {
+    // A spot 2 above the floor, shining straight down, inner cone 20°, outer 30°. On the
+    // floor at angle θ from the axis: E = I f(θ) cos θ / d², d = 2 / cos θ, with
+    // f = 1 inside 20°, 0 beyond 30°, and t², t = (cos θ − cos 30°)/(cos 20° − cos 30°),
+    // between (KHR_lights_punctual's reference falloff).
+    let (inner, outer) = (20f32.to_radians(), 30f32.to_radians());
+    let cone = Cone {
+        axis: -Vec3::Y,
+        cos_inner: inner.cos(),
+        cos_outer: outer.cos(),
+    };
+    let spot = Light::spot(Vec3::new(0.0, 2.0, 0.0), cone, Color::splat(8.0));
+    for degrees in [0.0f32, 10.0, 19.0, 22.0, 25.0, 28.0, 31.0, 60.0] {
+        let theta = degrees.to_radians();
+        let p = Vec3::new(2.0 * theta.tan(), 0.0, 0.0);
+        let d2 = (2.0 / theta.cos()).powi(2);
+        let f = if theta <= inner {
+            1.0
+        } else if theta >= outer {
+            0.0
+        } else {
+            ((theta.cos() - outer.cos()) / (inner.cos() - outer.cos())).powi(2)
+        };
+        let expected = (8.0 * f * theta.cos() / d2) as f64;
+        let got = irradiance(&spot, p, Vec3::Y, 4);
+        assert!(
+            (got - expected).abs() <= 1e-5 * expected.max(1e-3),
+            "at {degrees}°: {got} vs {expected}"
+        );
+        // Photons leave it with the same intensity.
+        let dir = (p - spot.center()).normalize();
+        let i = spot.point_intensity(dir).expect("a point").x;
+        assert!((i - 8.0 * f).abs() < 1e-5, "at {degrees}°: {i}");
+    }
+    // A spot stays a point at every light size: no area, nothing to hit.
+    let big = spot.scaled(3.0).prepare();
+    assert!(!big.can_be_seen() && big.aims_at_points());
+    // Beyond the cone no shadow ray is asked for.
+    assert!(
+        spot.prepare()
+            .sample(Vec3::new(5.0, 0.0, 0.0), Vec2::splat(0.5))
+            .is_none()
+    );
 }

@@ -16,6 +16,7 @@
 
 mod dielectric;
 mod diffuse;
+mod image;
 mod metals;
 mod scatter;
 mod specular;
@@ -24,6 +25,7 @@ mod texture;
 pub use dielectric::{Dielectric, Glazed};
 pub(crate) use dielectric::{Split, split_lanes};
 pub use diffuse::{Brdf, Diffuse};
+pub use image::{ImageMap, Texels, Wrap};
 pub use metals::{METALS, Metal, find_metal, metal, metal_names};
 pub use scatter::{Direct, Interface, Lobe, LobeKind, Part, Scatter, Side};
 pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
@@ -338,7 +340,7 @@ impl Material {
         }
     }
 
-    /// Whether its scattering reads surface coordinates (a checker texture).
+    /// Whether its scattering reads surface coordinates (a checker or an image).
     pub fn uses_uv(&self) -> bool {
         let textured = |t: &Texture| !matches!(t, Texture::Solid(_));
         match self {

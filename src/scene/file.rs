@@ -4,11 +4,12 @@
 //! the span of the offending value and the message can name its line and column.
 
 use super::materials::RawMaterial;
+use super::obj::ModelCamera;
 use super::objects::{BoxDef, MeshDef, Objects, PlaneDef, QuadDef, SphereDef};
 use super::values::{Dir, Ior, Length, NonNegative, Pixels, Positive, Rgb, V3};
 use super::{Location, Scene, SceneDesc, SceneError, SceneSource};
 use crate::camera::Camera;
-use crate::light::{Background, Light, LightShape};
+use crate::light::{Background, Cone, Light, LightShape};
 use crate::math::{Color, Vec3};
 use crate::params::{ParamError, Params};
 use serde::Deserialize;
@@ -144,6 +145,8 @@ struct SceneFile {
     disk_light: Vec<DiskLightDef>,
     #[serde(default)]
     sphere_light: Vec<SphereLightDef>,
+    #[serde(default)]
+    spot_light: Vec<Spanned<SpotLightDef>>,
 }
 
 #[derive(Deserialize)]
@@ -200,6 +203,19 @@ struct DiskLightDef {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
+struct SpotLightDef {
+    position: V3,
+    direction: Dir,
+    /// Degrees from the direction beyond which it is dark.
+    outer_angle: Positive,
+    /// Degrees within which it shines at full intensity (default 0).
+    inner_angle: Option<NonNegative>,
+    color: Option<Rgb>,
+    intensity: NonNegative,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
 struct SphereLightDef {
     center: V3,
     radius: Length,
@@ -235,6 +251,16 @@ const DEFAULT_BACKGROUND: Background = Background::Gradient {
 
 /// Parses scene text into a description; `file` names it in errors.
 pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<SceneDesc, SceneError> {
+    parse_with_camera(text, file, assets).map(|(desc, _)| desc)
+}
+
+/// [`parse`], and the camera of the first model (a glTF file's) that brings one, placed
+/// as its mesh is.
+pub(crate) fn parse_with_camera(
+    text: &str,
+    file: &str,
+    assets: &dyn Assets,
+) -> Result<(SceneDesc, Option<ModelCamera>), SceneError> {
     let src = Source { file, text };
     let f: SceneFile = toml::from_str(text).map_err(|e| match e.span() {
         Some(span) => src.error(span, e.message()),
@@ -252,6 +278,7 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
         rect: f.rect_light,
         disk: f.disk_light,
         sphere: f.sphere_light,
+        spot: f.spot_light,
     };
     let (width, height) = match f.image {
         None => DEFAULT_SIZE,
@@ -263,21 +290,28 @@ pub(crate) fn parse(text: &str, file: &str, assets: &dyn Assets) -> Result<Scene
             (i.width.0, i.height.0)
         }
     };
-    Ok(SceneDesc {
+    // Checked in the order they are written in a file's table of keys.
+    let camera = camera(&src, f.camera)?;
+    let params = scene_params(&src, &f.params)?;
+    // The file's own lights, then those its models bring.
+    let mut all_lights = lights.build(&src)?;
+    all_lights.extend(built.lights);
+    let desc = SceneDesc {
         name: String::new(),
         description: f.description,
-        camera: camera(&src, f.camera)?,
+        camera,
         width,
         height,
-        params: scene_params(&src, &f.params)?,
+        params,
         materials: built.materials,
         objects: built.objects,
-        lights: lights.build(&src)?,
+        lights: all_lights,
         ambient: f.ambient.map_or(Color::ZERO, |a| a.0),
         background: background(&src, f.background)?,
         medium_ior: f.medium_ior.map_or(1.0, |m| m.0),
         warnings: built.warnings,
-    })
+    };
+    Ok((desc, built.camera))
 }
 
 /// The `[params]` table: each set as `--set` would, the error at the key (unknown) or at
@@ -352,6 +386,7 @@ struct LightDefs {
     rect: Vec<Spanned<RectLightDef>>,
     disk: Vec<DiskLightDef>,
     sphere: Vec<SphereLightDef>,
+    spot: Vec<Spanned<SpotLightDef>>,
 }
 
 impl LightDefs {
@@ -398,6 +433,29 @@ impl LightDefs {
                 radius: s.radius.0,
             };
             lights.push(light(shape, intensity(s.color, s.intensity)));
+        }
+        for spot in self.spot {
+            let span = spot.span();
+            let s = spot.into_inner();
+            let (outer, inner) = (s.outer_angle.0, s.inner_angle.map_or(0.0, |a| a.0));
+            if outer > 90.0 || inner >= outer {
+                return Err(src.error(
+                    span,
+                    format!(
+                        "spot_light needs 0 ≤ inner_angle < outer_angle ≤ 90 (degrees), not {inner} and {outer}"
+                    ),
+                ));
+            }
+            let cone = Cone {
+                axis: s.direction.0,
+                cos_inner: inner.to_radians().cos(),
+                cos_outer: outer.to_radians().cos(),
+            };
+            lights.push(Light::spot(
+                s.position.0,
+                cone,
+                intensity(s.color, s.intensity),
+            ));
         }
         Ok(lights)
     }

@@ -283,9 +283,11 @@ impl Scene {
         }
     }
 
-    /// A scene showing the meshes of a model file, OBJ or glTF (its materials, or grey): the camera
-    /// looks at it from the front and a little above, it stands on a checkered floor, and
-    /// one light shines from the upper left.
+    /// A scene showing the meshes of a model file, OBJ or glTF (its materials, or grey),
+    /// standing on a checkered floor. A glTF file's own camera and lights are used where
+    /// it has them (the image shaped to the camera's aspect ratio); otherwise the camera
+    /// looks at the model from the front and a little above, and one light shines from the
+    /// upper left.
     pub fn for_model(path: &Path) -> Result<Scene, SceneError> {
         let full = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         let label = path.display().to_string();
@@ -302,12 +304,13 @@ impl Scene {
         // An error placed in that made-up text is about the model as a whole: it names
         // the model's file, with no line of a text the user never wrote.
         const PROBE: &str = "\0model";
-        let mut desc = file::parse(&probe, PROBE, &assets).map_err(|mut e| {
-            if e.location.file == PROBE {
-                e.location = Location::file(&label);
-            }
-            e
-        })?;
+        let (mut desc, model_camera) =
+            file::parse_with_camera(&probe, PROBE, &assets).map_err(|mut e| {
+                if e.location.file == PROBE {
+                    e.location = Location::file(&label);
+                }
+                e
+            })?;
         let (lo, hi) = desc
             .objects
             .iter()
@@ -332,8 +335,19 @@ impl Scene {
         );
         (desc.width, desc.height) = (960, 540);
         desc.ambient = Color::splat(0.05);
-        // From the front and a little above, on a checkered floor, lit from the upper left.
-        desc.camera = Camera::looking_at(c + Vec3::new(0.0, 0.6 * r, 3.2 * r), c, Vec3::Y, 35.0);
+        // The model's own camera, or one from the front and a little above.
+        match model_camera {
+            Some(own) => {
+                desc.camera = own.camera;
+                if let Some(aspect) = own.aspect {
+                    (desc.width, desc.height) = size_for_aspect(aspect);
+                }
+            }
+            None => {
+                desc.camera =
+                    Camera::looking_at(c + Vec3::new(0.0, 0.6 * r, 3.2 * r), c, Vec3::Y, 35.0);
+            }
+        }
         let floor = Material::Diffuse(Diffuse {
             albedo: crate::material::Texture::Checker {
                 even: Color::new(0.8, 0.8, 0.78),
@@ -351,10 +365,13 @@ impl Scene {
             )),
             floor,
         );
-        desc.lights.push(Light::point(
-            c + Vec3::new(-2.0 * r, 4.0 * r, 3.0 * r),
-            Color::splat(60.0 * r * r),
-        ));
+        // The model's own lights, or one from the upper left.
+        if desc.lights.is_empty() {
+            desc.lights.push(Light::point(
+                c + Vec3::new(-2.0 * r, 4.0 * r, 3.0 * r),
+                Color::splat(60.0 * r * r),
+            ));
+        }
         Ok(Scene::new(desc, SceneSource::File(full)))
     }
 
@@ -442,6 +459,14 @@ impl Scene {
         let surfaces = self.shapes[i].surface_lanes(o, d, time, t, self.object_uses_uv[i])?;
         Some((surfaces, self.object_materials[i]))
     }
+}
+
+/// The image size for a camera made for `aspect` (width over height): as many pixels
+/// as 960 × 540, in that shape (an aspect beyond 1:8 or 8:1 is taken as that).
+fn size_for_aspect(aspect: f32) -> (u32, u32) {
+    let aspect = aspect.clamp(0.125, 8.0);
+    let height = (960.0 * 540.0 / aspect).sqrt().round();
+    ((height * aspect).round() as u32, height as u32)
 }
 
 fn unknown_scene(name: &str) -> SceneError {

@@ -1,7 +1,9 @@
 //! Wavefront OBJ meshes, read with tobj, with errors that name the line.
 
 use super::{Location, SceneError};
+use crate::camera::Camera;
 use crate::geometry::Mesh;
+use crate::light::Light;
 use crate::material::{Conductor, Diffuse, Emissive, Material, Mirror, Texture};
 use crate::math::{Color, Vec3};
 use glam::Vec2;
@@ -27,9 +29,22 @@ pub struct ObjPart {
 pub struct Model {
     /// Its objects.
     pub parts: Vec<ObjPart>,
+    /// Its camera, in the model's own coordinates (a glTF file's; OBJ has none).
+    pub camera: Option<ModelCamera>,
+    /// Its lights, in the model's own coordinates (a glTF file's KHR_lights_punctual).
+    pub lights: Vec<Light>,
     /// What was missing but not fatal (a material library that is not there), one line
     /// each, naming the file.
     pub warnings: Vec<String>,
+}
+
+/// A camera a model file defines.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelCamera {
+    /// Where it stands and looks, with its vertical field of view.
+    pub camera: Camera,
+    /// Width over height of the image it was made for, if the file says.
+    pub aspect: Option<f32>,
 }
 
 /// Parses OBJ text. `read_mtl` fetches a material library named by `mtllib`;
@@ -175,7 +190,12 @@ pub fn load_obj(
             "the OBJ file has no faces",
         ));
     }
-    Ok(Model { parts, warnings })
+    Ok(Model {
+        parts,
+        camera: None,
+        lights: Vec::new(),
+        warnings,
+    })
 }
 
 fn triples(v: &[f32]) -> Vec<Vec3> {

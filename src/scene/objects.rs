@@ -4,10 +4,11 @@
 use super::file::{Assets, Source};
 use super::gltf::load_gltf;
 use super::materials::{MaterialTable, RawMaterial, default_material, material, material_def};
-use super::obj::{ObjPart, load_obj};
+use super::obj::{Model, ModelCamera, load_obj};
 use super::values::{Dir, Length, V3};
 use super::{Material, Object, SceneError};
 use crate::geometry::{Instance, Mesh, Plane, Quad, SMALL_MESH, Shape, SharedMesh, Sphere};
+use crate::light::{Cone, Light, LightShape};
 use crate::math::Vec3;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
@@ -108,6 +109,61 @@ fn beyond_limits(what: &str) -> String {
     )
 }
 
+/// A model's light where its mesh is placed: moved, turned and (its extent) scaled with
+/// it. Its intensity is the file's: scaling a model moves its lights apart without
+/// brightening them.
+fn placed_light(light: &Light, transform: &glam::Affine3A) -> Light {
+    let to = |p: Vec3| Vec3::from(transform.transform_point3(p.into()));
+    let turn = |v: Vec3| Vec3::from(transform.transform_vector3(v.into()));
+    let scale = turn(Vec3::X).length();
+    let shape = match &light.shape {
+        LightShape::Spot { center, cone } => LightShape::Spot {
+            center: to(*center),
+            cone: Cone {
+                axis: turn(cone.axis).normalize(),
+                ..*cone
+            },
+        },
+        LightShape::Sphere { center, radius } => LightShape::Sphere {
+            center: to(*center),
+            radius: radius * scale,
+        },
+        LightShape::Rect {
+            center,
+            edge_u,
+            edge_v,
+        } => LightShape::Rect {
+            center: to(*center),
+            edge_u: turn(*edge_u),
+            edge_v: turn(*edge_v),
+        },
+        LightShape::Disk {
+            center,
+            normal,
+            radius,
+        } => LightShape::Disk {
+            center: to(*center),
+            normal: turn(*normal).normalize(),
+            radius: radius * scale,
+        },
+    };
+    Light {
+        shape,
+        ..light.clone()
+    }
+}
+
+/// A model's camera where its mesh is placed.
+fn placed_camera(c: &ModelCamera, transform: &glam::Affine3A) -> ModelCamera {
+    let to = |p: Vec3| Vec3::from(transform.transform_point3(p.into()));
+    let mut placed = c.clone();
+    // The transform scales uniformly: the view's angle, so its field, is unchanged.
+    placed.camera.position = to(c.camera.position);
+    placed.camera.look_at = to(c.camera.look_at);
+    placed.camera.up = transform.transform_vector3(c.camera.up.into()).into();
+    placed
+}
+
 /// The material objects get when they name none: a mid-grey diffuse.
 const DEFAULT_MATERIAL: &str = "default";
 
@@ -128,10 +184,21 @@ pub(super) struct Objects<'s> {
     spans: Vec<Range<usize>>,
     warnings: Vec<String>,
     // Each model file read once, however often it is placed.
-    models: HashMap<String, Rc<Vec<Part>>>,
+    models: HashMap<String, Rc<Loaded>>,
+    // The lights and the first camera the placed models bring.
+    lights: Vec<Light>,
+    camera: Option<ModelCamera>,
     // Triangles built so far and shared placements, for the memory estimate.
     triangles: u64,
     instances: u64,
+}
+
+/// A model file as its placements use it: its parts, and the lights and camera it
+/// brings, in its own coordinates.
+struct Loaded {
+    parts: Vec<Part>,
+    lights: Vec<Light>,
+    camera: Option<ModelCamera>,
 }
 
 /// A part of a model file, as its placements use it.
@@ -157,7 +224,7 @@ fn shares(placements: usize, triangles: usize) -> bool {
 
 impl Part {
     /// `part` as placed `placements` times.
-    fn new(part: ObjPart, placements: usize) -> Part {
+    fn new(part: super::obj::ObjPart, placements: usize) -> Part {
         let mesh = if shares(placements, part.mesh.triangle_count()) {
             PartMesh::Shared(SharedMesh::new(part.mesh))
         } else {
@@ -186,10 +253,13 @@ impl Part {
 /// the scene's BVH, with margin.
 const BYTES_PER_INSTANCE: u64 = 512;
 
-/// A file's materials (by name) and objects, built.
+/// A file's materials (by name) and objects, built, with the lights and camera its
+/// models brought (placed).
 pub(super) struct Built {
     pub(super) materials: Vec<(String, Material)>,
     pub(super) objects: Vec<Object>,
+    pub(super) lights: Vec<Light>,
+    pub(super) camera: Option<ModelCamera>,
     pub(super) warnings: Vec<String>,
 }
 
@@ -215,6 +285,8 @@ impl<'s> Objects<'s> {
             spans: Vec::new(),
             warnings: Vec::new(),
             models: HashMap::new(),
+            lights: Vec::new(),
+            camera: None,
             triangles: 0,
             instances: 0,
         })
@@ -333,32 +405,49 @@ impl<'s> Objects<'s> {
             let rel = m.file.get_ref();
             // Each placement is counted before it is built (the first before its model's
             // shared trees are), and refused while it is only a count.
-            let parts = match self.models.get(rel) {
-                Some(parts) => {
-                    let parts = Rc::clone(parts);
-                    let sizes = parts.iter().map(|p| (p.triangle_count(), p.is_shared()));
-                    self.account(sizes, false, &span)?;
-                    parts
+            let loaded = match self.models.get(rel) {
+                Some(loaded) => {
+                    let loaded = Rc::clone(loaded);
+                    let sizes = loaded.parts.iter();
+                    self.account(
+                        sizes.map(|p| (p.triangle_count(), p.is_shared())),
+                        false,
+                        &span,
+                    )?;
+                    loaded
                 }
                 None => {
                     let placed = placements.get(rel).copied().unwrap_or(1);
                     let raw = self.model(&m, assets)?;
-                    let sizes = raw.iter().map(|p| {
+                    let sizes = raw.parts.iter().map(|p| {
                         let count = p.mesh.triangle_count();
                         (count, shares(placed, count))
                     });
                     self.account(sizes, true, &span)?;
-                    let parts: Vec<Part> = raw.into_iter().map(|p| Part::new(p, placed)).collect();
-                    let parts = Rc::new(parts);
-                    self.models.insert(rel.clone(), Rc::clone(&parts));
-                    parts
+                    let loaded = Rc::new(Loaded {
+                        parts: raw
+                            .parts
+                            .into_iter()
+                            .map(|p| Part::new(p, placed))
+                            .collect(),
+                        lights: raw.lights,
+                        camera: raw.camera,
+                    });
+                    self.models.insert(rel.clone(), Rc::clone(&loaded));
+                    loaded
                 }
             };
+            let parts = &loaded.parts;
             let transform = glam::Affine3A::from_scale_rotation_translation(
                 glam::Vec3::splat(m.scale.map_or(1.0, |s| s.0)),
                 m.up.then(rotation(m.rotate)),
                 m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
             );
+            self.lights
+                .extend(loaded.lights.iter().map(|l| placed_light(l, &transform)));
+            if self.camera.is_none() {
+                self.camera = loaded.camera.as_ref().map(|c| placed_camera(c, &transform));
+            }
             let velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
             let base = name_or(m.name, "mesh", n);
             let single = parts.len() == 1;
@@ -424,8 +513,8 @@ impl<'s> Objects<'s> {
         .map_err(|e| self.src.error(span.clone(), e))
     }
 
-    /// The parts of the model file a mesh names: OBJ, or glTF by its extension.
-    fn model(&mut self, m: &MeshDef, assets: &dyn Assets) -> Result<Vec<ObjPart>, SceneError> {
+    /// The model file a mesh names: OBJ, or glTF by its extension.
+    fn model(&mut self, m: &MeshDef, assets: &dyn Assets) -> Result<Model, SceneError> {
         let rel = m.file.get_ref().as_str();
         let gltf = match super::input::extension(Path::new(rel)).as_deref() {
             Some("gltf" | "glb") => true,
@@ -450,13 +539,13 @@ impl<'s> Objects<'s> {
         let label = assets.label(rel);
         let dir = Path::new(rel).parent().unwrap_or(Path::new(""));
         let beside = |name: &str| assets.read(&dir.join(name).to_string_lossy());
-        if gltf {
-            load_gltf(&bytes, &label, &beside)
+        let mut model = if gltf {
+            load_gltf(&bytes, &label, &beside)?
         } else {
-            let model = load_obj(&bytes, &label, &|name| beside(name).ok())?;
-            self.warnings.extend(model.warnings);
-            Ok(model.parts)
-        }
+            load_obj(&bytes, &label, &|name| beside(name).ok())?
+        };
+        self.warnings.append(&mut model.warnings);
+        Ok(model)
     }
 
     /// The materials and the objects, once every object is checked to lie within the
@@ -476,6 +565,8 @@ impl<'s> Objects<'s> {
         Ok(Built {
             materials: self.materials.list,
             objects: self.objects,
+            lights: self.lights,
+            camera: self.camera,
             warnings: self.warnings,
         })
     }

@@ -1,0 +1,177 @@
+//! glTF 2.0 models (`.gltf` with its buffers, or one `.glb`), read with the gltf crate:
+//! the triangles of every mesh the default scene places, in world space, each
+//! primitive's metallic-roughness material mapped to the closest raylab material (with
+//! its base-colour and emissive textures), the scene's camera and its
+//! KHR_lights_punctual lights.
+
+mod materials;
+mod nodes;
+
+use super::obj::Model;
+use super::{Location, SceneError};
+use base64::Engine as _;
+use std::borrow::Cow;
+
+/// The extensions a file may require: those whose data raylab reads (the rest are refused
+/// by name).
+const READ_EXTENSIONS: [&str; 4] = [
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+];
+
+/// Reads a file the glTF names by a relative URI (a buffer, an image): its bytes, or why
+/// not.
+type ReadFile<'a> = &'a dyn Fn(&str) -> Result<Vec<u8>, String>;
+
+/// Parses a glTF file: `data` is the `.gltf` JSON or the `.glb` container; `read_file`
+/// fetches a buffer or an image the file names by a relative URI; `file` names it in
+/// messages. The model's parts, camera and lights are in its own coordinates.
+pub fn load_gltf(data: &[u8], file: &str, read_file: ReadFile) -> Result<Model, SceneError> {
+    let error = |message: String| SceneError::new(Location::file(file), message);
+    // A .gltf saved by a Windows editor may start with a byte-order mark.
+    let data = super::input::without_bom(data);
+    let unchecked =
+        gltf::Gltf::from_slice_without_validation(data).map_err(|e| gltf_error(file, e))?;
+    // Before validating: a compressed mesh has no plain data, and validation would call
+    // it missing rather than say why.
+    if let Some(extension) = unchecked
+        .extensions_required()
+        .find(|e| !READ_EXTENSIONS.contains(e))
+    {
+        let what = match extension {
+            "KHR_draco_mesh_compression" => " (Draco-compressed meshes)",
+            "EXT_meshopt_compression" => " (meshoptimizer-compressed buffers)",
+            "KHR_mesh_quantization" => " (quantized vertex attributes)",
+            _ => "",
+        };
+        return Err(error(format!(
+            "needs the glTF extension {extension}{what}, which raylab does not read; export the model without it"
+        )));
+    }
+    // gltf-json 1.4's validator indexes the accessors by each POSITION without checking
+    // it: checked here first, so that it says what is wrong rather than panicking.
+    let json = unchecked.as_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+            if let Some(index) = primitive.attributes.get(&position)
+                && index.value() >= json.accessors.len()
+            {
+                return Err(error(format!(
+                    "invalid glTF: meshes[{m}].primitives[{p}].attributes.POSITION is accessor {}, but the file has {}",
+                    index.value(),
+                    json.accessors.len()
+                )));
+            }
+        }
+    }
+    let gltf::Gltf { document, blob } = unchecked;
+    let document =
+        gltf::Document::from_json(document.into_json()).map_err(|e| gltf_error(file, e))?;
+    let gltf = gltf::Gltf { document, blob };
+    // The .glb's own chunk is borrowed, not copied: it may be most of a large file.
+    let mut buffers: Vec<Cow<[u8]>> = Vec::new();
+    for buffer in gltf.buffers() {
+        let bytes = match buffer.source() {
+            gltf::buffer::Source::Bin => Cow::Borrowed(gltf.blob.as_deref().ok_or_else(|| {
+                error("a buffer refers to the .glb's binary chunk, which is missing".into())
+            })?),
+            gltf::buffer::Source::Uri(uri) => Cow::Owned(
+                read_uri(uri, read_file)
+                    .map_err(|e| error(format!("buffer {}: {e}", buffer.index())))?,
+            ),
+        };
+        if bytes.len() < buffer.length() {
+            return Err(error(format!(
+                "buffer {} holds {} bytes, fewer than the {} it declares",
+                buffer.index(),
+                bytes.len(),
+                buffer.length()
+            )));
+        }
+        buffers.push(bytes);
+    }
+    // The gltf crate checks indices and slices its buffers with bounds checks; a panic
+    // left in it on malformed input is reported as an error in the file.
+    let model = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        nodes::collect(&gltf, &buffers, file, read_file)
+    }))
+    .map_err(|_| error("the glTF reader failed on this file".into()))??;
+    if model.parts.is_empty() {
+        return Err(error("the glTF file has no triangles".into()));
+    }
+    Ok(model)
+}
+
+/// The bytes a buffer's or image's URI names: a base64 `data:` URI's payload, or a file
+/// beside the glTF (its URI percent-decoded, as `my%20texture.png` names
+/// `my texture.png`).
+fn read_uri(uri: &str, read_file: ReadFile) -> Result<Vec<u8>, String> {
+    match uri.strip_prefix("data:") {
+        Some(data_uri) => decode_data_uri(data_uri).ok_or_else(|| "not a base64 data URI".into()),
+        None => {
+            let name = percent_decoded(uri);
+            read_file(&name).map_err(|e| format!("cannot read `{name}`: {e}"))
+        }
+    }
+}
+
+/// `uri` with each `%XX` escape replaced by its byte (an escape that is not two hex digits
+/// is kept as written).
+fn percent_decoded(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = bytes
+            .get(i + 1..i + 3)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (bytes[i], hex) {
+            (b'%', Some(byte)) => {
+                out.push(byte);
+                i += 3;
+            }
+            (b, _) => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// One glTF error as one line, at the line and column of a JSON error.
+fn gltf_error(file: &str, e: gltf::Error) -> SceneError {
+    match e {
+        gltf::Error::Deserialize(json) => SceneError::new(
+            Location {
+                file: file.to_string(),
+                line_col: (json.line() > 0).then_some((json.line(), Some(json.column()))),
+            },
+            format!("not valid glTF JSON: {json}"),
+        ),
+        gltf::Error::Validation(errors) => {
+            let (path, what) = errors
+                .first()
+                .map_or((String::new(), String::new()), |(p, e)| {
+                    (p.to_string(), e.to_string())
+                });
+            SceneError::new(
+                Location::file(file),
+                format!("invalid glTF: {path}: {what}"),
+            )
+        }
+        other => SceneError::new(Location::file(file), format!("not a glTF file: {other}")),
+    }
+}
+
+/// The bytes of a `data:` URI's payload (after `data:`), if it is base64.
+fn decode_data_uri(uri: &str) -> Option<Vec<u8>> {
+    let (_, payload) = uri.split_once(";base64,")?;
+    base64::engine::general_purpose::STANDARD
+        .decode(payload)
+        .ok()
+}
