@@ -63,6 +63,7 @@ fn runtime(e: impl Into<anyhow::Error>) -> anyhow::Error {
     after_help = "Without a subcommand, opens the previewer window on SCENE (or the last scene).\n\
                   Scenes are TOML files (see docs/scenes.md), models (OBJ, glTF 2.0) or built-in names; `raylab scenes` lists them.\n\
                   RAYLAB_CLOSE_AFTER=SECONDS closes the window after that long (for scripted runs).\n\
+                  RAYLAB_FILE_DIALOG=raylab makes Open and Save as use raylab's own file dialog, not the system's.\n\
                   RUST_LOG=info (or debug, trace, raylab=debug, ...) logs what raylab does to stderr.",
     args_conflicts_with_subcommands = true
 )]
@@ -220,6 +221,7 @@ fn window(cli: Cli) -> Result<()> {
         threads: threads.map(|t| t as usize),
         close_after,
         tev,
+        system_dialogs: true,
         ..Default::default()
     };
     raylab::app::run(options).map_err(|e| {

@@ -1,9 +1,10 @@
-//! A file browser drawn with egui (Open…, Save as…), and snapshot file names.
+//! raylab's own file dialog, drawn with egui (Open…, Save as…), and snapshot file names.
 //!
-//! Written here rather than taken from a crate: the desktop-portal dialogs need a session
-//! service that minimal desktops and Xvfb lack, and egui_file 0.29 (the one for egui 0.37)
-//! has neither shortcuts to the home folder nor a question before replacing a file, the
-//! two things this one adds.
+//! The system's dialog is used where there is one (system_dialog.rs); this one is for
+//! where there is none (minimal desktops, Xvfb) and for the tests, which must not open a
+//! window of the system's. Written here rather than taken from a crate: egui_file 0.29
+//! (the one for egui 0.37) has neither shortcuts to the home folder nor a question before
+//! replacing a file, the two things this one adds.
 
 use crate::render::output::{safe_file_stem, unused_png};
 use egui::{Key, RichText};

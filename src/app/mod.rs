@@ -23,6 +23,7 @@ mod sheet;
 mod side;
 mod snapshot;
 mod state;
+mod system_dialog;
 mod tev;
 mod toasts;
 mod toolbar;
@@ -36,7 +37,6 @@ use crate::scene::{BUILTIN_SCENES, Scene};
 use compare::Compare;
 use controls::{Controls, controls_ui};
 use egui::{CentralPanel, Panel};
-use files::FileDialog;
 use history::History;
 use instruments::Instruments;
 use lecture::Lecture;
@@ -68,6 +68,10 @@ pub struct AppOptions {
     pub persist: bool,
     /// Stream the image into tev at this address (HOST:PORT) from the start.
     pub tev: Option<String>,
+    /// Open… and Save as… use the system's file dialogs where it has them (the binary
+    /// turns this on; tests and scripted windows keep raylab's own, which is the same
+    /// everywhere).
+    pub system_dialogs: bool,
 }
 
 impl Default for AppOptions {
@@ -80,6 +84,7 @@ impl Default for AppOptions {
             close_after: None,
             persist: true,
             tev: None,
+            system_dialogs: false,
         }
     }
 }
@@ -117,7 +122,9 @@ pub struct RaylabApp {
     loader: Loader,
     lecture: Lecture,
     sheet: Option<SheetForm>,
-    dialog: Option<FileDialog>,
+    dialog: Option<toolbar::Dialog>,
+    /// Whether file dialogs are the system's (see system_dialog.rs).
+    system_dialogs: bool,
     toasts: Toasts,
     // The last scene error, shown above the image.
     error: Option<String>,
@@ -247,6 +254,7 @@ impl RaylabApp {
             .tev
             .as_deref()
             .map(|address| tev::start(&cc.egui_ctx, address));
+        let system_dialogs = options.system_dialogs && system_dialog::available();
         Ok(RaylabApp {
             close_at: options.close_after.map(|d| Instant::now() + d),
             tev,
@@ -261,6 +269,7 @@ impl RaylabApp {
             lecture: Lecture::default(),
             sheet: None,
             dialog: None,
+            system_dialogs,
             toasts,
             error,
             hall: Hall::default(),

@@ -3,6 +3,7 @@
 
 use super::RaylabApp;
 use super::files::{Choice, FileDialog, Purpose, snapshot_path};
+use super::system_dialog::SystemDialog;
 use crate::scene::BUILTIN_SCENES;
 use egui::{Key, KeyboardShortcut, Modifiers, RichText};
 use std::path::{Path, PathBuf};
@@ -70,7 +71,7 @@ impl RaylabApp {
                 .on_hover_text("Choose where, and PNG or EXR.")
                 .clicked()
             {
-                self.save_as_dialog();
+                self.save_as_dialog(ui.ctx());
             }
             ui.separator();
             if ui
@@ -129,7 +130,7 @@ impl RaylabApp {
             .response
             .on_hover_text("Built-in scenes, the files in scenes/, or Open… (Ctrl+O). You can also drop a .toml or .obj file on the window.");
         match chosen {
-            Some(r) if r.is_empty() => self.open_dialog(),
+            Some(r) if r.is_empty() => self.open_dialog(ui.ctx()),
             Some(r) => self.open_scene(&r),
             None => {}
         }
@@ -214,7 +215,7 @@ impl RaylabApp {
             self.save_snapshot();
         }
         if open {
-            self.open_dialog();
+            self.open_dialog(ctx);
         }
         if ctx.egui_wants_keyboard_input() || self.dialog.is_some() {
             return;
@@ -257,14 +258,14 @@ impl RaylabApp {
         }
     }
 
-    fn open_dialog(&mut self) {
+    fn open_dialog(&mut self, ctx: &egui::Context) {
         let cwd = std::env::current_dir().unwrap_or_default();
         let dir = cwd.join(&self.options.scenes_dir);
         let dir = if dir.is_dir() { dir } else { cwd };
-        self.dialog = Some(FileDialog::new(Purpose::Open, dir, String::new()));
+        self.dialog = Some(self.file_dialog(ctx, Purpose::Open, dir, String::new()));
     }
 
-    fn save_as_dialog(&mut self) {
+    fn save_as_dialog(&mut self, ctx: &egui::Context) {
         let dir = &self.options.snapshot_dir;
         let dir = if dir.is_dir() {
             dir.clone()
@@ -274,15 +275,43 @@ impl RaylabApp {
         let name = snapshot_path(&dir, &self.scene.name, SystemTime::now())
             .file_name()
             .map_or("image.png".into(), |n| n.to_string_lossy().into_owned());
-        self.dialog = Some(FileDialog::new(Purpose::SaveAs, dir, name));
+        self.dialog = Some(self.file_dialog(ctx, Purpose::SaveAs, dir, name));
+    }
+
+    /// The system's file dialog where there is one, else raylab's own.
+    fn file_dialog(
+        &self,
+        ctx: &egui::Context,
+        purpose: Purpose,
+        dir: PathBuf,
+        name: String,
+    ) -> Dialog {
+        if self.system_dialogs {
+            Dialog::System(SystemDialog::open(ctx, purpose, &dir, &name))
+        } else {
+            Dialog::Own(FileDialog::new(purpose, dir, name))
+        }
     }
 
     pub(super) fn dialog_ui(&mut self, ctx: &egui::Context) {
-        let Some(dialog) = &mut self.dialog else {
-            return;
+        let (purpose, choice) = match &mut self.dialog {
+            None => return,
+            Some(Dialog::Own(own)) => (own.purpose, own.ui(ctx)),
+            Some(Dialog::System(system)) => match system.ui(ctx) {
+                Some(choice) => (system.purpose(), choice),
+                None => {
+                    // It failed to appear, or the user asked for raylab's: raylab's
+                    // from now on.
+                    log::info!("the system's file dialog gave way to raylab's");
+                    self.system_dialogs = false;
+                    if let Some(Dialog::System(system)) = self.dialog.take() {
+                        self.dialog = Some(Dialog::Own(system.instead()));
+                    }
+                    return;
+                }
+            },
         };
-        let purpose = dialog.purpose;
-        match dialog.ui(ctx) {
+        match choice {
             Choice::Pending => {}
             Choice::Cancelled => self.dialog = None,
             Choice::File(path) => {
@@ -350,6 +379,14 @@ fn scene_files(dir: &Path) -> Vec<PathBuf> {
 /// The pixel of `frame` at image position `hover` (0..1 across and down): its coordinates,
 /// linear radiance and displayed sRGB value at `exposure`. None for a preview (its values
 /// are blocks, not pixels) or off the image.
+/// An open file dialog: the system's, or raylab's own.
+pub(super) enum Dialog {
+    /// The platform's (see system_dialog.rs).
+    System(SystemDialog),
+    /// Drawn by raylab with egui.
+    Own(FileDialog),
+}
+
 pub(crate) fn pixel_readout(
     frame: &crate::render::Frame,
     hover: Option<egui::Vec2>,
