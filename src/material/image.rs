@@ -23,16 +23,10 @@ impl Texels {
         (texels > 0 && rgb.len() == 3 * texels).then_some(Texels { width, height, rgb })
     }
 
-    /// Its width and height in texels.
-    pub fn size(&self) -> (u32, u32) {
-        (self.width, self.height)
-    }
-
-    /// The texel at column `x`, row `y` (both within the picture), in linear RGB.
+    /// The texel at column `x`, row `y` (both within the picture), in linear RGB by `lut`.
     #[inline]
-    fn linear(&self, x: usize, y: usize) -> Color {
+    fn linear(&self, lut: &[f32; 256], x: usize, y: usize) -> Color {
         let i = 3 * (y * self.width as usize + x);
-        let lut = &*SRGB_TO_LINEAR;
         Color::new(
             lut[self.rgb[i] as usize],
             lut[self.rgb[i + 1] as usize],
@@ -119,8 +113,9 @@ impl ImageMap {
         let [wrap_u, wrap_v] = self.wrap;
         let (xa, xb) = (wrap_u.index(x0, w), wrap_u.index(x0.saturating_add(1), w));
         let (ya, yb) = (wrap_v.index(y0, h), wrap_v.index(y0.saturating_add(1), h));
-        let top = t.linear(xa, ya) * (1.0 - fx) + t.linear(xb, ya) * fx;
-        let bottom = t.linear(xa, yb) * (1.0 - fx) + t.linear(xb, yb) * fx;
+        let lut = &*SRGB_TO_LINEAR;
+        let top = t.linear(lut, xa, ya) * (1.0 - fx) + t.linear(lut, xb, ya) * fx;
+        let bottom = t.linear(lut, xa, yb) * (1.0 - fx) + t.linear(lut, xb, yb) * fx;
         (top * (1.0 - fy) + bottom * fy) * self.factor
     }
 }
