@@ -74,12 +74,18 @@ impl SystemDialog {
             let asked = Instant::now();
             let dialog = rfd::AsyncFileDialog::new().set_directory(&dir);
             let file = match purpose {
-                Purpose::Open => pollster::block_on(
-                    dialog
+                Purpose::Open => {
+                    let mut open = dialog
                         .set_title("Open a scene or model")
-                        .add_filter("Scenes and models", &["toml", "obj", "gltf", "glb"])
-                        .pick_file(),
-                ),
+                        .add_filter("Scenes and models", &["toml", "obj", "gltf", "glb"]);
+                    // zenity (rfd's fallback on Linux) starts where its file name points
+                    // and ignores the folder; the portal, Windows and macOS take the folder
+                    // (and Windows would show a file name given for opening).
+                    if cfg!(not(any(target_os = "windows", target_os = "macos"))) {
+                        open = open.set_file_name(format!("{}/", dir.display()));
+                    }
+                    pollster::block_on(open.pick_file())
+                }
                 Purpose::SaveAs => pollster::block_on(
                     dialog
                         .set_title("Save the image as…")
