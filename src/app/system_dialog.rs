@@ -42,6 +42,17 @@ fn on_path(name: &str) -> bool {
         .is_some_and(|paths| std::env::split_paths(&paths).any(|dir| dir.join(name).is_file()))
 }
 
+/// Whether rfd will fall back to zenity: on Linux and the BSDs, where there is no session
+/// bus to reach a desktop portal on (no `DBUS_SESSION_BUS_ADDRESS`, no
+/// `$XDG_RUNTIME_DIR/bus`).
+fn zenity_likely() -> bool {
+    let runtime_bus =
+        std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|dir| Path::new(&dir).join("bus").exists());
+    cfg!(not(any(target_os = "windows", target_os = "macos")))
+        && std::env::var_os("DBUS_SESSION_BUS_ADDRESS").is_none()
+        && !runtime_bus
+}
+
 /// A system file dialog that is open: its answer, once the user gives it.
 pub(crate) struct SystemDialog {
     purpose: Purpose,
@@ -86,14 +97,22 @@ impl SystemDialog {
                     }
                     pollster::block_on(open.pick_file())
                 }
-                Purpose::SaveAs => pollster::block_on(
-                    dialog
-                        .set_title("Save the image as…")
-                        .set_file_name(&name)
-                        .add_filter("PNG", &["png"])
-                        .add_filter("OpenEXR (linear radiance)", &["exr"])
-                        .save_file(),
-                ),
+                Purpose::SaveAs => {
+                    // zenity again: the folder goes in the name, where no portal answers.
+                    let name = if zenity_likely() {
+                        dir.join(&name).display().to_string()
+                    } else {
+                        name
+                    };
+                    pollster::block_on(
+                        dialog
+                            .set_title("Save the image as…")
+                            .set_file_name(name)
+                            .add_filter("PNG", &["png"])
+                            .add_filter("OpenEXR (linear radiance)", &["exr"])
+                            .save_file(),
+                    )
+                }
             };
             // The window may have closed meanwhile: then no one is asking.
             let _ = send.send((file.map(|f| f.path().to_path_buf()), asked.elapsed()));

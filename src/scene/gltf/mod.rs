@@ -175,3 +175,18 @@ fn decode_data_uri(uri: &str) -> Option<Vec<u8>> {
         .decode(payload)
         .ok()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::percent_decoded;
+
+    #[test]
+    fn uris_are_percent_decoded_as_exporters_encode_them() {
+        assert_eq!(percent_decoded("my%20texture.png"), "my texture.png");
+        assert_eq!(percent_decoded("caf%C3%A9/%41.jpg"), "café/A.jpg");
+        // What is not an escape stays as written.
+        assert_eq!(percent_decoded("100%.png"), "100%.png");
+        assert_eq!(percent_decoded("a%zz%2"), "a%zz%2");
+        assert_eq!(percent_decoded("plain.bin"), "plain.bin");
+    }
+}
