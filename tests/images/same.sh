@@ -3,13 +3,13 @@
 # every scene in scenes/ and benches/ at 160x90, 4 spp, in six light transports and
 # sampling variants (EXR, compared pixel by pixel: an EXR's header records when and how
 # long it rendered), and every lecture slide at 320x180 with its caption (PNG, compared
-# byte by byte).
+# pixel by pixel: its text chunks name the build's version and commit).
 #
 #     tests/images/same.sh OLD_RAYLAB NEW_RAYLAB
 #
 # Build the old one in a target dir of its own, e.g.
 #     git worktree add /tmp/old HEAD~1 && (cd /tmp/old && cargo build --release)
-# Needs Python 3 with `pip install OpenEXR numpy`. Exits 1 if any pair differs.
+# Needs Python 3 with `pip install OpenEXR numpy pillow`. Exits 1 if any pair differs.
 set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: $0 OLD_RAYLAB NEW_RAYLAB" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
