@@ -119,6 +119,17 @@ impl Camera {
         }
     }
 
+    /// This camera moved and turned by `t`, a transform that scales uniformly (a placed
+    /// model's): the view's angles, so its field of view, are unchanged.
+    pub(crate) fn transformed(&self, t: &glam::Affine3A) -> Camera {
+        Camera {
+            position: t.transform_point3(self.position.into()).into(),
+            look_at: t.transform_point3(self.look_at.into()).into(),
+            up: t.transform_vector3(self.up.into()).into(),
+            fov_deg: self.fov_deg,
+        }
+    }
+
     /// Checks what makes a view: `position` and `look_at` apart and within the scene's
     /// limits, `up` not parallel to the view direction, a field of view between 0 and 180
     /// degrees. Scene files and sidecars alike pass through here.

@@ -146,6 +146,50 @@ impl Light {
         }
     }
 
+    /// This light moved, turned and (its extent) scaled by `t`, a transform that scales
+    /// uniformly (a placed model's). Its intensity is kept: scaling a model moves its
+    /// lights apart without brightening them.
+    pub(crate) fn transformed(&self, t: &glam::Affine3A) -> Light {
+        let to = |p: Vec3| Vec3::from(t.transform_point3(p.into()));
+        let turn = |v: Vec3| Vec3::from(t.transform_vector3(v.into()));
+        let scale = turn(Vec3::X).length();
+        let shape = match &self.shape {
+            LightShape::Spot { center, cone } => LightShape::Spot {
+                center: to(*center),
+                cone: Cone {
+                    axis: turn(cone.axis).normalize(),
+                    ..*cone
+                },
+            },
+            LightShape::Sphere { center, radius } => LightShape::Sphere {
+                center: to(*center),
+                radius: radius * scale,
+            },
+            LightShape::Rect {
+                center,
+                edge_u,
+                edge_v,
+            } => LightShape::Rect {
+                center: to(*center),
+                edge_u: turn(*edge_u),
+                edge_v: turn(*edge_v),
+            },
+            LightShape::Disk {
+                center,
+                normal,
+                radius,
+            } => LightShape::Disk {
+                center: to(*center),
+                normal: turn(*normal).normalize(),
+                radius: radius * scale,
+            },
+        };
+        Light {
+            shape,
+            ..self.clone()
+        }
+    }
+
     /// This light drawn at size `s`.
     pub fn scaled(&self, s: f32) -> Light {
         Light {

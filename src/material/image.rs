@@ -41,18 +41,9 @@ impl std::fmt::Debug for Texels {
     }
 }
 
-/// The sRGB transfer function undone for each byte: c/12.92 up to 0.04045, else
-/// ((c + 0.055)/1.055)^2.4, with c = byte/255.
-static SRGB_TO_LINEAR: LazyLock<[f32; 256]> = LazyLock::new(|| {
-    std::array::from_fn(|b| {
-        let c = b as f32 / 255.0;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    })
-});
+/// The sRGB transfer function undone for each byte (`srgb_decode` of byte/255).
+static SRGB_TO_LINEAR: LazyLock<[f32; 256]> =
+    LazyLock::new(|| std::array::from_fn(|b| crate::render::srgb_decode(b as f32 / 255.0)));
 
 /// What a texture does beyond its edges along one direction (glTF's sampler wrap modes).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -36,6 +36,7 @@ pub use png_file::{SIDECAR_KEY, embedded_sidecar};
 pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
 pub use snapshot::{PassError, ReferenceErrors, Rendered, Sidecar, SidecarError, sidecar_path};
+pub(crate) use srgb::srgb_decode;
 pub use srgb::{srgb_encode, srgb8};
 pub use text::with_caption;
 

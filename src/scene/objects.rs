@@ -8,7 +8,7 @@ use super::obj::{Model, ModelCamera, load_obj};
 use super::values::{Dir, Length, V3};
 use super::{Material, Object, SceneError};
 use crate::geometry::{Instance, Mesh, Plane, Quad, SMALL_MESH, Shape, SharedMesh, Sphere};
-use crate::light::{Cone, Light, LightShape};
+use crate::light::Light;
 use crate::math::Vec3;
 use serde::Deserialize;
 use std::collections::{BTreeMap, HashMap};
@@ -107,61 +107,6 @@ fn beyond_limits(what: &str) -> String {
         "{what} reaches beyond ±{:e} scene units, the largest coordinate raylab handles",
         crate::geometry::MAX_COORDINATE
     )
-}
-
-/// A model's light where its mesh is placed: moved, turned and (its extent) scaled with
-/// it. Its intensity is the file's: scaling a model moves its lights apart without
-/// brightening them.
-fn placed_light(light: &Light, transform: &glam::Affine3A) -> Light {
-    let to = |p: Vec3| Vec3::from(transform.transform_point3(p.into()));
-    let turn = |v: Vec3| Vec3::from(transform.transform_vector3(v.into()));
-    let scale = turn(Vec3::X).length();
-    let shape = match &light.shape {
-        LightShape::Spot { center, cone } => LightShape::Spot {
-            center: to(*center),
-            cone: Cone {
-                axis: turn(cone.axis).normalize(),
-                ..*cone
-            },
-        },
-        LightShape::Sphere { center, radius } => LightShape::Sphere {
-            center: to(*center),
-            radius: radius * scale,
-        },
-        LightShape::Rect {
-            center,
-            edge_u,
-            edge_v,
-        } => LightShape::Rect {
-            center: to(*center),
-            edge_u: turn(*edge_u),
-            edge_v: turn(*edge_v),
-        },
-        LightShape::Disk {
-            center,
-            normal,
-            radius,
-        } => LightShape::Disk {
-            center: to(*center),
-            normal: turn(*normal).normalize(),
-            radius: radius * scale,
-        },
-    };
-    Light {
-        shape,
-        ..light.clone()
-    }
-}
-
-/// A model's camera where its mesh is placed.
-fn placed_camera(c: &ModelCamera, transform: &glam::Affine3A) -> ModelCamera {
-    let to = |p: Vec3| Vec3::from(transform.transform_point3(p.into()));
-    let mut placed = c.clone();
-    // The transform scales uniformly: the view's angle, so its field, is unchanged.
-    placed.camera.position = to(c.camera.position);
-    placed.camera.look_at = to(c.camera.look_at);
-    placed.camera.up = transform.transform_vector3(c.camera.up.into()).into();
-    placed
 }
 
 /// The material objects get when they name none: a mid-grey diffuse.
@@ -444,9 +389,12 @@ impl<'s> Objects<'s> {
                 m.translate.map_or(glam::Vec3::ZERO, |t| t.0.into()),
             );
             self.lights
-                .extend(loaded.lights.iter().map(|l| placed_light(l, &transform)));
+                .extend(loaded.lights.iter().map(|l| l.transformed(&transform)));
             if self.camera.is_none() {
-                self.camera = loaded.camera.as_ref().map(|c| placed_camera(c, &transform));
+                self.camera = loaded.camera.as_ref().map(|c| ModelCamera {
+                    camera: c.camera.transformed(&transform),
+                    ..c.clone()
+                });
             }
             let velocity = m.velocity.map_or(Vec3::ZERO, |v| v.0);
             let base = name_or(m.name, "mesh", n);

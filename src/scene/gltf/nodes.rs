@@ -99,9 +99,6 @@ impl Walk<'_> {
     /// A node's camera: glTF's looks down its node's −z with +y up. Kept if its index is
     /// the lowest yet (the file's first camera, as glTF viewers choose).
     fn camera(&mut self, camera: &gltf::Camera, world: &Mat4) {
-        let name = camera
-            .name()
-            .map_or_else(|| format!("camera{}", camera.index()), str::to_string);
         if self
             .camera
             .as_ref()
@@ -109,6 +106,9 @@ impl Walk<'_> {
         {
             return;
         }
+        let name = camera
+            .name()
+            .map_or_else(|| format!("camera{}", camera.index()), str::to_string);
         let gltf::camera::Projection::Perspective(p) = camera.projection() else {
             self.warnings.push(format!(
                 "{}: camera `{name}` is orthographic, which raylab does not render: left out",
