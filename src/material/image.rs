@@ -91,7 +91,7 @@ impl ImageMap {
     /// The colour at surface coordinates `uv`: the four texels around it weighed by
     /// bilinear interpolation, texel centres at half-integers. Coordinates that are not
     /// finite read as 0.
-    #[inline]
+    #[inline(never)]
     pub fn eval(&self, uv: Vec2) -> Color {
         let t = &*self.texels;
         let (w, h) = (t.width as usize, t.height as usize);
