@@ -44,7 +44,8 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.get_by_label("Point on the lens");
 }
 
-/// Steps until slide `i` is shown: its scene loaded, its caption up.
+/// Steps until slide `i` is shown: its scene loaded, its caption up, a frame of its
+/// picture on screen (the strip's words wait for it).
 fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
     let (title, scene) = (LECTURE[i].title, LECTURE[i].scene);
     step_until(h, title, |a| {
@@ -53,7 +54,23 @@ fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
             && a.slide() == Some(i)
             && a.scene().source.reference() == format!("builtin:{scene}")
             && a.caption().is_some()
+            && a.latest_frame()
+                .is_some_and(|f| f.generation == a.engine().generation())
     });
+}
+
+/// `n` presses of `key` that land in one frame, then its release.
+fn presses_in_one_frame(h: &mut Harness<'static, RaylabApp>, key: egui::Key, n: usize) {
+    for pressed in [vec![true; n], vec![false]].concat() {
+        h.input_mut().events.push(egui::Event::Key {
+            key,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+            repeat: false,
+            physical_key: None,
+        });
+    }
+    h.step();
 }
 
 #[test]
@@ -80,22 +97,10 @@ fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
     assert_eq!(h.state().slide(), Some(0));
     // Three presses that land in one frame (a quick clicker, xdotool) step three slides.
     // (The harness's own key_press gives each event a frame of its own.)
-    let three_in_one_frame = |h: &mut Harness<'static, RaylabApp>, key| {
-        for pressed in [true, true, true, false] {
-            h.input_mut().events.push(egui::Event::Key {
-                key,
-                pressed,
-                modifiers: egui::Modifiers::NONE,
-                repeat: false,
-                physical_key: None,
-            });
-        }
-        h.step();
-    };
-    three_in_one_frame(&mut h, egui::Key::PageDown);
+    presses_in_one_frame(&mut h, egui::Key::PageDown, 3);
     assert_eq!(h.state().slide(), Some(3));
     shows(&mut h, 3);
-    three_in_one_frame(&mut h, egui::Key::PageUp);
+    presses_in_one_frame(&mut h, egui::Key::PageUp, 3);
     assert_eq!(h.state().slide(), Some(0));
     shows(&mut h, 0);
     // The caption is on screen, in the strip below the image.
@@ -105,6 +110,56 @@ fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
     h.step();
     assert!(!h.state().presenting(), "Esc leaves");
     h.get_by_label("Instruments");
+}
+
+#[test]
+fn a_slides_title_and_caption_come_with_its_picture() {
+    // In presentation mode the strip names the slide whose picture is on screen: from Page
+    // Down until the next slide's first frame it keeps the last slide's title and caption.
+    // (It took the new title at the key press, and the new caption when the scene arrived,
+    // a frame or more before the new picture.) Slides 12 and 13 share their scene.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    h.key_press(egui::Key::F5);
+    h.step();
+    let title = |i: usize| format!("{} / {}  {}", i + 1, LECTURE.len(), LECTURE[i].title);
+    let shown = |h: &Harness<'static, RaylabApp>, i: usize| h.query_by_label(&title(i)).is_some();
+    let mut from = 10;
+    h.key_press(egui::Key::PageDown);
+    wait_for_slide(&mut h, 0);
+    presses_in_one_frame(&mut h, egui::Key::PageDown, from);
+    wait_for_slide(&mut h, from);
+    h.run_steps(2);
+    for to in [from + 1, from + 2, from + 3] {
+        assert!(shown(&h, from), "{} before Page Down", title(from));
+        let asked = h.state().engine().generation();
+        h.key_press(egui::Key::PageDown);
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        while !shown(&h, to) {
+            assert!(
+                shown(&h, from),
+                "{} gone before {} came",
+                title(from),
+                title(to)
+            );
+            assert!(
+                std::time::Instant::now() < deadline,
+                "{} never came",
+                title(to)
+            );
+            h.step();
+            std::thread::sleep(std::time::Duration::from_millis(2));
+        }
+        let on_screen = h.state().latest_frame().map(|f| f.generation);
+        assert!(
+            on_screen.is_some_and(|g| g > asked),
+            "{} over the last slide's picture (frame {on_screen:?}, asked at {asked})",
+            title(to)
+        );
+        wait_for_slide(&mut h, to);
+        from = to;
+    }
 }
 
 #[test]

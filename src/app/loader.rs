@@ -185,6 +185,7 @@ impl RaylabApp {
                     s.camera = scene.camera.clone();
                     slide = self.lecture.arrived(&scene);
                     if let Some(slide) = slide {
+                        self.hold_strip_words();
                         self.arrive_at_slide(slide, &scene.params);
                     }
                 }

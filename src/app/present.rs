@@ -100,6 +100,42 @@ pub(crate) struct Hall {
     /// size can arrive after the frame drawn for it, which then stayed on screen (the
     /// toolbar gone, half the window black) until the next repaint.
     settle_until: Option<std::time::Instant>,
+    /// The strip's title and caption, held while a new slide's image is on its way.
+    words: StripWords,
+}
+
+/// The strip's title and caption as last drawn, and, once a slide's scene has arrived, the
+/// engine's generation then: until a frame of a newer one is shown, the old slide's
+/// picture is still on screen, and its words stay with it. (Under llvmpipe that was one
+/// frame of 200 ms with the new slide's title over the old slide's picture.)
+#[derive(Debug, Default)]
+struct StripWords {
+    drawn: (Option<String>, Option<String>),
+    held: Option<(u64, std::time::Instant)>,
+}
+
+/// How long the words wait for a new slide's first frame at most (a paused engine sends
+/// none).
+const HOLD_WORDS: std::time::Duration = std::time::Duration::from_secs(1);
+
+impl StripWords {
+    /// The words to draw, given those of the slide shown (`fresh`) and the generation of
+    /// the frame on screen.
+    fn words(
+        &mut self,
+        fresh: (Option<String>, Option<String>),
+        on_screen: Option<u64>,
+    ) -> (Option<String>, Option<String>) {
+        if let Some((generation, since)) = self.held {
+            let waiting = on_screen.is_some_and(|g| g <= generation);
+            if waiting && since.elapsed() < HOLD_WORDS {
+                return self.drawn.clone();
+            }
+            self.held = None;
+        }
+        self.drawn = fresh;
+        self.drawn.clone()
+    }
 }
 
 impl RaylabApp {
@@ -192,6 +228,13 @@ impl RaylabApp {
         }
     }
 
+    /// A slide's scene has arrived: the strip keeps the words it has until a frame newer
+    /// than the engine's present generation is shown.
+    pub(super) fn hold_strip_words(&mut self) {
+        let generation = self.main.engine().generation();
+        self.hall.words.held = Some((generation, std::time::Instant::now()));
+    }
+
     /// The slide `by` away from the one shown (the first, with none shown yet), within
     /// the lecture.
     fn step_slide(&mut self, by: i32) {
@@ -227,18 +270,23 @@ impl RaylabApp {
     /// instruments' dock beside it.
     pub(super) fn presentation_ui(&mut self, ui: &mut egui::Ui) {
         let size = caption_size(ui.ctx().content_rect().height());
-        let caption = self.caption();
-        let title = self.lecture.current().map(|i| (i, LECTURE[i].title));
+        // The slide shown (arrived), as its caption: not the one asked for, whose scene
+        // may still be loading.
+        let title = self.lecture.shown().and_then(|shown| {
+            let i = LECTURE.iter().position(|s| std::ptr::eq(s, shown))?;
+            Some(format!("{} / {}  {}", i + 1, LECTURE.len(), shown.title))
+        });
+        let on_screen = self.latest_frame().map(|f| f.generation);
+        let (title, caption) = self.hall.words.words((title, self.caption()), on_screen);
         let progress = self.progress_text();
         egui::Panel::bottom("caption")
             .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
             .show_separator_line(false)
             .show(ui, |ui| {
                 ui.horizontal(|ui| {
-                    if let Some((i, title)) = title {
-                        let text = format!("{} / {}  {title}", i + 1, LECTURE.len());
+                    if let Some(title) = title {
                         ui.label(
-                            RichText::new(text)
+                            RichText::new(title)
                                 .size(size)
                                 .color(Color32::WHITE)
                                 .strong(),
