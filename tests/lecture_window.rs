@@ -115,7 +115,8 @@ fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
 #[test]
 fn a_slides_title_and_caption_come_with_its_picture() {
     // In presentation mode the strip names the slide whose picture is on screen: from Page
-    // Down until the next slide's first frame it keeps the last slide's title and caption.
+    // Down until the next slide's first frame it keeps the last slide's title, caption and
+    // controls.
     // (It took the new title at the key press, and the new caption when the scene arrived,
     // a frame or more before the new picture.) Slides 12 and 13 share their scene.
     let dir = tempfile::tempdir().unwrap();
@@ -136,6 +137,13 @@ fn a_slides_title_and_caption_come_with_its_picture() {
         let asked = h.state().engine().generation();
         h.key_press(egui::Key::PageDown);
         let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        // The new slide's controls that the old one has not.
+        let new_controls: Vec<&str> = LECTURE[to]
+            .controls
+            .iter()
+            .filter(|c| !LECTURE[from].controls.contains(c))
+            .map(|c| spec(c).unwrap().label)
+            .collect();
         while !shown(&h, to) {
             assert!(
                 shown(&h, from),
@@ -143,6 +151,13 @@ fn a_slides_title_and_caption_come_with_its_picture() {
                 title(from),
                 title(to)
             );
+            for label in &new_controls {
+                assert!(
+                    h.query_by_label(label).is_none(),
+                    "{label} under {}",
+                    title(from)
+                );
+            }
             assert!(
                 std::time::Instant::now() < deadline,
                 "{} never came",

@@ -104,28 +104,33 @@ pub(crate) struct Hall {
     words: StripWords,
 }
 
-/// The strip's title and caption as last drawn, and, once a slide's scene has arrived, the
-/// engine's generation then: until a frame of a newer one is shown, the old slide's
-/// picture is still on screen, and its words stay with it. (Under llvmpipe that was one
-/// frame of 200 ms with the new slide's title over the old slide's picture.)
+/// What the strip says of a slide: its title, its caption, the controls its caption asks
+/// for.
+#[derive(Clone, Debug, Default)]
+struct Strip {
+    title: Option<String>,
+    caption: Option<String>,
+    controls: &'static [&'static str],
+}
+
+/// The strip as last drawn, and, once a slide's scene has arrived, the engine's
+/// generation then: until a frame of a newer one is shown, the old slide's picture is
+/// still on screen, and its strip stays with it. (Under llvmpipe that was one frame of
+/// 200 ms with the new slide's title over the old slide's picture.)
 #[derive(Debug, Default)]
 struct StripWords {
-    drawn: (Option<String>, Option<String>),
+    drawn: Strip,
     held: Option<(u64, std::time::Instant)>,
 }
 
-/// How long the words wait for a new slide's first frame at most (a paused engine sends
+/// How long the strip waits for a new slide's first frame at most (a paused engine sends
 /// none).
 const HOLD_WORDS: std::time::Duration = std::time::Duration::from_secs(1);
 
 impl StripWords {
-    /// The words to draw, given those of the slide shown (`fresh`) and the generation of
+    /// The strip to draw, given that of the slide shown (`fresh`) and the generation of
     /// the frame on screen.
-    fn words(
-        &mut self,
-        fresh: (Option<String>, Option<String>),
-        on_screen: Option<u64>,
-    ) -> (Option<String>, Option<String>) {
+    fn words(&mut self, fresh: Strip, on_screen: Option<u64>) -> Strip {
         if let Some((generation, since)) = self.held {
             let waiting = on_screen.is_some_and(|g| g <= generation);
             if waiting && since.elapsed() < HOLD_WORDS {
@@ -276,15 +281,20 @@ impl RaylabApp {
             let i = LECTURE.iter().position(|s| std::ptr::eq(s, shown))?;
             Some(format!("{} / {}  {}", i + 1, LECTURE.len(), shown.title))
         });
+        let fresh = Strip {
+            title,
+            caption: self.caption(),
+            controls: self.lecture.shown().map_or(&[], |s| s.controls),
+        };
         let on_screen = self.latest_frame().map(|f| f.generation);
-        let (title, caption) = self.hall.words.words((title, self.caption()), on_screen);
+        let strip = self.hall.words.words(fresh, on_screen);
         let progress = self.progress_text();
         egui::Panel::bottom("caption")
             .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
             .show_separator_line(false)
             .show(ui, |ui| {
                 ui.horizontal(|ui| {
-                    if let Some(title) = title {
+                    if let Some(title) = strip.title {
                         ui.label(
                             RichText::new(title)
                                 .size(size)
@@ -297,21 +307,21 @@ impl RaylabApp {
                     });
                 });
                 self.progress_bar_ui(ui, size);
-                self.with_slide_controls(|c, controls| {
-                    if controls.is_empty() {
-                        return;
-                    }
+                if !strip.controls.is_empty() {
                     // Each control's parts in a row (its slider, presets, readout), the
                     // controls side by side: the image keeps the height.
-                    ui.horizontal_wrapped(|ui| {
-                        for name in controls {
-                            param_ui(ui, c, name);
-                            ui.add_space(size);
-                        }
+                    self.with_controls(&[], |c| {
+                        ui.horizontal_wrapped(|ui| {
+                            for name in strip.controls {
+                                param_ui(ui, c, name);
+                                ui.add_space(size);
+                            }
+                        });
                     });
-                });
-                let text =
-                    caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
+                }
+                let text = strip
+                    .caption
+                    .unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
                 ui.label(RichText::new(text).size(size).color(Color32::WHITE));
             });
         // The instruments above the strip, beside the image: the caption keeps the
