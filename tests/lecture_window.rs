@@ -113,10 +113,11 @@ fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
 }
 
 #[test]
-fn a_slides_title_and_caption_come_with_its_picture() {
+fn a_slides_title_and_controls_come_with_its_picture() {
     // In presentation mode the strip names the slide whose picture is on screen: from Page
     // Down until the next slide's first frame it keeps the last slide's title, caption and
-    // controls.
+    // controls. The title and the controls are checked here; the caption is held with them
+    // (one `Strip`), and the tests below read it once the picture has come.
     // (It took the new title at the key press, and the new caption when the scene arrived,
     // a frame or more before the new picture.) Slides 12 and 13 share their scene.
     let dir = tempfile::tempdir().unwrap();

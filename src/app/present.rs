@@ -100,7 +100,8 @@ pub(crate) struct Hall {
     /// size can arrive after the frame drawn for it, which then stayed on screen (the
     /// toolbar gone, half the window black) until the next repaint.
     settle_until: Option<std::time::Instant>,
-    /// The strip's title and caption, held while a new slide's image is on its way.
+    /// The strip's title, caption and controls, held while a new slide's image is on its
+    /// way.
     words: StripWords,
 }
 
