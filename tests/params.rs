@@ -4,6 +4,8 @@
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
 use raylab::math::Color;
 use raylab::params::{Kind, Params, TABLE, markdown_table};
 use raylab::render::{render, to_srgba8};
@@ -180,4 +182,36 @@ fn the_shutter_must_close_within_the_frame() {
     let err = p.set("shutter", "0.5").unwrap_err().to_string();
     assert!(err.contains("1 − shutter_open"), "{err}");
     p.set("shutter", "0.4").unwrap();
+}
+
+#[test]
+fn a_scene_files_params_refuse_nan_and_infinity_at_the_value() {
+    let d = tempfile::tempdir().unwrap();
+    let dir = d.path();
+    let reals = raylab::params::TABLE
+        .iter()
+        .filter(|s| matches!(s.kind, Kind::Number { .. } | Kind::WordOrNumber { .. }));
+    let mut checked = 0;
+    for spec in reals {
+        for value in ["nan", "inf", "-inf", "+nan"] {
+            let (name, column) = (spec.name, spec.name.len() + 4);
+            std::fs::write(
+                dir.join("s.toml"),
+                format!(
+                    "[camera]\nposition = [0.0, 1.0, 5.0]\nlook_at = [0.0, 1.0, 0.0]\n[params]\n{name} = {value}\n"
+                ),
+            )
+            .unwrap();
+            common::fails(
+                &["render", "s.toml", "-o", "x.png", "--size", "4x4"],
+                dir,
+                &format!("s.toml:5:{column}: in [params]: bad value for `{name}`: "),
+            );
+            checked += 1;
+        }
+    }
+    // 14 real parameters (7 of them optional: on 10fbafe these 7 took NaN and infinity
+    // as "unset").
+    assert_eq!(checked, 14 * 4);
+    assert!(!dir.join("x.png").exists(), "nothing rendered");
 }

@@ -39,7 +39,8 @@ pub fn compare_command(args: &CompareArgs) -> Result<()> {
         (&b_name, (b.width, b.height)),
     )?;
     if let Some(out) = &args.output {
-        check_writable(out, false)?;
+        let bytes = raylab::render::output::image_bytes_at_most("png", a.width, a.height);
+        check_writable(out, false, bytes)?;
     }
     let m = compare(&a, &b, 0.0);
     say!(

@@ -2,7 +2,8 @@
 //! any time is spent rendering.
 
 use anyhow::{Result, bail};
-use raylab::render::output::{folder_of, safe_file_stem, unused_png};
+use raylab::render::output::{Target, folder_of, image_format, safe_file_stem, unused_png};
+use raylab::render::sidecar_path;
 use std::path::{Path, PathBuf};
 
 /// Where an image goes when `-o` is not given: `<stem>.png` in `dir` (the current folder
@@ -13,21 +14,25 @@ pub fn default_output(dir: &Path, stem: &str) -> PathBuf {
 }
 
 /// Refuses, before any time is spent rendering, an output the film cannot write (a
-/// format it does not write, a caption where the file cannot carry one) or that the file
-/// system will not take (see [`check_writable`]); `sidecar` if a sidecar goes beside it.
-pub fn check_output(path: &Path, caption: bool, sidecar: bool) -> Result<()> {
-    let ext = raylab::scene::input::extension(path);
-    if !matches!(ext.as_deref(), Some("png") | Some("exr")) {
+/// format it does not write, a caption where the file cannot carry one) or that cannot
+/// take up to `bytes` (see [`check_writable`]); `sidecar` if a sidecar goes beside it.
+/// Says how the image will be written (a FIFO or pipe gets no sidecar).
+pub fn check_output(path: &Path, caption: bool, sidecar: bool, bytes: u64) -> Result<Target> {
+    let format = image_format(path);
+    if !matches!(format.as_deref(), Some("png") | Some("exr")) {
         bail!("{}: the output must end in .png or .exr", path.display());
     }
-    if caption && ext.as_deref() != Some("png") {
+    if caption && format.as_deref() != Some("png") {
         bail!(
             "{}: --caption draws text into the picture, so it needs a .png output",
             path.display()
         );
     }
-    check_writable(path, sidecar)
+    check_writable(path, sidecar, bytes)
 }
+
+/// The most bytes a sidecar takes, for the check of its file system's room.
+const SIDECAR_BYTES: u64 = 64 * 1024;
 
 /// Refuses an output whose folder does not exist, before any time is spent.
 fn check_folder(path: &Path) -> Result<()> {
@@ -42,16 +47,25 @@ fn check_folder(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Refuses an output that cannot be written, before any time is spent: a folder that is
-/// not there or takes no new file (read-only, full), a folder in the file's place, or a
-/// name too long for the file system (with its sidecar's `.json`, if `sidecar`).
-pub fn check_writable(path: &Path, sidecar: bool) -> Result<()> {
+/// Refuses an output that cannot be written whole, before any time is spent: a folder
+/// that is not there or takes no new file (read-only), a file system without room for
+/// `bytes`, a name too long (with its sidecar's `.json`, if `sidecar`), a file that may
+/// not be replaced (read-only, immutable), or what is not a file (a device such as
+/// /dev/null, a folder, a link to one); and the same of the sidecar beside it.
+pub fn check_writable(path: &Path, sidecar: bool, bytes: u64) -> Result<Target> {
     check_folder(path)?;
     let extra = if sidecar { ".json".len() } else { 0 };
-    if let Err(e) = raylab::render::output::check_writable(path, extra) {
-        bail!("{}: cannot be written: {e}", path.display());
+    let target = match raylab::render::output::check_writable(path, extra, bytes) {
+        Ok(target) => target,
+        Err(e) => bail!("{}: cannot be written: {e}", path.display()),
+    };
+    if sidecar && !target.is_stream() {
+        let json = sidecar_path(path);
+        if let Err(e) = raylab::render::output::check_writable(&json, 0, SIDECAR_BYTES) {
+            bail!("{}: cannot be written: {e}", json.display());
+        }
     }
-    Ok(())
+    Ok(target)
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use raylab::lecture::Slide;
 use raylab::params::Params;
+use raylab::render::output::Target;
 use raylab::render::{Crop, Film, Rendered, Sidecar, render_crop_pass, render_pass, sidecar_path};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use raylab::tracer::Stats;
@@ -218,8 +219,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         (None, None) => default_output(Path::new(""), &job.scene.name),
     };
     let json = sidecar_path(&output);
-    let with_sidecar = job.others.is_empty();
-    check_output(&output, args.caption, with_sidecar)?;
+    let (w, h) = job.image_size();
+    let format = raylab::render::output::image_format(&output).unwrap_or_default();
+    let bytes = raylab::render::output::image_bytes_at_most(&format, w, h);
+    let split = !job.others.is_empty();
+    // A FIFO or a pipe gets the image alone: it carries its parameters inside it.
+    let target = check_output(&output, args.caption, !split, bytes)?;
+    let with_sidecar = !split && !target.is_stream();
     if with_sidecar {
         Sidecar::check_target(&json, args.params.as_deref())?;
     }
@@ -231,7 +237,6 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
             output.display()
         );
     }
-    let (w, h) = job.image_size();
     let pixels = w as u64 * h as u64;
     raylab::scene::memory::check(
         pixels * raylab::scene::memory::BYTES_PER_PIXEL,
@@ -277,10 +282,13 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     bar.finish_and_clear();
 
     // Replacing the file named by -o is what was asked; the summary still says so.
-    let replaced = if output.exists() {
-        " (replacing the file there)"
-    } else {
-        ""
+    let replaced = match &target {
+        Target::Replace(p) if p.exists() => " (replacing the file there)".to_string(),
+        Target::Through(p) => match std::fs::canonicalize(p) {
+            Ok(file) => format!(" (through the link, into {})", file.display()),
+            Err(_) => " (through the link)".to_string(),
+        },
+        _ => String::new(),
     };
     let params = &job.params;
     // No one set of parameters makes an A/B split: it gets no sidecar.
@@ -336,11 +344,18 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
         if args.verbose {
             tell!("{}", details(&job, &film, &stats));
         }
-        tell!(
-            "wrote {}{replaced} and {}",
-            output.display(),
-            json.display()
-        );
+        if with_sidecar {
+            tell!(
+                "wrote {}{replaced} and {}",
+                output.display(),
+                json.display()
+            );
+        } else {
+            tell!(
+                "wrote {} (a stream: no sidecar beside it; the image carries its parameters)",
+                output.display()
+            );
+        }
     }
     Ok(())
 }

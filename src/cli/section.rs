@@ -69,7 +69,9 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
         Some("png") => false,
         _ => bail!("{}: the output must end in .svg or .png", path.display()),
     };
-    check_writable(path, false)?;
+    let (fw, fh) = args.figure;
+    // An SVG is a few kB; a PNG at most its RGBA pixels.
+    check_writable(path, false, 4 * fw as u64 * fh as u64 + 64 * 1024)?;
     let diagram = match (args.angle, args.pixel) {
         (Some(theta_i), _) => Workbench {
             n1: args.n1,
@@ -103,7 +105,7 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
     let theme = if args.dark { Theme::Dark } else { Theme::Light };
     let (w, h) = args.figure;
     let written = if svg {
-        raylab::render::output::write_atomic(path, to_svg(&diagram, w, h, theme).as_bytes())
+        raylab::render::output::write_file(path, to_svg(&diagram, w, h, theme).as_bytes())
             .map_err(anyhow::Error::from)
     } else {
         let img = to_png(&diagram, w, h, theme).context("an empty picture")?;

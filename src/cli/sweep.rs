@@ -6,7 +6,7 @@ use crate::cli::progress::{Progress, progress_bar};
 use crate::{parse_size, runtime};
 use anyhow::{Context, Result, bail};
 use raylab::render::SheetError;
-use raylab::render::output::{save_image, write_atomic};
+use raylab::render::output::{save_image, write_file};
 use raylab::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -70,7 +70,6 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
             output.display()
         ),
     };
-    check_writable(&output, false)?;
     let (w, h) = args
         .size
         .unwrap_or(((scene.width / 2).max(1), (scene.height / 2).max(1)));
@@ -89,6 +88,8 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
     };
     raylab::scene::memory::check(needed, &format!("{} values: {what}", values.len()))
         .map_err(anyhow::Error::msg)?;
+    // The file holds what memory does, at most: a sheet stored uncompressed, or the frames.
+    check_writable(&output, false, needed / if gif { 1 } else { 2 } + 64 * 1024)?;
     args.threads.install_global()?;
     let start = Instant::now();
     let bar = progress_bar(args.quiet, h as u64 * values.len() as u64, "sweeping");
@@ -117,7 +118,7 @@ pub fn sweep_command(args: &SweepArgs) -> Result<()> {
                 })
             });
         encoded?;
-        write_atomic(&output, &bytes).map_err(image::ImageError::IoError)
+        write_file(&output, &bytes).map_err(image::ImageError::IoError)
     } else {
         let mut sheet = raylab::render::ContactSheet::new(values.len(), tile);
         sweep_each(&mut |frame| {

@@ -2,7 +2,7 @@
 
 use super::srgb::{srgb_encode_table, srgb_image, srgb8};
 use crate::math::Color;
-use crate::render::output::{write_atomic, write_pair};
+use crate::render::output::{image_format, write_file, write_pair};
 use std::path::Path;
 
 /// The noise (as [`Film::noise`] estimates it) under which an image reads as clean: the
@@ -172,7 +172,7 @@ pub fn write_image(
     if pixels.len() != width as usize * height as usize {
         return Err(mismatch());
     }
-    let bytes = match crate::scene::input::extension(path).as_deref() {
+    let bytes = match image_format(path).as_deref() {
         Some("png") => {
             let img = srgb_image(width, height, pixels, exposure).ok_or_else(mismatch)?;
             return write_png(path, &img, sidecar);
@@ -222,7 +222,7 @@ fn write_with_sidecar(
             &super::sidecar_path(path),
             sidecar.file_json()?.as_bytes(),
         ),
-        None => write_atomic(path, bytes),
+        None => write_file(path, bytes),
     }
 }
 

@@ -322,6 +322,19 @@ fn scene_params(
 ) -> Result<Params, SceneError> {
     let mut p = Params::default();
     for (key, value) in params {
+        // JSON has no NaN or infinity: serde_json would write null, which means "unset".
+        if let toml::Value::Float(x) = value.get_ref()
+            && !x.is_finite()
+            && Params::names().contains(key.get_ref())
+        {
+            return Err(src.error(
+                value.span(),
+                format!(
+                    "in [params]: bad value for `{}`: {x} is not a finite number",
+                    key.get_ref()
+                ),
+            ));
+        }
         let json = serde_json::to_value(value.get_ref())
             .map_err(|e| src.error(value.span(), e.to_string()))?;
         p.set_value(key.get_ref(), json).map_err(|e| {
