@@ -22,6 +22,10 @@ pub struct ObjPart {
     /// Its material from the file (the .mtl, the glTF material), mapped to a raylab
     /// material, and its name there.
     pub material: Option<(String, Material)>,
+    /// Where the model places it, in the model's coordinates: once, as it stands (an OBJ
+    /// object, a glTF mesh one node places, its triangles already moved there), or once
+    /// per node that places it (a glTF mesh several nodes place: built once, instanced).
+    pub at: Vec<glam::Affine3A>,
 }
 
 /// A model file's objects, and what the user should know of how it was read.
@@ -182,6 +186,7 @@ pub fn load_obj(
             name: model.name,
             mesh,
             material,
+            at: vec![glam::Affine3A::IDENTITY],
         });
     }
     if parts.is_empty() {

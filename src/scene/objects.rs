@@ -151,6 +151,8 @@ struct Part {
     name: String,
     material: Option<(String, Material)>,
     mesh: PartMesh,
+    /// Where the model places it (see [`super::obj::ObjPart::at`]).
+    at: Vec<glam::Affine3A>,
 }
 
 /// A part's triangles: copied into each placement, or built once and shared.
@@ -168,9 +170,10 @@ fn shares(placements: usize, triangles: usize) -> bool {
 }
 
 impl Part {
-    /// `part` as placed `placements` times.
+    /// `part` of a model placed `placements` times.
     fn new(part: super::obj::ObjPart, placements: usize) -> Part {
-        let mesh = if shares(placements, part.mesh.triangle_count()) {
+        let placed = placements.saturating_mul(part.at.len());
+        let mesh = if shares(placed, part.mesh.triangle_count()) {
             PartMesh::Shared(SharedMesh::new(part.mesh))
         } else {
             PartMesh::Copied(part.mesh)
@@ -179,6 +182,7 @@ impl Part {
             name: part.name,
             material: part.material,
             mesh,
+            at: part.at,
         }
     }
 
@@ -355,7 +359,7 @@ impl<'s> Objects<'s> {
                     let loaded = Rc::clone(loaded);
                     let sizes = loaded.parts.iter();
                     self.account(
-                        sizes.map(|p| (p.triangle_count(), p.is_shared())),
+                        sizes.map(|p| (p.triangle_count(), p.at.len(), p.is_shared())),
                         false,
                         &span,
                     )?;
@@ -366,7 +370,8 @@ impl<'s> Objects<'s> {
                     let raw = self.model(&m, assets)?;
                     let sizes = raw.parts.iter().map(|p| {
                         let count = p.mesh.triangle_count();
-                        (count, shares(placed, count))
+                        let times = p.at.len();
+                        (count, times, shares(placed.saturating_mul(times), count))
                     });
                     self.account(sizes, true, &span)?;
                     let loaded = Rc::new(Loaded {
@@ -410,46 +415,63 @@ impl<'s> Objects<'s> {
                     self.src
                         .error(span.clone(), format!("after its transform: {e}"))
                 };
-                let shape = match &part.mesh {
-                    PartMesh::Copied(mesh) => {
-                        let mut mesh = mesh.transformed(&transform, m.smooth).map_err(after)?;
-                        mesh.velocity = velocity;
-                        Shape::Mesh(mesh)
-                    }
-                    PartMesh::Shared(shared) => Shape::Instance(
-                        Instance::new(Arc::clone(shared), transform, m.smooth, velocity)
-                            .map_err(after)?,
-                    ),
-                };
-                if !shape.within_limits() {
-                    return Err(self.src.error(span, beyond_limits("the mesh")));
-                }
                 let name = if single {
                     base.clone()
                 } else {
                     format!("{base}/{}", part.name)
                 };
-                self.push(span.clone(), name, shape, material);
+                for (k, at) in part.at.iter().enumerate() {
+                    // As it stands: the placement's transform alone, bit for bit.
+                    let transform = match *at == glam::Affine3A::IDENTITY {
+                        true => transform,
+                        false => transform * *at,
+                    };
+                    let shape = match &part.mesh {
+                        PartMesh::Copied(mesh) => {
+                            let mut mesh = mesh.transformed(&transform, m.smooth).map_err(after)?;
+                            mesh.velocity = velocity;
+                            Shape::Mesh(mesh)
+                        }
+                        PartMesh::Shared(shared) => Shape::Instance(
+                            Instance::new(Arc::clone(shared), transform, m.smooth, velocity)
+                                .map_err(after)?,
+                        ),
+                    };
+                    if !shape.within_limits() {
+                        return Err(self.src.error(span, beyond_limits("the mesh")));
+                    }
+                    let name = match part.at.len() {
+                        1 => name.clone(),
+                        _ => format!("{name}#{}", k + 1),
+                    };
+                    self.push(span.clone(), name, shape, material);
+                }
             }
         }
         Ok(())
     }
 
-    /// Adds one placement of a model's parts (their triangle counts, and whether each is
-    /// shared) to the memory estimate, and refuses it beyond the limit. A shared part's
-    /// triangles count once, at the `first` placement.
+    /// Adds one placement of a model's parts (their triangle counts, how many times the
+    /// model places each, and whether each is shared) to the memory estimate, and
+    /// refuses it beyond the limit. A shared part's triangles count once, at the `first`
+    /// placement; a copied part's at each time it is placed.
     fn account(
         &mut self,
-        parts: impl Iterator<Item = (usize, bool)>,
+        parts: impl Iterator<Item = (usize, usize, bool)>,
         first: bool,
         span: &Range<usize>,
     ) -> Result<(), SceneError> {
-        for (count, shared) in parts {
+        for (count, times, shared) in parts {
+            let times = times as u64;
             if shared {
-                self.instances += 1;
+                self.instances = self.instances.saturating_add(times);
             }
-            if first || !shared {
-                self.triangles += count as u64;
+            if first && shared {
+                self.triangles = self.triangles.saturating_add(count as u64);
+            }
+            if !shared {
+                let copies = (count as u64).saturating_mul(times);
+                self.triangles = self.triangles.saturating_add(copies);
             }
         }
         let bytes = self.triangles * super::memory::BYTES_PER_TRIANGLE

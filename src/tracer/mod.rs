@@ -25,7 +25,7 @@ use media::Arrival;
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_ROW, TreeNode};
 pub use stats::Stats;
-pub use wave::{Traced, Traversal, Waves};
+pub use wave::{MAX_WAVE_LIGHTS, Traced, Traversal, Waves};
 
 use crate::camera::{Camera, CameraFrame, CameraSample};
 use crate::light::PreparedLight;

@@ -327,11 +327,20 @@ impl LaneKernel for CameraRays<'_, '_> {
     }
 }
 
+/// The most lights a scene traced in waves has. A wave's level keeps a shadow ray for
+/// every node and light until its shading is done (about 100 bytes each): a level of 4096
+/// nodes keeps 26 MB at this count, where 250,000 lights kept gigabytes per thread. A
+/// scene of more lights is traced by the recursion, which gives the same image and keeps
+/// one node's shadow rays at a time.
+pub const MAX_WAVE_LIGHTS: usize = 64;
+
 impl Tracer<'_> {
     /// Whether the kernel traces this tracer's samples in waves: the ray tree, without a
-    /// polariser.
+    /// polariser, in a scene of at most [`MAX_WAVE_LIGHTS`] lights.
     pub fn traces_waves(&self) -> bool {
-        !self.params.transport.traces_paths() && self.params.polarizer.is_none()
+        !self.params.transport.traces_paths()
+            && self.params.polarizer.is_none()
+            && self.lights.len() <= MAX_WAVE_LIGHTS
     }
 
     /// The samples `samples` ((x, y, sample number) each) traced together in waves, the hit

@@ -32,8 +32,8 @@ pub fn load_gltf(data: &[u8], file: &str, read_file: ReadFile) -> Result<Model, 
     let error = |message: String| SceneError::new(Location::file(file), message);
     // A .gltf saved by a Windows editor may start with a byte-order mark.
     let data = super::input::without_bom(data);
-    let unchecked =
-        gltf::Gltf::from_slice_without_validation(data).map_err(|e| gltf_error(file, e))?;
+    let mut warnings = Vec::new();
+    let unchecked = read_unchecked(data, file, &mut warnings)?;
     // Before validating: a compressed mesh has no plain data, and validation would call
     // it missing rather than say why.
     if let Some(extension) = unchecked
@@ -67,6 +67,7 @@ pub fn load_gltf(data: &[u8], file: &str, read_file: ReadFile) -> Result<Model, 
             }
         }
     }
+    nodes::check_tree(json).map_err(|m| error(format!("invalid glTF: {m}")))?;
     let gltf::Gltf { document, blob } = unchecked;
     let document =
         gltf::Document::from_json(document.into_json()).map_err(|e| gltf_error(file, e))?;
@@ -102,7 +103,81 @@ pub fn load_gltf(data: &[u8], file: &str, read_file: ReadFile) -> Result<Model, 
     if model.parts.is_empty() {
         return Err(error("the glTF file has no triangles".into()));
     }
-    Ok(model)
+    warnings.extend(model.warnings);
+    Ok(Model { warnings, ..model })
+}
+
+/// The file's JSON (from a `.gltf`, or a `.glb`'s JSON chunk) read without validation,
+/// with what raylab does not render taken out so that it is ignored, as glTF says a
+/// reader may: animations (said where KHR_animation_pointer drives them, as a reader
+/// without it is told to fall back to the still scene) and application-specific vertex
+/// attributes (`_TEMPERATURE`). glTF 1.0 is refused by name.
+fn read_unchecked(
+    data: &[u8],
+    file: &str,
+    warnings: &mut Vec<String>,
+) -> Result<gltf::Gltf, SceneError> {
+    let error = |message: String| SceneError::new(Location::file(file), message);
+    const V1: &str = "is glTF 1.0, which raylab does not read; convert it to glTF 2.0 (Blender, or gltf-pipeline)";
+    let (json, blob) = if data.starts_with(b"glTF") {
+        if data.get(4..8) == Some(&1u32.to_le_bytes()[..]) {
+            return Err(error(V1.into()));
+        }
+        let mut glb = gltf::binary::Glb::from_slice(data).map_err(|e| gltf_error(file, e))?;
+        let bin = glb.bin.take().map(Cow::into_owned);
+        (glb.json, bin)
+    } else {
+        (Cow::Borrowed(data), None)
+    };
+    let positioned = |e: serde_json::Error| gltf_error(file, gltf::Error::Deserialize(e));
+    let mut value: serde_json::Value = serde_json::from_slice(&json).map_err(positioned)?;
+    let version = value
+        .pointer("/asset/version")
+        .and_then(|v| v.as_str())
+        .unwrap_or("");
+    if version.starts_with("1.") || version == "1" {
+        return Err(error(V1.into()));
+    }
+    let pointer = "KHR_animation_pointer";
+    let uses = |list: &str| {
+        value
+            .get(list)
+            .and_then(|l| l.as_array())
+            .is_some_and(|l| l.iter().any(|e| e == pointer))
+    };
+    let animated = uses("extensionsUsed") || uses("extensionsRequired");
+    let mut changed = false;
+    if let Some(root) = value.as_object_mut() {
+        if root.remove("animations").is_some() {
+            changed = true;
+        }
+        if let Some(serde_json::Value::Array(required)) = root.get_mut("extensionsRequired") {
+            required.retain(|e| e != pointer);
+        }
+    }
+    if animated {
+        warnings.push(format!(
+            "{file}: its animations (KHR_animation_pointer) are left out: raylab renders the still scene"
+        ));
+    }
+    // Positioned errors where nothing was taken out; the same JSON otherwise.
+    let mut root: gltf::json::Root = if changed {
+        serde_json::from_value(value).map_err(|e| error(format!("not valid glTF JSON: {e}")))?
+    } else {
+        gltf::json::Root::from_slice(&json).map_err(positioned)?
+    };
+    // Attributes glTF does not define (an application's `_NAME`) are not read.
+    for mesh in &mut root.meshes {
+        for primitive in &mut mesh.primitives {
+            primitive
+                .attributes
+                .retain(|k, _| matches!(k, gltf::json::validation::Checked::Valid(_)));
+        }
+    }
+    Ok(gltf::Gltf {
+        document: gltf::Document::from_json_without_validation(root),
+        blob,
+    })
 }
 
 /// The bytes a buffer's or image's URI names: a base64 `data:` URI's payload, or a file

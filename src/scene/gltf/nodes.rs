@@ -10,7 +10,10 @@ use crate::math::{Color, Vec3};
 use crate::scene::obj::{ModelCamera, ObjPart};
 use crate::scene::{Location, SceneError};
 use glam::{Mat4, Vec2};
+use gltf::mesh::Mode;
 use std::borrow::Cow;
+use std::collections::HashMap;
+use std::ops::Range;
 
 /// Every triangle primitive placed by the default scene (or the first; or, with no
 /// scenes, every mesh where it stands), transformed to world space; the camera of the
@@ -21,6 +24,7 @@ pub(super) fn collect(
     file: &str,
     read_file: ReadFile,
 ) -> Result<Model, SceneError> {
+    let scene = gltf.default_scene().or_else(|| gltf.scenes().next());
     let mut walk = Walk {
         file,
         buffers,
@@ -29,24 +33,25 @@ pub(super) fn collect(
         camera: None,
         lights: Vec::new(),
         warnings: Vec::new(),
+        placements: scene
+            .as_ref()
+            .map_or_else(Vec::new, |s| placements(gltf, s)),
+        read: HashMap::new(),
     };
-    let scene = gltf.default_scene().or_else(|| gltf.scenes().next());
     match scene {
         Some(scene) => {
             // Depth-first in the file's order (the stack holds each list reversed), with
-            // each node's transform composed onto its parent's; glTF node graphs are trees
-            // (the validator refuses cycles), capped at 64 levels.
-            let mut stack: Vec<(gltf::Node, Mat4, u32)> =
-                scene.nodes().map(|n| (n, Mat4::IDENTITY, 0)).collect();
+            // each node's transform composed onto its parent's. The graph is a tree
+            // ([`check_tree`]), so each node is visited once, however deep.
+            let mut stack: Vec<(gltf::Node, Mat4)> =
+                scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
             stack.reverse();
-            while let Some((node, parent, depth)) = stack.pop() {
+            while let Some((node, parent)) = stack.pop() {
                 let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
                 walk.node(&node, &world)?;
-                if depth < 64 {
-                    let first = stack.len();
-                    stack.extend(node.children().map(|c| (c, world, depth + 1)));
-                    stack[first..].reverse();
-                }
+                let first = stack.len();
+                stack.extend(node.children().map(|c| (c, world)));
+                stack[first..].reverse();
             }
         }
         None => {
@@ -65,6 +70,107 @@ pub(super) fn collect(
     })
 }
 
+/// The triangles of a primitive's vertex list (its indices, or 0, 1, 2, ...), as glTF
+/// assembles them: in threes; a strip's each next vertex with the two before it (every
+/// other one turned back, so that all face the same way); a fan's each next pair with
+/// the first.
+fn triangles_of(mode: Mode, v: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (0..v.len().saturating_sub(2))
+            .map(|i| match i % 2 {
+                0 => [v[i], v[i + 1], v[i + 2]],
+                _ => [v[i + 1], v[i], v[i + 2]],
+            })
+            .collect(),
+        Mode::TriangleFan => (1..v.len().saturating_sub(1))
+            .map(|i| [v[i], v[i + 1], v[0]])
+            .collect(),
+        _ => v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}
+
+/// Refuses a node graph that is not a set of trees, as glTF requires: a node listed as a
+/// child of two nodes (or twice by one), a node its own ancestor, or a scene listing a
+/// node that is another's child, or one node twice. Each would place a node's meshes
+/// more than once, up to 2^depth times, or for ever. Indices past the end are left to
+/// the validator, which names them.
+pub(super) fn check_tree(root: &gltf::json::Root) -> Result<(), String> {
+    const TREE: &str = "a glTF node graph must be a tree";
+    let n = root.nodes.len();
+    let mut parent: Vec<Option<usize>> = vec![None; n];
+    for (p, node) in root.nodes.iter().enumerate() {
+        for c in node.children.iter().flatten().map(|c| c.value()) {
+            if c == p {
+                return Err(format!("nodes[{p}] lists itself as a child: {TREE}"));
+            }
+            match parent.get(c).copied() {
+                Some(Some(q)) if q == p => {
+                    return Err(format!("nodes[{p}] lists nodes[{c}] twice: {TREE}"));
+                }
+                Some(Some(q)) => {
+                    return Err(format!(
+                        "nodes[{c}] is a child of nodes[{q}] and again of nodes[{p}]: {TREE} (to place a mesh twice, give two nodes the same mesh)"
+                    ));
+                }
+                Some(None) => parent[c] = Some(p),
+                None => {}
+            }
+        }
+    }
+    // With one parent each, a node on a cycle never climbs to a root.
+    const UNSEEN: u8 = 0;
+    const CLIMBING: u8 = 1;
+    const ROOTED: u8 = 2;
+    let mut state = vec![UNSEEN; n];
+    let mut path = Vec::new();
+    for start in 0..n {
+        let mut at = start;
+        while state[at] != ROOTED {
+            if state[at] == CLIMBING {
+                return Err(format!(
+                    "nodes[{at}] is its own ancestor (its children lead back to it): {TREE}"
+                ));
+            }
+            state[at] = CLIMBING;
+            path.push(at);
+            match parent[at] {
+                Some(p) => at = p,
+                None => break,
+            }
+        }
+        for v in path.drain(..) {
+            state[v] = ROOTED;
+        }
+    }
+    for (s, scene) in root.scenes.iter().enumerate() {
+        let mut listed = std::collections::HashSet::new();
+        for (i, r) in scene.nodes.iter().map(|r| r.value()).enumerate() {
+            if let Some(Some(p)) = parent.get(r) {
+                return Err(format!(
+                    "scenes[{s}].nodes[{i}] is nodes[{r}], a child of nodes[{p}]: a scene lists root nodes only"
+                ));
+            }
+            if !listed.insert(r) {
+                return Err(format!("scenes[{s}].nodes lists nodes[{r}] twice"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// How many nodes of `scene` place each mesh (by index).
+fn placements(gltf: &gltf::Gltf, scene: &gltf::Scene) -> Vec<usize> {
+    let mut count = vec![0usize; gltf.meshes().len()];
+    let mut stack: Vec<gltf::Node> = scene.nodes().collect();
+    while let Some(node) = stack.pop() {
+        if let Some(slot) = node.mesh().and_then(|m| count.get_mut(m.index())) {
+            *slot += 1;
+        }
+        stack.extend(node.children());
+    }
+    count
+}
+
 /// What the walk over the nodes has found so far.
 struct Walk<'a> {
     file: &'a str,
@@ -75,6 +181,10 @@ struct Walk<'a> {
     camera: Option<(usize, ModelCamera)>,
     lights: Vec<Light>,
     warnings: Vec<String>,
+    // How many nodes place each mesh, and the parts of each mesh several nodes place,
+    // read once.
+    placements: Vec<usize>,
+    read: HashMap<usize, Range<usize>>,
 }
 
 impl Walk<'_> {
@@ -211,8 +321,43 @@ impl Walk<'_> {
         Ok(())
     }
 
-    /// Each triangle primitive of `mesh`, at `world`.
+    /// Each triangle primitive of `mesh`, at `world`: moved there if one node places
+    /// the mesh; else read once in its own coordinates and placed by each node's
+    /// transform, so that a mesh a hundred nodes place costs the memory of one.
     fn mesh(&mut self, mesh: &gltf::Mesh, world: &Mat4) -> Result<(), SceneError> {
+        let times = self.placements.get(mesh.index()).copied().unwrap_or(1);
+        if times <= 1 {
+            return self.primitives(mesh, world, glam::Affine3A::IDENTITY);
+        }
+        let at = glam::Affine3A::from_mat4(*world);
+        if !at.is_finite() {
+            return Err(self.error(format!(
+                "a node places mesh {} by a transform that is not finite",
+                mesh.index()
+            )));
+        }
+        match self.read.get(&mesh.index()) {
+            Some(parts) => {
+                for part in &mut self.parts[parts.clone()] {
+                    part.at.push(at);
+                }
+            }
+            None => {
+                let first = self.parts.len();
+                self.primitives(mesh, &Mat4::IDENTITY, at)?;
+                self.read.insert(mesh.index(), first..self.parts.len());
+            }
+        }
+        Ok(())
+    }
+
+    /// Each triangle primitive of `mesh`, its vertices moved by `world`, placed `at`.
+    fn primitives(
+        &mut self,
+        mesh: &gltf::Mesh,
+        world: &Mat4,
+        at: glam::Affine3A,
+    ) -> Result<(), SceneError> {
         let name = mesh
             .name()
             .map_or_else(|| format!("mesh{}", mesh.index()), str::to_string);
@@ -223,8 +368,12 @@ impl Walk<'_> {
         let normal_matrix = glam::Mat3::from_mat4(*world).inverse().transpose();
         let buffers = self.buffers;
         for primitive in mesh.primitives() {
-            if primitive.mode() != gltf::mesh::Mode::Triangles {
-                continue; // points, lines and strips are not surfaces raylab renders
+            let mode = primitive.mode();
+            if !matches!(
+                mode,
+                Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+            ) {
+                continue; // points and lines are not surfaces raylab renders
             }
             let reader = primitive.reader(|b| buffers.get(b.index()).map(|bytes| &bytes[..]));
             let Some(positions) = reader.read_positions() else {
@@ -243,7 +392,7 @@ impl Walk<'_> {
                 None => (0..positions.len() as u32).collect(),
             };
             // Mesh::new refuses an index past the last vertex.
-            let indices: Vec<[u32; 3]> = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+            let indices = triangles_of(mode, &flat);
             if indices.is_empty() {
                 continue;
             }
@@ -280,8 +429,30 @@ impl Walk<'_> {
                 },
                 mesh: triangles,
                 material,
+                at: vec![at],
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_make_triangles_facing_one_way() {
+        let v = [0, 1, 2, 3, 4];
+        assert_eq!(
+            triangles_of(Mode::TriangleStrip, &v),
+            vec![[0, 1, 2], [2, 1, 3], [2, 3, 4]]
+        );
+        assert_eq!(
+            triangles_of(Mode::TriangleFan, &v),
+            vec![[1, 2, 0], [2, 3, 0], [3, 4, 0]]
+        );
+        assert_eq!(triangles_of(Mode::Triangles, &v), vec![[0, 1, 2]]);
+        assert!(triangles_of(Mode::TriangleStrip, &v[..2]).is_empty());
+        assert!(triangles_of(Mode::TriangleFan, &[]).is_empty());
     }
 }
