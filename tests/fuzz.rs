@@ -18,6 +18,8 @@
 
 mod common;
 
+use common::Rng;
+
 use raylab::params::Params;
 use raylab::render::{Sidecar, render};
 use raylab::scene::{Scene, check_size, load_obj};
@@ -25,22 +27,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
-
-/// SplitMix64: the fuzzer's own deterministic stream.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        raylab::math::rng::mix64(self.0)
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-    fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
-        &items[self.below(items.len())]
-    }
-}
 
 /// Values that have broken parsers and renderers before.
 const NUMBERS: &[&str] = &[
@@ -489,14 +475,8 @@ fn kept_failures_stay_fixed() {
 
 #[test]
 fn thousands_of_mutated_inputs_neither_panic_nor_hang_nor_render_nan() {
-    let cases: u64 = std::env::var("RAYLAB_FUZZ_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(10_000);
-    let seed: u64 = std::env::var("RAYLAB_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1);
+    let cases: u64 = common::env_number("RAYLAB_FUZZ_CASES", 10_000);
+    let seed: u64 = common::env_number("RAYLAB_FUZZ_SEED", 1);
     // A watchdog: a case that runs for a minute is a hang; say which and end the run.
     static CASE: AtomicU64 = AtomicU64::new(0);
     static CURRENT: Mutex<String> = Mutex::new(String::new());
@@ -597,10 +577,7 @@ fn mutated_command_lines_exit_cleanly() {
 #[cfg(unix)]
 #[test]
 fn kills_at_random_moments_never_pair_an_image_with_another_render() {
-    let kills: u64 = std::env::var("RAYLAB_FUZZ_KILLS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(12);
+    let kills: u64 = common::env_number("RAYLAB_FUZZ_KILLS", 12);
     let dir = tempfile::tempdir().unwrap();
     let args = |seed: u64| -> Vec<String> {
         let fixed = [

@@ -110,3 +110,31 @@ pub fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
     out.extend_from_slice(&b);
     out
 }
+
+/// SplitMix64: the fuzzers' own deterministic stream.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next 64 random bits.
+    pub fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        raylab::math::rng::mix64(self.0)
+    }
+    /// A number below `n` (0 for `n` = 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+    /// One of `items`.
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[self.below(items.len())]
+    }
+}
+
+/// A number from the environment variable `name`, else `default`: a fuzzer's case count
+/// or seed.
+pub fn env_number(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}

@@ -196,7 +196,9 @@ fn staged(path: &Path, bytes: &[u8]) -> std::io::Result<TempFile> {
 /// link leads to rewritten in place (the link and the target's folder otherwise left
 /// alone), or a FIFO or pipe streamed into. A device, a socket or a folder is refused.
 pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    match Target::of(path)? {
+    let target = Target::of(path)?;
+    target.may_change()?;
+    match target {
         Target::Replace(p) => {
             let _lock = FolderLock::take(folder_of(&p))?;
             staged(&p, bytes)?.persist(&p)
@@ -419,6 +421,8 @@ fn write_pair_cut(
             sidecar.path().display()
         )));
     }
+    image.may_change()?;
+    sidecar.may_change()?;
     let killed = |step: usize| matches!(cut, Cut::Kill(n) if n < step);
     let _lock = FolderLock::take(folder_of(image.path()))?;
     let new_image = Staged::new(&image, image_bytes)?;

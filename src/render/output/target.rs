@@ -66,6 +66,25 @@ impl Target {
         }
     }
 
+    /// Refuses a file there that its owner has marked as not to be changed (read-only,
+    /// immutable, append-only, another's in a sticky folder), or that a link leads to
+    /// and cannot be written: checked before any work and again at the write.
+    pub(super) fn may_change(&self) -> Result<()> {
+        match self {
+            Target::Replace(p) => match p.symlink_metadata() {
+                Ok(m) => replaceable(p, &m),
+                Err(_) => Ok(()),
+            },
+            // Opened for writing and closed unchanged: it proves the file takes writes
+            // without touching its bytes.
+            Target::Through(p) => match p.metadata() {
+                Ok(m) => writable_in_place(p, &m),
+                Err(_) => Ok(()),
+            },
+            Target::Stream(_) => Ok(()),
+        }
+    }
+
     /// Whether the bytes go into a FIFO or a pipe, with nothing beside them.
     pub fn is_stream(&self) -> bool {
         matches!(self, Target::Stream(_))
@@ -141,11 +160,9 @@ fn refused(what: &str, why: &str) -> Error {
 /// sticky folder), that its folder takes a new file, and that the file system has room.
 pub(super) fn preflight(path: &Path, bytes: u64) -> Result<Target> {
     let target = Target::of(path)?;
+    target.may_change()?;
     match &target {
         Target::Replace(p) => {
-            if let Ok(m) = p.symlink_metadata() {
-                replaceable(p, &m)?;
-            }
             let dir = super::folder_of(p);
             let name = p
                 .file_name()
@@ -161,12 +178,7 @@ pub(super) fn preflight(path: &Path, bytes: u64) -> Result<Target> {
             room(dir, bytes)?;
         }
         Target::Through(p) => match p.metadata() {
-            // Opened for writing and closed unchanged: it proves the file takes writes
-            // (not read-only, immutable or append-only) without touching its bytes.
-            Ok(m) => {
-                writable_in_place(p, &m)?;
-                room(p, bytes)?;
-            }
+            Ok(_) => room(p, bytes)?,
             Err(_) => {
                 let end = link_end(p);
                 let dir = super::folder_of(&end);
