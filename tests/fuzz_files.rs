@@ -26,22 +26,44 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// A watchdog: a case running a minute is a hang; it says which and ends the run.
-fn watchdog(case: &'static std::sync::atomic::AtomicU64) {
-    use std::sync::atomic::Ordering;
-    std::thread::spawn(move || {
-        let mut last = (u64::MAX, Instant::now());
-        loop {
-            std::thread::sleep(Duration::from_secs(1));
-            let now = case.load(Ordering::Relaxed);
-            if now != last.0 {
-                last = (now, Instant::now());
-            } else if last.1.elapsed() > Duration::from_secs(60) {
-                eprintln!("fuzz case {now} hangs");
-                std::process::abort();
+/// A watchdog over a test's case counter: a case running a minute is a hang; it says
+/// which and ends the run. It stops watching when dropped, with its test.
+struct Watchdog {
+    case: std::sync::Arc<std::sync::atomic::AtomicU64>,
+    done: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl Watchdog {
+    fn start(what: &'static str) -> Watchdog {
+        use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+        let case = std::sync::Arc::new(AtomicU64::new(0));
+        let done = std::sync::Arc::new(AtomicBool::new(false));
+        let (c, d) = (case.clone(), done.clone());
+        std::thread::spawn(move || {
+            let mut last = (u64::MAX, Instant::now());
+            while !d.load(Ordering::Relaxed) {
+                std::thread::sleep(Duration::from_secs(1));
+                let now = c.load(Ordering::Relaxed);
+                if now != last.0 {
+                    last = (now, Instant::now());
+                } else if last.1.elapsed() > Duration::from_secs(60) && !d.load(Ordering::Relaxed) {
+                    eprintln!("{what}: fuzz case {now} hangs");
+                    std::process::abort();
+                }
             }
-        }
-    });
+        });
+        Watchdog { case, done }
+    }
+
+    fn at(&self, case: u64) {
+        self.case.store(case, std::sync::atomic::Ordering::Relaxed);
+    }
+}
+
+impl Drop for Watchdog {
+    fn drop(&mut self) {
+        self.done.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
 }
 
 /// A node graph: each node's children and whether it names the mesh; the scene's roots.
@@ -161,13 +183,12 @@ impl Graph {
 fn generated_node_graphs_are_trees_or_refused_and_never_blow_up() {
     let cases = env_number("RAYLAB_FUZZ_CASES", 2000);
     let seed = env_number("RAYLAB_FUZZ_SEED", 1);
-    static CASE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    watchdog(&CASE);
+    let watchdog = Watchdog::start("node graphs");
     let mut rng = Rng(seed ^ 0x6a09_e667);
     let (mut trees, mut refused) = (0u64, 0u64);
     let start = Instant::now();
     for case in 0..cases {
-        CASE.store(case, std::sync::atomic::Ordering::Relaxed);
+        watchdog.at(case);
         let g = Graph::generate(&mut rng);
         let text = g.gltf();
         let no_files = |_: &str| Err("no files".to_string());
@@ -357,8 +378,7 @@ fn generated_output_paths_touch_nothing_but_the_output() {
     use std::io::Read;
     let cases = env_number("RAYLAB_FUZZ_CASES", 2000);
     let seed = env_number("RAYLAB_FUZZ_SEED", 1);
-    static CASE: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-    watchdog(&CASE);
+    let watchdog = Watchdog::start("output paths");
     let root = tempfile::tempdir().unwrap();
     let device = {
         let probe = root.path().join("probe");
@@ -381,7 +401,7 @@ fn generated_output_paths_touch_nothing_but_the_output() {
     let mut outcomes = BTreeMap::new();
     let start = Instant::now();
     for case in 0..cases {
-        CASE.store(case, std::sync::atomic::Ordering::Relaxed);
+        watchdog.at(case);
         let dir = root.path().join(format!("case{case}"));
         let (out, elsewhere) = (dir.join("out"), dir.join("elsewhere"));
         std::fs::create_dir_all(&out).unwrap();

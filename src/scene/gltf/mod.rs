@@ -68,6 +68,22 @@ pub fn load_gltf(data: &[u8], file: &str, read_file: ReadFile) -> Result<Model, 
         }
     }
     nodes::check_tree(json).map_err(|m| error(format!("invalid glTF: {m}")))?;
+    // gltf 1.4 unwraps an image's source and a buffer view's MIME type without checking.
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (None, None, _) => {
+                return Err(error(format!(
+                    "invalid glTF: images[{i}] has neither a uri nor a bufferView"
+                )));
+            }
+            (None, Some(_), None) => {
+                return Err(error(format!(
+                    "invalid glTF: images[{i}] is in a bufferView but has no mimeType"
+                )));
+            }
+            _ => {}
+        }
+    }
     let gltf::Gltf { document, blob } = unchecked;
     let document =
         gltf::Document::from_json(document.into_json()).map_err(|e| gltf_error(file, e))?;
