@@ -545,14 +545,7 @@ fn under_a_two_gigabyte_address_space_every_big_job_renders_or_is_refused_in_a_l
         ("render glass -o c.png --size 4096x4096 --spp 1", true),
         (sweep.as_str(), true),
     ] {
-        let o = std::process::Command::new("sh")
-            .arg("-c")
-            .arg(format!("ulimit -v 2000000 && exec \"$0\" {job} -q"))
-            .arg(env!("CARGO_BIN_EXE_raylab"))
-            .env_remove("RAYLAB_MEMORY_LIMIT")
-            .current_dir(dir)
-            .output()
-            .unwrap();
+        let o = common::under_two_gigabytes(job, dir);
         let err = stderr(&o);
         let name = &job[..30.min(job.len())];
         if refused {

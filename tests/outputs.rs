@@ -175,6 +175,21 @@ fn a_fifo_or_a_pipe_is_written_through_with_its_parameters_and_nothing_beside_it
         !dir.join("pipe.png.json").exists(),
         "nothing beside a stream"
     );
+    // A FIFO in a sidecar's place: refused before the render, not after.
+    let side = dir.join("s.png.json");
+    assert!(
+        Command::new("mkfifo")
+            .arg(&side)
+            .status()
+            .unwrap()
+            .success()
+    );
+    fails(
+        &["render", "--size", "8x8", "--spp", "1", "-o", "s.png"],
+        dir,
+        "s.png.json: cannot be written: is a FIFO, and a sidecar is a file",
+    );
+    assert!(!dir.join("s.png").exists());
     // A section and a sweep through a link to the FIFO.
     std::os::unix::fs::symlink("pipe.png", dir.join("to-pipe.png")).unwrap();
     let (_, section) = read_while(

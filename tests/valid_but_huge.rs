@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{glb, stderr};
+use common::{glb, stderr, under_two_gigabytes};
 use raylab::scene::{Scene, load_gltf};
 use std::path::Path;
 
@@ -211,18 +211,6 @@ fn grid_gltf(dir: &Path, stem: &str, n: u32, nodes: usize) {
         6 * n * n,
     );
     std::fs::write(dir.join(format!("{stem}.gltf")), json).unwrap();
-}
-
-/// Runs raylab with `job` under an address space of 2 GB (the memory limit then 1 GB).
-fn under_two_gigabytes(job: &str, dir: &Path) -> std::process::Output {
-    std::process::Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit -v 2000000 && exec \"$0\" {job} -q"))
-        .arg(env!("CARGO_BIN_EXE_raylab"))
-        .env_remove("RAYLAB_MEMORY_LIMIT")
-        .current_dir(dir)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -61,8 +61,13 @@ pub fn check_writable(path: &Path, sidecar: bool, bytes: u64) -> Result<Target> 
     };
     if sidecar && !target.is_stream() {
         let json = sidecar_path(path);
-        if let Err(e) = raylab::render::output::check_writable(&json, 0, SIDECAR_BYTES) {
-            bail!("{}: cannot be written: {e}", json.display());
+        match raylab::render::output::check_writable(&json, 0, SIDECAR_BYTES) {
+            Err(e) => bail!("{}: cannot be written: {e}", json.display()),
+            Ok(t) if t.is_stream() => bail!(
+                "{}: cannot be written: is a FIFO, and a sidecar is a file (remove it, or write the image under another name)",
+                json.display()
+            ),
+            Ok(_) => {}
         }
     }
     Ok(target)

@@ -138,3 +138,16 @@ pub fn env_number(name: &str, default: u64) -> u64 {
         .and_then(|v| v.parse().ok())
         .unwrap_or(default)
 }
+
+/// Runs `raylab` with the words of `job` (and `-q`) in `dir` under an address space of
+/// 2 GB (`ulimit -v`; the memory limit is then 1 GB), the environment's limit unset.
+pub fn under_two_gigabytes(job: &str, dir: &Path) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v 2000000 && exec \"$0\" {job} -q"))
+        .arg(env!("CARGO_BIN_EXE_raylab"))
+        .env_remove("RAYLAB_MEMORY_LIMIT")
+        .current_dir(dir)
+        .output()
+        .expect("sh runs")
+}
