@@ -6,6 +6,8 @@
 
 // Its helpers unwrap as its tests do: a failure there fails the test.
 #![allow(clippy::unwrap_used)]
+// FIFOs, devices, links, chattr and mount are tested where the system has them.
+#![cfg_attr(not(target_os = "linux"), allow(dead_code, unused_imports))]
 
 mod common;
 
@@ -282,11 +284,14 @@ fn two_renders_to_one_output_leave_one_renders_pair() {
         .unwrap()
         .flatten()
         .map(|e| e.path())
+        // Where a folder cannot be locked itself (Windows), its lock file stays.
+        .filter(|p| !p.ends_with(".raylab.lock"))
         .collect();
     assert_eq!(left.len(), 2, "the pair alone: {left:?}");
 }
 
 /// Renders a first pair `x.png` and `x.png.json` in `dir`; their bytes.
+#[cfg(target_os = "linux")]
 fn first_pair(dir: &Path) -> (Vec<u8>, Vec<u8>) {
     let o = raylab(
         &["render", "--size", "8x8", "--spp", "1", "-q", "-o", "x.png"],

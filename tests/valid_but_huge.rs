@@ -213,6 +213,8 @@ fn grid_gltf(dir: &Path, stem: &str, n: u32, nodes: usize) {
     std::fs::write(dir.join(format!("{stem}.gltf")), json).unwrap();
 }
 
+// `ulimit -v` is Linux's.
+#[cfg(target_os = "linux")]
 #[test]
 fn a_mesh_a_hundred_nodes_place_is_built_once() {
     let d = tempfile::tempdir().unwrap();
@@ -275,6 +277,8 @@ fn an_instanced_placement_renders_as_copies_do() {
     assert!(worst < 1e-3, "{worst}");
 }
 
+// `ulimit -v` is Linux's.
+#[cfg(target_os = "linux")]
 #[test]
 fn many_lights_render_in_bounded_memory() {
     let d = tempfile::tempdir().unwrap();
