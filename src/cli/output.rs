@@ -2,7 +2,9 @@
 //! any time is spent rendering.
 
 use anyhow::{Result, bail};
-use raylab::render::output::{Target, folder_of, image_format, safe_file_stem, unused_png};
+use raylab::render::output::{
+    Target, folder_of, image_bytes_at_most, image_format, safe_file_stem, unused_png,
+};
 use raylab::render::sidecar_path;
 use std::path::{Path, PathBuf};
 
@@ -15,24 +17,26 @@ pub fn default_output(dir: &Path, stem: &str) -> PathBuf {
 
 /// Refuses, before any time is spent rendering, an output the film cannot write (a
 /// format it does not write, a caption where the file cannot carry one) or that cannot
-/// take up to `bytes` (see [`check_writable`]); `sidecar` if a sidecar goes beside it.
-/// Says how the image will be written (a FIFO or pipe gets no sidecar).
-pub fn check_output(path: &Path, caption: bool, sidecar: bool, bytes: u64) -> Result<Target> {
-    let format = image_format(path);
-    if !matches!(format.as_deref(), Some("png") | Some("exr")) {
+/// take a `size` image in its format (see [`check_writable`]); `sidecar` if a sidecar
+/// goes beside it. Says how the image will be written (a FIFO or pipe gets no sidecar).
+pub fn check_output(
+    path: &Path,
+    caption: bool,
+    sidecar: bool,
+    (width, height): (u32, u32),
+) -> Result<Target> {
+    let format = image_format(path).unwrap_or_default();
+    if !matches!(format.as_str(), "png" | "exr") {
         bail!("{}: the output must end in .png or .exr", path.display());
     }
-    if caption && format.as_deref() != Some("png") {
+    if caption && format != "png" {
         bail!(
             "{}: --caption draws text into the picture, so it needs a .png output",
             path.display()
         );
     }
-    check_writable(path, sidecar, bytes)
+    check_writable(path, sidecar, image_bytes_at_most(&format, width, height))
 }
-
-/// The most bytes a sidecar takes, for the check of its file system's room.
-const SIDECAR_BYTES: u64 = 64 * 1024;
 
 /// Refuses an output whose folder does not exist, before any time is spent.
 fn check_folder(path: &Path) -> Result<()> {
@@ -61,13 +65,8 @@ pub fn check_writable(path: &Path, sidecar: bool, bytes: u64) -> Result<Target> 
     };
     if sidecar && !target.is_stream() {
         let json = sidecar_path(path);
-        match raylab::render::output::check_writable(&json, 0, SIDECAR_BYTES) {
-            Err(e) => bail!("{}: cannot be written: {e}", json.display()),
-            Ok(t) if t.is_stream() => bail!(
-                "{}: cannot be written: is a FIFO, and a sidecar is a file (remove it, or write the image under another name)",
-                json.display()
-            ),
-            Ok(_) => {}
+        if let Err(e) = raylab::render::output::check_sidecar(&json) {
+            bail!("{}: cannot be written: {e}", json.display());
         }
     }
     Ok(target)

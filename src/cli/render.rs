@@ -220,11 +220,9 @@ pub fn render_command(args: RenderArgs) -> Result<()> {
     };
     let json = sidecar_path(&output);
     let (w, h) = job.image_size();
-    let format = raylab::render::output::image_format(&output).unwrap_or_default();
-    let bytes = raylab::render::output::image_bytes_at_most(&format, w, h);
     let split = !job.others.is_empty();
     // A FIFO or a pipe gets the image alone: it carries its parameters inside it.
-    let target = check_output(&output, args.caption, !split, bytes)?;
+    let target = check_output(&output, args.caption, !split, (w, h))?;
     let with_sidecar = !split && !target.is_stream();
     if with_sidecar {
         Sidecar::check_target(&json, args.params.as_deref())?;

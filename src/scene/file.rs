@@ -322,21 +322,14 @@ fn scene_params(
 ) -> Result<Params, SceneError> {
     let mut p = Params::default();
     for (key, value) in params {
-        // JSON has no NaN or infinity: serde_json would write null, which means "unset".
-        if let toml::Value::Float(x) = value.get_ref()
-            && !x.is_finite()
-            && Params::names().contains(key.get_ref())
-        {
-            return Err(src.error(
-                value.span(),
-                format!(
-                    "in [params]: bad value for `{}`: {x} is not a finite number",
-                    key.get_ref()
-                ),
-            ));
-        }
-        let json = serde_json::to_value(value.get_ref())
-            .map_err(|e| src.error(value.span(), e.to_string()))?;
+        let json = match value.get_ref() {
+            // JSON has no NaN or infinity (serde_json would write null, which means
+            // "unset"): the word, as `--set ior=nan` gives it, for the table to refuse.
+            toml::Value::Float(x) if !x.is_finite() => {
+                serde_json::Value::String(x.to_string().to_lowercase())
+            }
+            v => serde_json::to_value(v).map_err(|e| src.error(value.span(), e.to_string()))?,
+        };
         p.set_value(key.get_ref(), json).map_err(|e| {
             let span = if matches!(e, ParamError::Unknown { .. }) {
                 key.span()

@@ -95,13 +95,13 @@ fn machine_limit() -> MemoryLimit {
         )
 }
 
-/// `bytes` for a reader: `3.3 GB`, `512 MB`.
+/// `bytes` for a reader: `3.3 GB`, `512 MB`, `262 kB`, `812 bytes`.
 pub fn shown(bytes: u64) -> String {
-    let gb = bytes as f64 / 1e9;
-    if gb >= 1.0 {
-        format!("{gb:.1} GB")
-    } else {
-        format!("{:.0} MB", bytes as f64 / 1e6)
+    match bytes as f64 {
+        b if b >= 1e9 => format!("{:.1} GB", b / 1e9),
+        b if b >= 1e6 => format!("{:.0} MB", b / 1e6),
+        b if b >= 1e3 => format!("{:.0} kB", b / 1e3),
+        _ => format!("{bytes} bytes"),
     }
 }
 
@@ -128,6 +128,14 @@ pub fn check(bytes: u64, what: &str) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sizes_read_as_a_person_reads_them() {
+        assert_eq!(shown(812), "812 bytes");
+        assert_eq!(shown(262_144), "262 kB");
+        assert_eq!(shown(512_000_000), "512 MB");
+        assert_eq!(shown(3_300_000_000), "3.3 GB");
+    }
 
     #[test]
     fn sizes_parse_with_their_units() {

@@ -169,11 +169,32 @@ fn shares(placements: usize, triangles: usize) -> bool {
     placements > 1 && triangles > SMALL_MESH
 }
 
+/// What one placement of a model adds to the memory estimate, per part.
+struct PartSize {
+    /// The part's triangles.
+    triangles: usize,
+    /// How many times the model places it ([`super::obj::ObjPart::at`]).
+    times: usize,
+    /// Whether its placements share one mesh ([`shares`]).
+    shared: bool,
+}
+
+impl PartSize {
+    /// `part`'s, of a model the scene places `placements` times.
+    fn of(part: &super::obj::ObjPart, placements: usize) -> PartSize {
+        let (triangles, times) = (part.mesh.triangle_count(), part.at.len());
+        PartSize {
+            triangles,
+            times,
+            shared: shares(placements.saturating_mul(times), triangles),
+        }
+    }
+}
+
 impl Part {
-    /// `part` of a model placed `placements` times.
+    /// `part` of a model placed `placements` times, shared as [`PartSize::of`] says.
     fn new(part: super::obj::ObjPart, placements: usize) -> Part {
-        let placed = placements.saturating_mul(part.at.len());
-        let mesh = if shares(placed, part.mesh.triangle_count()) {
+        let mesh = if PartSize::of(&part, placements).shared {
             PartMesh::Shared(SharedMesh::new(part.mesh))
         } else {
             PartMesh::Copied(part.mesh)
@@ -186,14 +207,16 @@ impl Part {
         }
     }
 
-    fn is_shared(&self) -> bool {
-        matches!(self.mesh, PartMesh::Shared(_))
-    }
-
-    fn triangle_count(&self) -> usize {
-        match &self.mesh {
-            PartMesh::Copied(m) => m.triangle_count(),
-            PartMesh::Shared(s) => s.mesh().triangle_count(),
+    /// What another placement of its model adds.
+    fn size(&self) -> PartSize {
+        let (triangles, shared) = match &self.mesh {
+            PartMesh::Copied(m) => (m.triangle_count(), false),
+            PartMesh::Shared(s) => (s.mesh().triangle_count(), true),
+        };
+        PartSize {
+            triangles,
+            times: self.at.len(),
+            shared,
         }
     }
 }
@@ -357,22 +380,13 @@ impl<'s> Objects<'s> {
             let loaded = match self.models.get(rel) {
                 Some(loaded) => {
                     let loaded = Rc::clone(loaded);
-                    let sizes = loaded.parts.iter();
-                    self.account(
-                        sizes.map(|p| (p.triangle_count(), p.at.len(), p.is_shared())),
-                        false,
-                        &span,
-                    )?;
+                    self.account(loaded.parts.iter().map(Part::size), false, &span)?;
                     loaded
                 }
                 None => {
                     let placed = placements.get(rel).copied().unwrap_or(1);
                     let raw = self.model(&m, assets)?;
-                    let sizes = raw.parts.iter().map(|p| {
-                        let count = p.mesh.triangle_count();
-                        let times = p.at.len();
-                        (count, times, shares(placed.saturating_mul(times), count))
-                    });
+                    let sizes = raw.parts.iter().map(|p| PartSize::of(p, placed));
                     self.account(sizes, true, &span)?;
                     let loaded = Rc::new(Loaded {
                         parts: raw
@@ -422,9 +436,10 @@ impl<'s> Objects<'s> {
                 };
                 for (k, at) in part.at.iter().enumerate() {
                     // As it stands: the placement's transform alone, bit for bit.
-                    let transform = match *at == glam::Affine3A::IDENTITY {
-                        true => transform,
-                        false => transform * *at,
+                    let transform = if *at == glam::Affine3A::IDENTITY {
+                        transform
+                    } else {
+                        transform * *at
                     };
                     let shape = match &part.mesh {
                         PartMesh::Copied(mesh) => {
@@ -451,27 +466,25 @@ impl<'s> Objects<'s> {
         Ok(())
     }
 
-    /// Adds one placement of a model's parts (their triangle counts, how many times the
-    /// model places each, and whether each is shared) to the memory estimate, and
-    /// refuses it beyond the limit. A shared part's triangles count once, at the `first`
-    /// placement; a copied part's at each time it is placed.
+    /// Adds one placement of a model's parts to the memory estimate, and refuses it beyond
+    /// the limit. A shared part's triangles count once, at the `first` placement, and each
+    /// time it is placed as an instance; a copied part's triangles each time.
     fn account(
         &mut self,
-        parts: impl Iterator<Item = (usize, usize, bool)>,
+        parts: impl Iterator<Item = PartSize>,
         first: bool,
         span: &Range<usize>,
     ) -> Result<(), SceneError> {
-        for (count, times, shared) in parts {
-            let times = times as u64;
-            if shared {
+        for p in parts {
+            let (triangles, times) = (p.triangles as u64, p.times as u64);
+            let built = match (p.shared, first) {
+                (true, true) => triangles,
+                (true, false) => 0,
+                (false, _) => triangles.saturating_mul(times),
+            };
+            self.triangles = self.triangles.saturating_add(built);
+            if p.shared {
                 self.instances = self.instances.saturating_add(times);
-            }
-            if first && shared {
-                self.triangles = self.triangles.saturating_add(count as u64);
-            }
-            if !shared {
-                let copies = (count as u64).saturating_mul(times);
-                self.triangles = self.triangles.saturating_add(copies);
             }
         }
         let bytes = self.triangles * super::memory::BYTES_PER_TRIANGLE

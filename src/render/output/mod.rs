@@ -11,7 +11,7 @@ mod lock;
 mod target;
 
 use lock::FolderLock;
-pub use target::{Target, free_bytes, size_text};
+pub use target::Target;
 
 use std::fs::File;
 use std::io::Write;
@@ -178,15 +178,22 @@ pub fn sweep_stale(dir: &Path) {
     }
 }
 
+/// `dir`'s lock ([`FolderLock`]), taken before anything in the folder is made, and the
+/// folder swept once under it of what killed runs left.
+fn hold_folder(dir: &Path) -> std::io::Result<FolderLock> {
+    let lock = FolderLock::take(dir)?;
+    sweep_stale(dir);
+    Ok(lock)
+}
+
 /// A temporary file for `path`, with `bytes` written and flushed. The caller holds the
-/// folder's lock, so that no other raylab sweeps the file between its making and its lock.
+/// folder ([`hold_folder`]), so that no other raylab sweeps the file between its making
+/// and its lock.
 fn staged(path: &Path, bytes: &[u8]) -> std::io::Result<TempFile> {
     let name = path
         .file_name()
         .ok_or_else(|| std::io::Error::other("not a file name"))?;
-    let dir = folder_of(path);
-    sweep_stale(dir);
-    let mut temp = TempFile::create(dir, &name.to_string_lossy())?;
+    let mut temp = TempFile::create(folder_of(path), &name.to_string_lossy())?;
     temp.write_all(bytes)?;
     Ok(temp)
 }
@@ -200,7 +207,7 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     target.may_change()?;
     match target {
         Target::Replace(p) => {
-            let _lock = FolderLock::take(folder_of(&p))?;
+            let _held = hold_folder(folder_of(&p))?;
             staged(&p, bytes)?.persist(&p)
         }
         Target::Through(p) => write_in_place(&p, bytes),
@@ -416,15 +423,14 @@ fn write_pair_cut(
     }
     let sidecar = Target::of(sidecar)?;
     if sidecar.is_stream() {
-        return Err(std::io::Error::other(format!(
-            "{} is a FIFO: a sidecar is a file",
-            sidecar.path().display()
-        )));
+        let e = target::sidecar_not_a_file();
+        let named = format!("{} {e}", sidecar.path().display());
+        return Err(std::io::Error::new(e.kind(), named));
     }
     image.may_change()?;
     sidecar.may_change()?;
     let killed = |step: usize| matches!(cut, Cut::Kill(n) if n < step);
-    let _lock = FolderLock::take(folder_of(image.path()))?;
+    let _held = hold_folder(folder_of(image.path()))?;
     let new_image = Staged::new(&image, image_bytes)?;
     if killed(2) {
         new_image.abandon();
@@ -483,6 +489,18 @@ pub fn check_writable(path: &Path, extra: usize, bytes: u64) -> std::io::Result<
         )));
     }
     target::preflight(path, bytes)
+}
+
+/// The most bytes a sidecar takes, for the check of its file system's room.
+const SIDECAR_BYTES: u64 = 64 * 1024;
+
+/// Checks, before any work, that a sidecar can be written at `path` ([`check_writable`]):
+/// and it is a file, not a FIFO.
+pub fn check_sidecar(path: &Path) -> std::io::Result<()> {
+    match check_writable(path, 0, SIDECAR_BYTES)? {
+        t if t.is_stream() => Err(target::sidecar_not_a_file()),
+        _ => Ok(()),
+    }
 }
 
 /// The format an image at `path` is written in: its extension's (lower case), or PNG

@@ -9,6 +9,7 @@
 //! bytes are written into it and nothing is put beside it. Anything else (a device such
 //! as `/dev/null` or a terminal, a socket, a folder, or a link to one) is refused.
 
+use crate::scene::memory::shown;
 use std::fs::{File, Metadata};
 use std::io::{Error, ErrorKind, Result};
 use std::path::{Path, PathBuf};
@@ -39,7 +40,7 @@ impl Target {
             return match Kind::of(&own) {
                 Kind::File => Ok(Target::Replace(path.to_path_buf())),
                 Kind::Fifo => Ok(Target::Stream(path.to_path_buf())),
-                other => Err(refused(other.what(), "")),
+                other => Err(refused(other.what())),
             };
         }
         // A link: what it leads to, followed to the end.
@@ -53,7 +54,7 @@ impl Target {
                     let to = std::fs::canonicalize(path)
                         .map(|t| format!(" ({})", t.display()))
                         .unwrap_or_default();
-                    Err(refused(&format!("a link to {}{to}", other.what()), ""))
+                    Err(refused(&format!("a link to {}{to}", other.what())))
                 }
             },
         }
@@ -144,12 +145,20 @@ impl Kind {
     }
 }
 
+/// The refusal of a FIFO in a sidecar's place.
+pub(super) fn sidecar_not_a_file() -> Error {
+    Error::new(
+        ErrorKind::InvalidInput,
+        "is a FIFO, and a sidecar is a file (remove it, or write the image under another name)",
+    )
+}
+
 /// The refusal of a path that is `what`, left as it is.
-fn refused(what: &str, why: &str) -> Error {
+fn refused(what: &str) -> Error {
     Error::new(
         ErrorKind::InvalidInput,
         format!(
-            "is {what}{why}; raylab writes only to files, new names, FIFOs and pipes, and left it untouched"
+            "is {what}; raylab writes only to files, new names, FIFOs and pipes, and left it untouched"
         ),
     )
 }
@@ -226,7 +235,7 @@ fn replaceable(path: &Path, m: &Metadata) -> Result<()> {
             let me = rustix::process::geteuid().as_raw();
             let sticky = d.mode() & 0o1000 != 0;
             if sticky && me != 0 && m.uid() != me && d.uid() != me {
-                return Err(refusal(
+                return Err(Error::new(
                     ErrorKind::PermissionDenied,
                     "belongs to another user in a folder where only its owner may replace it",
                 ));
@@ -241,7 +250,7 @@ fn replaceable(path: &Path, m: &Metadata) -> Result<()> {
 /// replace and no write may rewrite.
 fn unchangeable(path: &Path, m: &Metadata, read_only: &str) -> Result<()> {
     if m.permissions().readonly() {
-        return Err(refusal(ErrorKind::PermissionDenied, read_only));
+        return Err(Error::new(ErrorKind::PermissionDenied, read_only));
     }
     #[cfg(target_os = "linux")]
     {
@@ -249,13 +258,13 @@ fn unchangeable(path: &Path, m: &Metadata, read_only: &str) -> Result<()> {
         if let Ok(x) = statx(CWD, path, AtFlags::empty(), StatxFlags::BASIC_STATS) {
             let set = x.stx_attributes & x.stx_attributes_mask;
             if set.contains(StatxAttributes::IMMUTABLE) {
-                return Err(refusal(
+                return Err(Error::new(
                     ErrorKind::PermissionDenied,
                     "is marked immutable (chattr +i); not replaced",
                 ));
             }
             if set.contains(StatxAttributes::APPEND) {
-                return Err(refusal(
+                return Err(Error::new(
                     ErrorKind::PermissionDenied,
                     "is marked append-only (chattr +a); not replaced",
                 ));
@@ -277,13 +286,9 @@ fn writable_in_place(path: &Path, m: &Metadata) -> Result<()> {
         .map_err(|e| Error::new(e.kind(), format!("its file cannot be written: {e}")))
 }
 
-fn refusal(kind: ErrorKind, message: &str) -> Error {
-    Error::new(kind, message.to_string())
-}
-
 /// The bytes free to an unprivileged writer on the file system holding `path`, where the
 /// system says (Unix); `None` elsewhere.
-pub fn free_bytes(path: &Path) -> Option<u64> {
+fn free_bytes(path: &Path) -> Option<u64> {
     #[cfg(unix)]
     {
         rustix::fs::statvfs(path)
@@ -304,39 +309,17 @@ fn room(path: &Path, bytes: u64) -> Result<()> {
             ErrorKind::StorageFull,
             format!(
                 "needs up to {} and its file system has {} free",
-                size_text(bytes),
-                size_text(free)
+                shown(bytes),
+                shown(free)
             ),
         )),
         _ => Ok(()),
     }
 }
 
-/// A size in bytes as a person reads it: `812 bytes`, `3.1 MB`.
-pub fn size_text(bytes: u64) -> String {
-    const UNITS: [&str; 4] = ["kB", "MB", "GB", "TB"];
-    if bytes < 1000 {
-        return format!("{bytes} bytes");
-    }
-    let mut value = bytes as f64 / 1000.0;
-    let mut unit = 0;
-    while value >= 1000.0 && unit + 1 < UNITS.len() {
-        value /= 1000.0;
-        unit += 1;
-    }
-    format!("{value:.1} {}", UNITS[unit])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn sizes_read_as_a_person_reads_them() {
-        assert_eq!(size_text(812), "812 bytes");
-        assert_eq!(size_text(3_100_000), "3.1 MB");
-        assert_eq!(size_text(25_000_000_000), "25.0 GB");
-    }
 
     #[test]
     fn new_names_and_files_are_replaced_folders_refused() {

@@ -134,10 +134,15 @@ fn read_unchecked(
     warnings: &mut Vec<String>,
 ) -> Result<gltf::Gltf, SceneError> {
     let error = |message: String| SceneError::new(Location::file(file), message);
-    const V1: &str = "is glTF 1.0, which raylab does not read; convert it to glTF 2.0 (Blender, or gltf-pipeline)";
+    let v1 = || {
+        error(
+        "is glTF 1.0, which raylab does not read; convert it to glTF 2.0 (Blender, or gltf-pipeline)".into(),
+    )
+    };
+    let is_v1 = |version: &str| version == "1" || version.starts_with("1.");
     let (json, blob) = if data.starts_with(b"glTF") {
         if data.get(4..8) == Some(&1u32.to_le_bytes()[..]) {
-            return Err(error(V1.into()));
+            return Err(v1());
         }
         let mut glb = gltf::binary::Glb::from_slice(data).map_err(|e| gltf_error(file, e))?;
         let bin = glb.bin.take().map(Cow::into_owned);
@@ -146,42 +151,46 @@ fn read_unchecked(
         (Cow::Borrowed(data), None)
     };
     let positioned = |e: serde_json::Error| gltf_error(file, gltf::Error::Deserialize(e));
-    let mut value: serde_json::Value = serde_json::from_slice(&json).map_err(positioned)?;
-    let version = value
-        .pointer("/asset/version")
-        .and_then(|v| v.as_str())
-        .unwrap_or("");
-    if version.starts_with("1.") || version == "1" {
-        return Err(error(V1.into()));
+    // Read once as glTF 2.0, with errors at their line and column. Only a file that does
+    // not read is read again as plain JSON: glTF 1.0, or animations this crate cannot
+    // read (KHR_animation_pointer's targets name no node), taken out.
+    let mut root = match gltf::json::Root::from_slice(&json) {
+        Ok(root) => root,
+        Err(first) => {
+            let Ok(mut value) = serde_json::from_slice::<serde_json::Value>(&json) else {
+                return Err(positioned(first));
+            };
+            let version = value.pointer("/asset/version").and_then(|v| v.as_str());
+            if version.is_some_and(is_v1) {
+                return Err(v1());
+            }
+            let animated = value
+                .as_object_mut()
+                .and_then(|root| root.remove("animations"))
+                .is_some();
+            match animated {
+                true => serde_json::from_value(value)
+                    .map_err(|e| error(format!("not valid glTF JSON: {e}")))?,
+                false => return Err(positioned(first)),
+            }
+        }
+    };
+    if is_v1(&root.asset.version) {
+        return Err(v1());
     }
     let pointer = "KHR_animation_pointer";
-    let uses = |list: &str| {
-        value
-            .get(list)
-            .and_then(|l| l.as_array())
-            .is_some_and(|l| l.iter().any(|e| e == pointer))
-    };
-    let animated = uses("extensionsUsed") || uses("extensionsRequired");
-    let mut changed = false;
-    if let Some(root) = value.as_object_mut() {
-        if root.remove("animations").is_some() {
-            changed = true;
-        }
-        if let Some(serde_json::Value::Array(required)) = root.get_mut("extensionsRequired") {
-            required.retain(|e| e != pointer);
-        }
-    }
-    if animated {
+    if root
+        .extensions_used
+        .iter()
+        .chain(&root.extensions_required)
+        .any(|e| e == pointer)
+    {
         warnings.push(format!(
             "{file}: its animations (KHR_animation_pointer) are left out: raylab renders the still scene"
         ));
     }
-    // Positioned errors where nothing was taken out; the same JSON otherwise.
-    let mut root: gltf::json::Root = if changed {
-        serde_json::from_value(value).map_err(|e| error(format!("not valid glTF JSON: {e}")))?
-    } else {
-        gltf::json::Root::from_slice(&json).map_err(positioned)?
-    };
+    root.extensions_required.retain(|e| e != pointer);
+    root.animations.clear();
     // Attributes glTF does not define (an application's `_NAME`) are not read.
     for mesh in &mut root.meshes {
         for primitive in &mut mesh.primitives {
