@@ -64,6 +64,7 @@ fn mesh_scene(mesh: Mesh) -> SceneDesc {
             albedo: Texture::Solid(c),
             specular: Color::splat(0.2),
             exponent: 40.0,
+            emission: None,
         })
     };
     SceneDesc {

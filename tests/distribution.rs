@@ -5,7 +5,7 @@
 use raylab::camera::Camera;
 use raylab::geometry::{Plane, Quad, Shape, Sphere};
 use raylab::light::{Light, LightShape};
-use raylab::material::{Diffuse, Emissive, Material, Texture};
+use raylab::material::{Diffuse, Emissive, Material};
 use raylab::math::{Color, Pattern, Ray, SampleStream, Vec3};
 use raylab::params::Params;
 use raylab::render::{Film, render};
@@ -26,11 +26,7 @@ fn glow() -> Material {
 }
 
 fn white() -> Material {
-    Material::Diffuse(Diffuse {
-        albedo: Texture::Solid(Color::ONE),
-        specular: Color::ZERO,
-        exponent: 1.0,
-    })
+    Material::Diffuse(Diffuse::solid(Color::ONE))
 }
 
 fn rmse(a: &Film, b: &Film) -> f64 {

@@ -276,6 +276,56 @@ fn a_gltf_spot_lights_its_cone_and_leaves_the_rest_to_the_ambient() {
     check_floor(&scene, (64, 64), &points, &radiance);
 }
 
+#[test]
+fn an_emission_map_glows_over_the_base_colour_which_is_lit_where_the_map_is_dark() {
+    // glTF adds emission to the base: where the emission map is black the floor is its base
+    // colour, lit; elsewhere the map's glow (× factor × strength) is added. Its metallic
+    // factor of 1 is not kept (raylab's glowing surfaces are diffuse).
+    let mut floor = Floor::new(json!({"name": "screen",
+        "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.6, 0.7, 1]},
+        "emissiveFactor": [1.0, 0.5, 1.0], "emissiveTexture": {"index": 0},
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}}));
+    let (dark, glow) = ([0u8, 0, 0], [200u8, 120, 40]);
+    floor.image = Some(picture(
+        2,
+        1,
+        [dark, glow].concat(),
+        image::ImageFormat::Png,
+    ));
+    floor.sampler = json!({"wrapS": 33071, "wrapT": 33071});
+    floor.cameras = vec![json!({"type": "perspective",
+        "perspective": {"yfov": PI / 3.0, "aspectRatio": 1.5, "znear": 0.1}})];
+    floor.lights = vec![json!({"type": "point", "intensity": 8.0})];
+    floor.nodes = vec![
+        json!({"camera": 0, "translation": [0, 6, 0], "rotation": looking_down()}),
+        json!({"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 2, 0]}),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("screen.glb");
+    floor.write_glb(&path);
+    let scene = Scene::load(&path).unwrap();
+    let base = Color::new(0.5, 0.6, 0.7);
+    let texel = |t: [u8; 3]| Color::new(linear(t[0]), linear(t[1]), linear(t[2]));
+    let emission = |u: f32| {
+        let s = ((u - 0.25) / 0.5).clamp(0.0, 1.0);
+        (texel(dark) * (1.0 - s) + texel(glow) * s) * Color::new(1.0, 0.5, 1.0) * 2.0
+    };
+    let radiance = |p: Vec3| {
+        let to = Vec3::new(0.0, 2.0, 0.0) - p;
+        let d = to.length();
+        let irradiance = 8.0 * (to.y / d) / (d * d);
+        base * (Color::splat(irradiance / PI) + Color::splat(AMBIENT)) + emission((p.x + 2.0) / 4.0)
+    };
+    // Where the map is black (u < 0.25), in its blend, and where it glows (u > 0.75).
+    let points = [
+        Vec3::new(-1.6, 0.0, 0.4),
+        Vec3::new(-1.2, 0.0, -1.0),
+        Vec3::new(0.2, 0.0, 0.3),
+        Vec3::new(1.5, 0.0, -0.5),
+    ];
+    check_floor(&scene, (90, 60), &points, &radiance);
+}
+
 /// The albedo texture of the first object of `scene` that has one.
 fn albedo_of(scene: &Scene) -> &Texture {
     scene

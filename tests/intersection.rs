@@ -7,7 +7,7 @@
 use glam::{Affine3A, Quat};
 use raylab::camera::Camera;
 use raylab::geometry::{Instance, Mesh, Plane, Quad, Shape, SharedMesh, Sphere};
-use raylab::material::{Diffuse, Material, Texture};
+use raylab::material::{Diffuse, Material};
 use raylab::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use raylab::scene::{Scene, SceneDesc};
 
@@ -39,11 +39,7 @@ impl Rng {
 
 fn scene_of(shapes: Vec<Shape>) -> Scene {
     let mut desc = SceneDesc::empty(Camera::looking_at(Vec3::Z, Vec3::ZERO, Vec3::Y, 45.0));
-    let grey = Material::Diffuse(Diffuse {
-        albedo: Texture::Solid(Color::splat(0.5)),
-        specular: Color::ZERO,
-        exponent: 1.0,
-    });
+    let grey = Material::Diffuse(Diffuse::solid(Color::splat(0.5)));
     for (i, shape) in shapes.into_iter().enumerate() {
         desc.add(format!("object {i}"), shape, grey.clone());
     }

@@ -169,6 +169,7 @@ fn direct_light_matches_the_lecture_tracer_on_smooth_and_glossy_floors() {
         albedo: Texture::Solid(Color::new(0.6, 0.5, 0.4)),
         specular: Color::splat(0.3),
         exponent: 30.0,
+        emission: None,
     });
     let glossy = Material::Glossy(Glossy {
         reflectance: Color::new(0.9, 0.7, 0.5),
@@ -406,4 +407,75 @@ fn photons_carry_a_point_lights_caustic_and_conserve_its_energy() {
         cap > 2.0 * cap_path,
         "the caustic under the glass: {cap} against {cap_path}"
     );
+}
+
+/// A floor lit by an emitting ball and quad, seen directly and through a glass ball, under
+/// a point light; the emitters' material is `emitter`.
+fn emitters_scene(emitter: &str) -> Scene {
+    let text = format!(
+        r#"
+[camera]
+position = [0.0, 1.2, 4.0]
+look_at = [0.0, 0.5, 0.0]
+fov = 50
+[material.floor]
+type = "diffuse"
+color = [0.7, 0.6, 0.5]
+[material.glass]
+type = "dielectric"
+ior = 1.5
+[material.emitter]
+{emitter}
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+[[sphere]]
+center = [0.6, 0.5, 0.8]
+radius = 0.5
+material = "glass"
+[[sphere]]
+center = [-0.8, 0.6, 0.0]
+radius = 0.4
+material = "emitter"
+[[quad]]
+corner = [0.5, 1.5, -1.0]
+edge_u = [1.0, 0.0, 0.0]
+edge_v = [0.0, 0.0, 1.0]
+material = "emitter"
+[[point_light]]
+position = [0.0, 3.0, 1.0]
+intensity = 5.0
+"#
+    );
+    Scene::from_toml_str(&text, "emitters.toml", std::path::Path::new(".")).unwrap()
+}
+
+#[test]
+fn a_black_glowing_surface_is_the_light_of_its_emission_in_every_transport() {
+    // A glowing diffuse surface of albedo 0 reflects nothing: it must give the image of a
+    // light of the same radiance bit for bit, in every transport (its light samples, MIS
+    // weights and emission the same; only its shadow rays, which add 0, differ).
+    let light = emitters_scene("type = \"emissive\"\ncolor = [3.0, 2.0, 1.0]");
+    let glowing =
+        emitters_scene("type = \"diffuse\"\ncolor = [0.0, 0.0, 0.0]\nemission = [3.0, 2.0, 1.0]");
+    let transports = [
+        Transport::Whitted,
+        Transport::TransmissiveShadows,
+        Transport::Path,
+        Transport::Photons,
+    ];
+    for transport in transports {
+        let params = Params {
+            spp: 8,
+            transport,
+            ..Params::default()
+        };
+        let bits = |f: &Film| -> Vec<[u32; 3]> {
+            f.pixels().map(|c| c.to_array().map(f32::to_bits)).collect()
+        };
+        let (a, b) = (rendered(&light, &params), rendered(&glowing, &params));
+        assert_eq!(bits(&a), bits(&b), "{transport:?}");
+        assert!(image_mean(&a) > 0.05, "{transport:?}: {}", image_mean(&a));
+    }
 }

@@ -113,11 +113,7 @@ fn a_crop_holds_the_whole_images_pixels_bit_for_bit() {
 }
 
 fn grey(albedo: f32) -> Material {
-    Material::Diffuse(Diffuse {
-        albedo: Texture::Solid(Color::splat(albedo)),
-        specular: Color::ZERO,
-        exponent: 1.0,
-    })
+    Material::Diffuse(Diffuse::solid(Color::splat(albedo)))
 }
 
 /// A camera at height `height` looking straight down at the plane y = 0.
@@ -146,10 +142,30 @@ fn top_down(
 
 #[test]
 fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
-    // L(r) = (a/π) I cos θ / d² = (a/π) I h / (h² + r²)^{3/2} for a light at height h.
-    let (albedo, intensity, h) = (0.6f32, 5.0f32, 1.0f32);
+    floor_under_a_point_light(0.6, 0.0, Transport::Whitted);
+}
+
+#[test]
+fn a_glowing_floor_adds_its_emission_to_the_closed_form_in_every_transport() {
+    // A glowing diffuse surface (glTF's emission over its base colour) is lit as any
+    // diffuse one, its glow added: L = Le + (a/π) I cos θ / d². Path tracing's bounce off
+    // the floor meets the black sky, so its sum is the same one.
+    for transport in [Transport::Whitted, Transport::Path] {
+        floor_under_a_point_light(0.6, 0.25, transport);
+    }
+}
+
+/// A floor of albedo `albedo` glowing with radiance `glow` under a point light, seen from
+/// above at 64 samples a pixel in `transport`, against the closed form
+/// L(r) = Le + (a/π) I cos θ / d² = Le + (a/π) I h / (h² + r²)^{3/2} for a light at height h.
+fn floor_under_a_point_light(albedo: f32, glow: f32, transport: Transport) {
+    let (intensity, h) = (5.0f32, 1.0f32);
+    let material = Material::Diffuse(Diffuse {
+        emission: (glow > 0.0).then_some(Texture::Solid(Color::splat(glow))),
+        ..Diffuse::solid(Color::splat(albedo))
+    });
     let scene = top_down(
-        grey(albedo),
+        material,
         vec![Light::point(
             Vec3::new(0.0, h, 0.0),
             Color::splat(intensity),
@@ -161,11 +177,13 @@ fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
     let spp = 64;
     let params = Params {
         spp,
+        transport,
         ..Params::default()
     };
     let (n, side) = (24u32, 2.0 * 2.0 * (30f32).to_radians().tan());
     let (film, _) = render(&scene, &params, n, n, &()).unwrap();
-    let radiance = |x: f32, z: f32| albedo / PI * intensity * h / (h * h + x * x + z * z).powf(1.5);
+    let radiance =
+        |x: f32, z: f32| glow + albedo / PI * intensity * h / (h * h + x * x + z * z).powf(1.5);
     for py in 0..n {
         for px in 0..n {
             // The pixel's footprint on the floor: its mean and spread from a 16×16 grid.
@@ -186,7 +204,7 @@ fn diffuse_floor_under_a_point_light_matches_the_closed_form() {
             let got = film.pixel(px, py).x as f64;
             assert!(
                 (got - mean).abs() <= tolerance,
-                "pixel ({px}, {py}): {got} vs {mean} ± {tolerance}"
+                "{transport:?}, glow {glow}: pixel ({px}, {py}): {got} vs {mean} ± {tolerance}"
             );
         }
     }

@@ -186,6 +186,24 @@ fn where_the_numbers_are_drawn_in_another_order_the_image_is_the_same_within_noi
     );
 }
 
+/// Asserts that `scene` is traced in waves with `params` and that every width gives the
+/// recursion's image and counts bit for bit (`what` names the case); returns them.
+fn the_waves_are_the_recursion(scene: &Scene, params: &Params, what: &str) -> (Film, Stats) {
+    assert!(
+        Tracer::new(scene, params, SIZE.0, SIZE.1).traces_waves(),
+        "{what}"
+    );
+    let (reference, reference_stats) = render(scene, params, Traversal::Recursive);
+    for w in widths() {
+        let (film, stats) = render(scene, params, Traversal::Waves(w));
+        let (a, b) = (bits(&film), bits(&reference));
+        let differ = a.iter().zip(&b).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{what}: {w:?}: pixels that differ");
+        assert_eq!(stats, reference_stats, "{what}: {w:?}");
+    }
+    (reference, reference_stats)
+}
+
 /// A crown-glass ball inside a flint one, over a floor under a point light (which draws
 /// no numbers, so that the waves draw in the recursion's order): a ray meets
 /// the flint, splits into its wavelengths, and each then meets the crown from inside the
@@ -241,15 +259,114 @@ fn the_waves_split_into_wavelengths_as_the_recursion_does_in_either_tree() {
                 tree,
                 ..scene.params.clone()
             };
-            assert!(Tracer::new(scene, &params, SIZE.0, SIZE.1).traces_waves());
-            let (reference, reference_stats) = render(scene, &params, Traversal::Recursive);
-            for w in widths() {
-                let (film, stats) = render(scene, &params, Traversal::Waves(w));
-                let (a, b) = (bits(&film), bits(&reference));
-                let differ = a.iter().zip(&b).filter(|(a, b)| a != b).count();
-                assert_eq!(differ, 0, "{name}, {tree:?}: {w:?}: pixels that differ");
-                assert_eq!(stats, reference_stats, "{name}, {tree:?}: {w:?}");
-            }
+            the_waves_are_the_recursion(scene, &params, &format!("{name}, {tree:?}"));
         }
+    }
+}
+
+/// Glowing diffuse surfaces (emission over a base colour, as glTF's emissive materials
+/// are): a floor and a ball in the open, seen directly, in a mirror and through glass, and
+/// a ball inside absorbing glass (where the waves shade a hit by its full scatter, not
+/// their diffuse shortcut), under ambient light and two point lights (which draw no
+/// numbers, so that the waves draw in the recursion's order).
+const GLOWING: &str = r#"
+description = "glowing diffuse surfaces beside, behind and inside glass"
+ambient = [0.05, 0.04, 0.03]
+[image]
+width = 40
+height = 30
+[params]
+spp = 4
+max_depth = 6
+[camera]
+position = [0.0, 1.0, 4.0]
+look_at = [0.0, 1.0, 0.0]
+fov = 50
+[material.tinted]
+type = "dielectric"
+ior = 1.5
+absorption = [0.8, 0.3, 0.1]
+[material.glass]
+type = "dielectric"
+ior = 1.5
+[material.mirror]
+type = "mirror"
+reflectance = [0.9, 0.9, 0.9]
+[material.ember]
+type = "diffuse"
+color = [0.5, 0.2, 0.1]
+specular = [0.3, 0.3, 0.3]
+exponent = 30
+emission = [2.0, 0.8, 0.2]
+[material.floor]
+type = "diffuse"
+color = [0.7, 0.7, 0.7]
+emission = [0.02, 0.05, 0.1]
+[[sphere]]
+center = [-1.2, 1.0, 0.0]
+radius = 0.8
+material = "tinted"
+[[sphere]]
+center = [-1.2, 1.0, 0.0]
+radius = 0.3
+material = "ember"
+[[sphere]]
+center = [1.0, 0.6, 0.5]
+radius = 0.5
+material = "glass"
+[[sphere]]
+center = [1.2, 0.7, -1.0]
+radius = 0.6
+material = "ember"
+[[quad]]
+corner = [-3.0, 0.0, -2.5]
+edge_u = [6.0, 0.0, 0.0]
+edge_v = [0.0, 3.0, 0.0]
+material = "mirror"
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+[[point_light]]
+position = [1.0, 3.0, 2.0]
+intensity = 20.0
+[[point_light]]
+position = [-2.0, 2.5, 1.0]
+intensity = 10.0
+"#;
+
+#[test]
+fn glowing_surfaces_give_the_recursions_image_at_every_width_in_either_tree() {
+    let scene = Scene::from_toml_str(GLOWING, "glowing.toml", Path::new(".")).unwrap();
+    let plain = Scene::from_toml_str(
+        &GLOWING.replace("emission = ", "# emission = "),
+        "plain.toml",
+        Path::new("."),
+    )
+    .unwrap();
+    for tree in [TreeMode::Split, TreeMode::Stochastic] {
+        let params = Params {
+            tree,
+            ..scene.params.clone()
+        };
+        let (reference, reference_stats) =
+            the_waves_are_the_recursion(&scene, &params, &format!("{tree:?}"));
+        // The glow is seen, and it is all that differs from the same surfaces unlit by it:
+        // each pixel at least as bright as without, and the image brighter.
+        let (dark, dark_stats) = render(&plain, &params, Traversal::Recursive);
+        assert_eq!(dark_stats, reference_stats, "{tree:?}: the same rays");
+        let (lit, unlit): (Vec<Color>, Vec<Color>) =
+            (reference.pixels().collect(), dark.pixels().collect());
+        assert!(
+            lit.iter().zip(&unlit).all(|(a, b)| a.cmpge(*b).all()),
+            "{tree:?}"
+        );
+        let sum = |p: &[Color]| p.iter().map(|c| c.element_sum()).sum::<f32>();
+        assert!(
+            sum(&lit) > 1.2 * sum(&unlit),
+            "{tree:?}: {} vs {}",
+            sum(&lit),
+            sum(&unlit)
+        );
     }
 }

@@ -1,4 +1,5 @@
-//! Diffuse surfaces: Lambert plus an optional normalized Phong highlight, lit by shadow rays.
+//! Diffuse surfaces: Lambert plus an optional normalized Phong highlight, lit by shadow rays,
+//! and optionally glowing.
 
 use super::{Direct, Interaction, Scatter, Texture};
 use crate::math::sampling::{cosine_hemisphere, phong_lobe, phong_lobe_pdf, to_world};
@@ -18,6 +19,10 @@ pub struct Diffuse {
     pub specular: Color,
     /// Phong exponent n: higher is a smaller, sharper highlight.
     pub exponent: f32,
+    /// The radiance it emits besides what it reflects, if it glows (a glTF material's
+    /// emission over its base colour, a `.mtl`'s `Ke` over its `Kd`): where it is dark, the
+    /// surface is still its albedo, lit.
+    pub emission: Option<Texture>,
 }
 
 /// A BRDF at one point: f = albedo/π + specular (n+2)/(2π) cos^n α, where α is the angle
@@ -87,6 +92,7 @@ impl Diffuse {
             albedo: Texture::Solid(albedo),
             specular: Color::ZERO,
             exponent: 1.0,
+            emission: None,
         }
     }
 
@@ -132,6 +138,7 @@ mod tests {
             albedo: Texture::Solid(Color::ZERO),
             specular: Color::ONE,
             exponent: 50.0,
+            emission: None,
         };
         let brdf = d.scatter(&hit_at(0.0)).direct.unwrap().brdf;
         let l = Vec3::new(0.6, 0.8, 0.0);

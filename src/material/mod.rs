@@ -1,7 +1,8 @@
 //! Materials: each kind's data and every answer about it, in the spirit of pbrt's BxDFs.
 //!
-//! At a hit the tracer asks the material what it emits ([`Material::emission`]: a light ends
-//! the ray there), and otherwise [`Material::scatter`], and gets a [`Scatter`]: which BRDF
+//! At a hit the tracer asks the material whether it is a light ([`Material::light_emission`]:
+//! the ray ends there), and otherwise [`Material::scatter`] (and what it glows,
+//! [`Material::glow`], added to its shading), and gets a [`Scatter`]: which BRDF
 //! the lights are seen through (shadow rays), and which child rays it spawns with which
 //! weights, each [`Lobe`] saying how its direction was drawn ([`LobeKind`]) and with what
 //! density; [`Scatter::parts`] is the same split as path tracing chooses between. The other
@@ -42,7 +43,8 @@ use glam::Vec2;
 /// How a surface scatters light.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Material {
-    /// Lambert plus an optional Phong highlight, lit by shadow rays: the basic shading.
+    /// Lambert plus an optional Phong highlight, lit by shadow rays: the basic shading (and
+    /// a glow added, where it has an emission).
     Diffuse(Diffuse),
     /// An ideal mirror or polished metal: a constant reflectance at every angle.
     Mirror(Mirror),
@@ -158,14 +160,39 @@ impl Material {
         }
     }
 
-    /// The radiance it emits at surface coordinates `uv`, if it is a light.
+    /// The radiance it emits at surface coordinates `uv`, if it emits: as a light (which
+    /// reflects nothing) or as a glowing surface (which reflects as well). What a path
+    /// adds where it meets the surface, and what light samples of emitting surfaces see.
     #[inline]
     pub fn emission(&self, uv: Vec2) -> Option<Color> {
+        self.light_emission(uv).or_else(|| self.glow(uv))
+    }
+
+    /// The radiance it emits at `uv` if it is a light: it emits and reflects nothing, so a
+    /// ray that meets it ends there with this radiance.
+    #[inline]
+    pub(crate) fn light_emission(&self, uv: Vec2) -> Option<Color> {
         self.light().map(|e| e.radiance.eval(uv))
     }
 
-    /// [`Material::emission`] at `N` points (surface coordinates u and v per lane): each
-    /// lane's radiance, or `None` if it is not a light.
+    /// The radiance it emits at `uv` if it glows: a surface that emits and also reflects (a
+    /// diffuse surface with an `emission`), whose emission is added to its shading by the
+    /// lights (L = Le + ambient + Σ lights), as glTF adds emission to the base colour's.
+    #[inline(always)]
+    pub(crate) fn glow(&self, uv: Vec2) -> Option<Color> {
+        match self {
+            Material::Diffuse(d) => d.emission.as_ref().map(|e| e.eval(uv)),
+            Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
+            | Material::Dielectric(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
+    /// [`Material::light_emission`] at `N` points (surface coordinates u and v per lane):
+    /// each lane's radiance, or `None` if it is not a light.
     #[inline(always)]
     pub(crate) fn emission_lanes<const N: usize>(
         &self,
@@ -221,10 +248,15 @@ impl Material {
         }
     }
 
-    /// Whether it emits light: path tracing then samples points on it as it samples the
-    /// lights.
+    /// Whether it emits light (a light or a glowing surface): path tracing then samples
+    /// points on it as it samples the lights.
     pub fn emits(&self) -> bool {
         self.emission(Vec2::ZERO).is_some()
+    }
+
+    /// Whether it is a light: it emits and reflects nothing, and a ray ends at it.
+    pub(crate) fn is_light(&self) -> bool {
+        self.light().is_some()
     }
 
     /// Whether light can leave it in one direction only, as from a mirror, glass, a
@@ -344,7 +376,9 @@ impl Material {
     pub fn uses_uv(&self) -> bool {
         let textured = |t: &Texture| !matches!(t, Texture::Solid(_));
         match self {
-            Material::Diffuse(d) => textured(&d.albedo),
+            Material::Diffuse(d) => {
+                textured(&d.albedo) || d.emission.as_ref().is_some_and(textured)
+            }
             Material::Glazed(g) => textured(&g.base),
             Material::Emissive(e) => textured(&e.radiance),
             Material::Mirror(_)

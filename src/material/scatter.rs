@@ -209,6 +209,10 @@ mod tests {
                 ..gold
             }),
             Material::Emissive(Emissive::solid(Color::splat(3.0))),
+            Material::Diffuse(Diffuse {
+                emission: Some(Texture::Solid(Color::splat(2.0))),
+                ..Diffuse::solid(Color::splat(0.5))
+            }),
             Material::Dielectric(Dielectric::clear(1.5)),
             Material::Glazed(Glazed {
                 coat: Dielectric::clear(1.5),
@@ -234,11 +238,23 @@ mod tests {
             // Photons pass it one way exactly where every lobe has one direction.
             let one_way = s.lobes().count() > 0 && s.lobes().all(Lobe::is_delta);
             assert_eq!(m.mirror_like(), one_way, "{kind}");
-            // A light scatters nothing: its rays end there.
-            if m.emits() {
+            // A light scatters nothing: its rays end there; a glowing surface scatters as
+            // it would without its glow.
+            if m.is_light() {
                 assert_eq!(s, Scatter::default(), "{kind}");
+                assert_eq!(m.glow(hit.uv), None, "{kind}");
             }
             assert_eq!(m.emission(hit.uv).is_some(), m.emits(), "{kind}");
+            assert_eq!(m.light_emission(hit.uv).is_some(), m.is_light(), "{kind}");
+            if let Material::Diffuse(d) = &m
+                && d.emission.is_some()
+            {
+                let plain = Material::Diffuse(Diffuse {
+                    emission: None,
+                    ..d.clone()
+                });
+                assert_eq!(plain.scatter(&hit, &mut Fixed(vec![0.3, 0.6])), s, "{kind}");
+            }
             // A shadow ray passes only where light can enter (a glaze's base is opaque).
             let enters = s.lobes().any(|l| l.side == Side::Transmit);
             assert_eq!(m.shadow_transmittance(&hit).is_some(), enters, "{kind}");

@@ -71,6 +71,7 @@ pub(super) enum MaterialDef {
         checker: Option<CheckerDef>,
         specular: Option<Reflectance>,
         exponent: Option<Positive>,
+        emission: Option<Rgb>,
     },
     Mirror {
         reflectance: Reflectance,
@@ -204,10 +205,15 @@ pub(super) fn material(def: MaterialDef) -> Material {
             checker,
             specular,
             exponent,
+            emission,
         } => Material::Diffuse(Diffuse {
             albedo: texture(color, checker),
             specular: specular.map_or(Color::ZERO, |s| s.0),
             exponent: exponent.map_or(20.0, |e| e.0),
+            // A glow of 0 is none: path tracing does not aim light samples at it.
+            emission: emission
+                .filter(|e| e.0.max_element() > 0.0)
+                .map(|e| Texture::Solid(e.0)),
         }),
         MaterialDef::Mirror { reflectance } => Material::Mirror(Mirror {
             reflectance: reflectance.0,

@@ -356,6 +356,7 @@ impl Scene {
             },
             specular: Color::ZERO,
             exponent: 1.0,
+            emission: None,
         });
         desc.add(
             "floor",

@@ -209,8 +209,11 @@ fn triples(v: &[f32]) -> Vec<Vec3> {
         .collect()
 }
 
-/// Maps a .mtl material to raylab's: emissive if Ke is set; a metal if the PBR extension's
-/// metallic `Pm` (which Blender writes) is at least 0.5: the measured conductor its name
+/// Maps a .mtl material to raylab's: where `Ke` is set, a light of `Ke` if it has no `Kd`,
+/// else its diffuse `Kd` (with its `Ks` highlight) glowing with `Ke`, as MTL adds `Ke` to
+/// the surface's own shading (raylab's glowing surfaces are diffuse, whatever its `Pm`);
+/// a metal if the PBR extension's metallic `Pm` (which Blender writes) is at least 0.5:
+/// the measured conductor its name
 /// contains (`Gold`, `brushed_copper`), else a mirror of its base colour `Kd`; a mirror
 /// for the ray-traced reflection models (illum 3 and 5); otherwise diffuse with a Phong
 /// highlight.
@@ -223,9 +226,23 @@ fn map_material(m: &tobj::Material) -> Material {
             Color::splat(default)
         }
     };
+    let diffuse = |emission| {
+        Material::Diffuse(Diffuse {
+            albedo: Texture::Solid(rgb(m.diffuse, 0.7)),
+            specular: rgb(m.specular, 0.0),
+            exponent: m
+                .shininess
+                .filter(|s| s.is_finite() && *s > 0.0)
+                .unwrap_or(1.0),
+            emission,
+        })
+    };
     let emissive = rgb(m.emissive, 0.0);
     if emissive.max_element() > 0.0 {
-        return Material::Emissive(Emissive::solid(emissive));
+        return match m.diffuse {
+            None => Material::Emissive(Emissive::solid(emissive)),
+            Some(_) => diffuse(Some(Texture::Solid(emissive))),
+        };
     }
     let metallic = m
         .unknown_param
@@ -248,14 +265,7 @@ fn map_material(m: &tobj::Material) -> Material {
         Some(3) | Some(5) => Material::Mirror(Mirror {
             reflectance: rgb(m.specular, 0.9),
         }),
-        _ => Material::Diffuse(Diffuse {
-            albedo: Texture::Solid(rgb(m.diffuse, 0.7)),
-            specular: rgb(m.specular, 0.0),
-            exponent: m
-                .shininess
-                .filter(|s| s.is_finite() && *s > 0.0)
-                .unwrap_or(1.0),
-        }),
+        _ => diffuse(None),
     }
 }
 
@@ -489,6 +499,30 @@ mod tests {
             &parts[0].material.as_ref().unwrap().1,
             Material::Conductor(c) if c.eta == gold.eta() && c.k == gold.k()
         ));
+    }
+
+    #[test]
+    fn ke_over_a_kd_glows_over_it_and_ke_alone_is_a_light() {
+        let mtl = b"newmtl screen\nKd 0.2 0.3 0.4\nKe 1 0.5 0\nPm 1\n\
+                    newmtl bulb\nKe 0.9 0.9 0.8\n";
+        let obj = b"mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\
+                    usemtl screen\nf 1 2 3\nusemtl bulb\nf 1 2 3\n";
+        let parts = load_obj(obj, "m.obj", &|_: &str| Some(mtl.to_vec()))
+            .unwrap()
+            .parts;
+        let material = |i: usize| parts[i].material.as_ref().unwrap().1.clone();
+        let Material::Diffuse(screen) = material(0) else {
+            panic!("{:?}", material(0));
+        };
+        assert_eq!(screen.albedo, Texture::Solid(Color::new(0.2, 0.3, 0.4)));
+        assert_eq!(
+            screen.emission,
+            Some(Texture::Solid(Color::new(1.0, 0.5, 0.0)))
+        );
+        assert_eq!(
+            material(1),
+            Material::Emissive(Emissive::solid(Color::new(0.9, 0.9, 0.8)))
+        );
     }
 
     #[test]

@@ -90,6 +90,9 @@ impl Tracer<'_> {
             return value(Color::ZERO, Color::ONE, queue);
         }
         let material = &self.materials[hit.material as usize];
+        if let Some(glow) = material.glow(hit.surface.uv) {
+            queue.lights.glowing.push((index as u32, glow));
+        }
         if sigma.is_none()
             && self.shadows_in_lanes
             && let Some(direct) = material.direct_only(hit.surface.uv)

@@ -285,7 +285,10 @@ impl Tracer<'_> {
                 power_heuristic(pdf, self.emitters.pdf(hit.object, hit.surface.t, cos_e))
             });
             *added = st.seen(st.throughput * radiance * mis);
-            return Next::End(End::LightHit);
+            // A glowing surface reflects too: the path goes on from it.
+            if material.is_light() {
+                return Next::End(End::LightHit);
+            }
         }
         let scatter = material.scatter(&at, w.rng);
         if let Some(i) = scatter.interface {

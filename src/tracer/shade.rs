@@ -12,8 +12,9 @@ use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::TreeMode;
 
 impl Tracer<'_> {
-    /// The radiance leaving `hit` back along `ray`: the material's emission, its shading
-    /// by the lights, and its child rays, walked as the tree mode says.
+    /// The radiance leaving `hit` back along `ray`: a light's emission (which ends the ray),
+    /// else its shading by the lights, its glow, and its child rays, walked as the tree
+    /// mode says.
     #[inline(always)]
     pub(super) fn shade<R: Recorder, P: Polarization>(
         &self,
@@ -33,7 +34,7 @@ impl Tracer<'_> {
         let (entering, n_geom) = (at.entering, at.n_geom);
         record_hit(w.rec, id, hit, &at);
         let material = &self.materials[hit.material as usize];
-        if let Some(radiance) = material.emission(at.uv) {
+        if let Some(radiance) = material.light_emission(at.uv) {
             return (pol.seen(radiance), End::LightHit);
         }
         let scatter = material.scatter(&at, w.rng);
@@ -83,6 +84,10 @@ impl Tracer<'_> {
             }
             None => Color::ZERO,
         };
+        // Added after the lights, as the waves add it once a level's lights are complete.
+        if let Some(glow) = material.glow(at.uv) {
+            l += pol.seen(glow);
+        }
         let lobes = scatter.lobes().count();
         if lobes == 0 {
             return (l, End::Absorbed);

@@ -252,7 +252,7 @@ impl Tracer<'_> {
     fn surface_at(&self, near: Option<(PrimRef, Ray, f32)>) -> (Option<Hit>, Option<Color>) {
         let hit = near.map(|(prim, ray, t)| self.scene.hit_at(prim, &ray, t));
         let material = |h: &Hit| &self.materials[h.material as usize];
-        let light = hit.and_then(|h| material(&h).emission(h.surface.uv));
+        let light = hit.and_then(|h| material(&h).light_emission(h.surface.uv));
         (hit, light)
     }
 }

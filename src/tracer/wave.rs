@@ -200,11 +200,12 @@ pub struct Waves {
     // made of the other hits on dielectrics, each with its place in the level.
     lane_splits: Vec<(u32, Split)>,
     splits: Vec<(u32, Split)>,
-    // Per light, the level's shadow rays towards it; what they gave; and the nodes whose
-    // sum of lights is then scaled, with the scale.
+    // Per light, the level's shadow rays towards it; what they gave; the nodes whose
+    // sum of lights is then scaled, with the scale; and the glowing nodes, with their glow.
     shadows: Vec<Asked>,
     lit: Vec<Lit>,
     scaled: Vec<(u32, f32)>,
+    glowing: Vec<(u32, Color)>,
     levels: Vec<Level>,
     radiance: Vec<Color>,
     below: Vec<Color>,
@@ -222,11 +223,13 @@ pub(super) struct Queue<'q> {
     pub(super) lights: Lights<'q>,
 }
 
-/// The shadow rays a level's nodes ask for, per light, and the nodes whose sum of lights is
-/// then scaled, with the scale.
+/// The shadow rays a level's nodes ask for, per light, the nodes whose sum of lights is
+/// then scaled, with the scale, and the nodes on glowing surfaces, with the glow added
+/// after that (as the recursion adds it after the lights).
 pub(super) struct Lights<'q> {
     pub(super) shadows: &'q mut [Asked],
     pub(super) scaled: &'q mut Vec<(u32, f32)>,
+    pub(super) glowing: &'q mut Vec<(u32, Color)>,
 }
 
 /// The camera rays of a wave, with each sample's random numbers after the camera's, into
@@ -385,6 +388,7 @@ impl Tracer<'_> {
             shadows,
             lit,
             scaled,
+            glowing,
             levels,
             radiance,
             below,
@@ -432,12 +436,17 @@ impl Tracer<'_> {
             next.clear();
             shadows.iter_mut().for_each(Asked::clear);
             scaled.clear();
+            glowing.clear();
             let mut queue = Queue {
                 depth: depth as u32,
                 next,
                 media,
                 children,
-                lights: Lights { shadows, scaled },
+                lights: Lights {
+                    shadows,
+                    scaled,
+                    glowing,
+                },
             };
             // The splits, each list in the order of the level.
             let mut splits = splits.iter().peekable();
@@ -477,6 +486,9 @@ impl Tracer<'_> {
                     out: lit,
                 });
                 add_lights((lit, scaled), values, &level.nodes, slots, stats);
+            }
+            for &(node, glow) in glowing.iter() {
+                values[node as usize].local += glow;
             }
             std::mem::swap(level, next);
             depth += 1;

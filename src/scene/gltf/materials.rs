@@ -3,8 +3,7 @@
 
 use super::{ReadFile, read_uri};
 use crate::material::{
-    Conductor, Dielectric, Diffuse, Emissive, Glossy, ImageMap, Material, Mirror, Texels, Texture,
-    Wrap,
+    Conductor, Dielectric, Diffuse, Glossy, ImageMap, Material, Mirror, Texels, Texture, Wrap,
 };
 use crate::math::Color;
 use crate::scene::obj::metal_named_in;
@@ -136,8 +135,11 @@ impl<'a> Materials<'a> {
         Texels::new(width, height, picture.into_raw()).ok_or_else(|| "an empty picture".into())
     }
 
-    /// Maps a metallic-roughness material to raylab's closest: emissive if it emits (its
-    /// `emissiveTexture` scaled by the factor and strength); glass (a dielectric of its
+    /// Maps a metallic-roughness material to raylab's closest: if it emits, its base colour
+    /// (diffuse, as below) glowing with its emission (its `emissiveTexture` scaled by the
+    /// factor and strength), as glTF adds emission to the base (raylab's glowing surfaces
+    /// are diffuse: an emitting metal or glass keeps its base colour, not its metal or
+    /// glass); glass (a dielectric of its
     /// KHR_materials_ior index, 1.5 without) if it transmits at least half; a metal if
     /// metallic at least half, the measured conductor its name contains (`Gold`,
     /// `copper`) or else a mirror of its base colour factor, glossy when rough; otherwise
@@ -159,9 +161,28 @@ impl<'a> Materials<'a> {
             .filter(|s| s.is_finite() && *s > 0.0)
             .unwrap_or(1.0);
         let emitted = Color::from(m.emissive_factor().map(|c| unit(c, 0.0))) * strength.min(1e4);
+        let diffuse = |this: &mut Self, emission| {
+            Material::Diffuse(Diffuse {
+                albedo: this.textured(pbr.base_color_texture(), base, name),
+                specular: Color::ZERO,
+                exponent: 1.0,
+                emission,
+            })
+        };
         if emitted.max_element() > 0.0 {
-            let radiance = self.textured(m.emissive_texture(), emitted, name);
-            return Material::Emissive(Emissive { radiance });
+            let sets = (pbr.base_color_texture(), m.emissive_texture());
+            if let (Some(b), Some(e)) = sets
+                && b.tex_coord() != e.tex_coord()
+            {
+                self.warnings.push(format!(
+                    "{}: material `{name}`: its emissive texture is mapped by TEXCOORD_{} as its base colour's is, not by its own TEXCOORD_{}",
+                    self.file,
+                    b.tex_coord(),
+                    e.tex_coord()
+                ));
+            }
+            let emission = self.textured(m.emissive_texture(), emitted, name);
+            return diffuse(self, Some(emission));
         }
         let roughness = unit(pbr.roughness_factor(), 1.0);
         let exponent = (roughness >= 0.05).then(|| {
@@ -189,10 +210,6 @@ impl<'a> Materials<'a> {
                 (None, None) => Material::Mirror(Mirror { reflectance: base }),
             };
         }
-        Material::Diffuse(Diffuse {
-            albedo: self.textured(pbr.base_color_texture(), base, name),
-            specular: Color::ZERO,
-            exponent: 1.0,
-        })
+        diffuse(self, None)
     }
 }
