@@ -4,12 +4,15 @@
 //! [`params::Params`] model, and every image is reproducible bit for bit from its
 //! parameters and seed.
 //!
-//! The layers, from the bottom: [`math`] (vectors, rays, deterministic random numbers),
-//! [`optics`] (the lecture's formulas), [`geometry`] (shapes and the BVH), [`material`],
-//! [`light`] and [`camera`], [`scene`] (files, OBJ meshes, built-in scenes), [`tracer`] (the
-//! ray tree), [`render`] (the film, the one render kernel, the progressive engine), and
-//! `app` (the egui previewer, the only module that knows egui; built with the `gui`
-//! feature, on by default).
+//! The layers, from the bottom, each using only those below it (docs/internals.md draws
+//! them; `tests/layers.rs` holds the code to that): [`math`] (vectors, rays, deterministic
+//! random numbers, the sRGB curve) and [`guard`]; [`optics`] (the lecture's formulas) and
+//! [`geometry`] (shapes and the BVH); [`params`] (the one parameter table); [`material`],
+//! [`light`] and [`camera`]; [`scene`] (files, OBJ and glTF models, built-in scenes);
+//! [`tracer`] (the ray tree, paths, the waves); [`render`] (the film, the one render
+//! kernel, the progressive engine); [`section`] (the 2D diagrams); [`lecture`] (the
+//! slides); and `app` (the egui previewer, the only module that knows egui; built with the
+//! `gui` feature, on by default).
 //!
 //! ```
 //! use raylab::{params::Params, render::render, scene::Scene};

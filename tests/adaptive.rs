@@ -8,8 +8,9 @@
 mod common;
 
 use common::{bits, in_pool};
+use raylab::math::srgb_encode;
 use raylab::params::{Params, Transport};
-use raylab::render::{Film, render, render_pass, srgb_encode};
+use raylab::render::{Film, render, render_pass};
 use raylab::scene::Scene;
 
 fn adaptive(scene: &Scene, spp: u32, target: f32, transport: Transport) -> Params {

@@ -399,7 +399,7 @@ pub(crate) fn pixel_readout(
     let x = ((h.x * frame.width as f32) as u32).min(frame.width - 1);
     let y = ((h.y * frame.height as f32) as u32).min(frame.height - 1);
     let c = *frame.pixels.get((y * frame.width + x) as usize)?;
-    let shown = (c * exposure.exp2()).to_array().map(crate::render::srgb8);
+    let shown = (c * exposure.exp2()).to_array().map(crate::math::srgb8);
     Some(format!(
         "({x}, {y}) lin {:.3} {:.3} {:.3} · sRGB {} {} {}",
         c.x, c.y, c.z, shown[0], shown[1], shown[2]

@@ -43,7 +43,7 @@ impl std::fmt::Debug for Texels {
 
 /// The sRGB transfer function undone for each byte (`srgb_decode` of byte/255).
 static SRGB_TO_LINEAR: LazyLock<[f32; 256]> =
-    LazyLock::new(|| std::array::from_fn(|b| crate::render::srgb_decode(b as f32 / 255.0)));
+    LazyLock::new(|| std::array::from_fn(|b| crate::math::srgb_decode(b as f32 / 255.0)));
 
 /// What a texture does beyond its edges along one direction (glTF's sampler wrap modes).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,8 +1,8 @@
 //! Materials: each kind's data and every answer about it, in the spirit of pbrt's BxDFs.
 //!
-//! At a hit the tracer asks the material whether it is a light ([`Material::light_emission`]:
+//! At a hit the tracer asks the material whether it is a light (`Material::light_emission`:
 //! the ray ends there), and otherwise [`Material::scatter`] (and what it glows,
-//! [`Material::glow`], added to its shading), and gets a [`Scatter`]: which BRDF
+//! `Material::glow`, added to its shading), and gets a [`Scatter`]: which BRDF
 //! the lights are seen through (shadow rays), and which child rays it spawns with which
 //! weights, each [`Lobe`] saying how its direction was drawn ([`LobeKind`]) and with what
 //! density; [`Scatter::parts`] is the same split as path tracing chooses between. The other

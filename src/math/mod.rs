@@ -6,8 +6,10 @@
 pub mod lanes;
 pub mod rng;
 pub mod sampling;
+pub mod srgb;
 
 pub use rng::{Pattern, SampleStream, Uniform};
+pub use srgb::{srgb_decode, srgb_encode, srgb8};
 
 /// A point or direction in world space.
 pub type Vec3 = glam::Vec3A;

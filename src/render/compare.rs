@@ -5,8 +5,8 @@
 
 use super::film::luminance;
 use super::ramp::inferno;
-use super::srgb::{srgb_decode, srgb_encode};
 use crate::math::Color;
+use crate::math::srgb::{srgb_decode, srgb_encode};
 use std::path::Path;
 
 /// An image's pixels as linear RGB, row-major from the top left.

@@ -1,7 +1,7 @@
 //! The film: per-pixel sums of radiance samples, resolved to PNG (8-bit sRGB) or EXR (linear).
 
-use super::srgb::{srgb_encode_table, srgb_image, srgb8};
 use crate::math::Color;
+use crate::math::srgb::{srgb_encode_table, srgb8, srgb8_exact};
 use crate::render::output::{image_format, write_file, write_pair};
 use std::path::Path;
 
@@ -375,11 +375,22 @@ impl Film {
     }
 }
 
+/// Linear radiance (`width` × `height`, row-major) scaled by 2^exposure, as 8-bit sRGB;
+/// `None` if the sizes disagree.
+fn srgb_image(width: u32, height: u32, pixels: &[Color], exposure: f32) -> Option<image::RgbImage> {
+    let scale = exposure.exp2();
+    let bytes = pixels
+        .iter()
+        .flat_map(|c| (*c * scale).to_array().map(srgb8_exact))
+        .collect();
+    image::RgbImage::from_vec(width, height, bytes)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::math::rng::{Pattern, SampleStream};
-    use crate::render::srgb::srgb_encode;
+    use crate::math::srgb::srgb_encode;
     use glam::Vec2;
 
     #[test]

@@ -19,7 +19,6 @@ mod priority;
 pub mod ramp;
 mod sheet;
 mod snapshot;
-mod srgb;
 pub mod tev;
 pub(crate) mod text;
 
@@ -36,8 +35,6 @@ pub use png_file::{SIDECAR_KEY, embedded_sidecar};
 pub use prerender::{FilmCache, PRERENDER_MEMORY, Prerender};
 pub use sheet::{Animation, ContactSheet, SheetError, Sweep, frame_size, parse_sweep, sweep_each};
 pub use snapshot::{PassError, ReferenceErrors, Rendered, Sidecar, SidecarError, sidecar_path};
-pub(crate) use srgb::srgb_decode;
-pub use srgb::{srgb_encode, srgb8};
 pub use text::with_caption;
 
 use crate::params::Params;

@@ -471,7 +471,7 @@ fn write_pair_cut(
 
 /// Checks, before any work, that `path` can be written with up to `bytes`: its name (and
 /// its sidecar's, `extra` bytes longer) fits the file system, and what it names takes the
-/// write without anything else touched (see [`target`]'s module). Says how it will be
+/// write without anything else touched (see `target.rs`). Says how it will be
 /// written.
 pub fn check_writable(path: &Path, extra: usize, bytes: u64) -> std::io::Result<Target> {
     let name = path

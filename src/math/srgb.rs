@@ -1,7 +1,5 @@
 //! The sRGB curve (IEC 61966-2-1) between linear radiance and what a display shows: exact,
-//! as tables for whole frames, and back.
-
-use crate::math::Color;
+//! as tables for whole frames, and back (textures are decoded by it).
 
 /// Linear to sRGB transfer function (IEC 61966-2-1), for values in [0, 1].
 #[inline]
@@ -42,22 +40,6 @@ pub fn srgb8_exact(linear: f32) -> u8 {
     (srgb_encode(v) * 255.0 + 0.5) as u8
 }
 
-/// Linear radiance (`width` × `height`, row-major) scaled by 2^exposure, as 8-bit sRGB;
-/// `None` if the sizes disagree.
-pub fn srgb_image(
-    width: u32,
-    height: u32,
-    pixels: &[Color],
-    exposure: f32,
-) -> Option<image::RgbImage> {
-    let scale = exposure.exp2();
-    let bytes = pixels
-        .iter()
-        .flat_map(|c| (*c * scale).to_array().map(srgb8_exact))
-        .collect();
-    image::RgbImage::from_vec(width, height, bytes)
-}
-
 /// 8-bit sRGB of a linear value, clamped to [0, 1]: a 4096-entry table, exact to within
 /// one code value, for converting whole frames quickly on the display thread.
 #[inline]
@@ -74,7 +56,7 @@ pub fn srgb8(linear: f32) -> u8 {
 }
 
 /// sRGB to linear (IEC 61966-2-1), the inverse of [`srgb_encode`].
-pub(crate) fn srgb_decode(encoded: f32) -> f32 {
+pub fn srgb_decode(encoded: f32) -> f32 {
     if encoded <= 0.040_45 {
         encoded / 12.92
     } else {
