@@ -3,8 +3,8 @@
 //! The tree is obvhs's compressed wide BVH (8 children a node), built with PLOC and
 //! reinsertion: a SAH-quality tree that builds a million triangles in well under a second.
 
-use super::Shape;
 use super::direct::{Direct, DirectWave};
+use super::{PrimRef, Shape};
 use crate::math::Ray;
 use crate::math::lanes::{Lanes, Mask, RayColumns, V3, Width};
 use crate::math::rng::mix64;
@@ -32,15 +32,6 @@ use std::time::Duration;
 #[inline]
 pub(super) fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
     dir + crate::math::Vec3::ZERO
-}
-
-/// One primitive: primitive `index` (a triangle, or 0) of scene object `object`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PrimRef {
-    /// Index of the object in the scene's list.
-    pub object: u32,
-    /// Index of the primitive within the object's shape.
-    pub index: u32,
 }
 
 /// Makes many identical boxes slightly different. PLOC merges mutual nearest neighbours;

@@ -2,9 +2,8 @@
 //! spheres, quads and small meshes, for which a loop beats descending a tree and runs in
 //! lanes, `N` rays against one shape at a time.
 
-use super::accel::PrimRef;
 use super::mesh::triangle_nearest;
-use super::{Mesh, Plane, Quad, Shape, Sphere};
+use super::{Mesh, Plane, PrimRef, Quad, Shape, Sphere};
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Vector, max, min};
 use crate::math::{Ray, Vec3};
 use obvhs::aabb::Aabb;

@@ -11,8 +11,8 @@ mod instance;
 mod mesh;
 mod shapes;
 
+pub use accel::Accel;
 pub(crate) use accel::KeyHasher;
-pub use accel::{Accel, PrimRef};
 pub(crate) use direct::SMALL_MESH;
 pub use instance::{Instance, SharedMesh};
 pub use mesh::{Mesh, MeshError};
@@ -21,6 +21,15 @@ pub use shapes::{Plane, Quad, Sphere};
 use crate::math::lanes::{Lanes, Real, V3, Vector};
 use crate::math::{Ray, Vec3};
 use glam::Vec2;
+
+/// One primitive: primitive `index` (a triangle, or 0) of scene object `object`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PrimRef {
+    /// Index of the object in the scene's list.
+    pub object: u32,
+    /// Index of the primitive within the object's shape.
+    pub index: u32,
+}
 
 /// How far from the origin geometry may reach, in scene units, on any axis and at any time
 /// of the frame. Beyond it an f32 hit point keeps too few digits to offset a ray off its
