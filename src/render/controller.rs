@@ -1,9 +1,9 @@
 //! The engine's controller: the thread that owns the film and the state, takes commands,
 //! runs previews and passes on the worker pool, renders ahead when idle, and sends frames.
 
-use super::engine::{Command, MAX_PASS_SPP, PASS_BUDGET, PREVIEW_LEVELS};
+use super::generation::{MAX_PASS_SPP, PASS_BUDGET, PREVIEW_LEVELS};
 use super::pace::Pace;
-use super::prerender::{Ahead, FilmCache, Key};
+use super::prerender::{Ahead, FilmCache, Key, Prerender};
 use super::{Film, Frame, PassObserver, Progress, render_pass, render_preview};
 use crate::camera::Camera;
 use crate::math::Color;
@@ -15,6 +15,19 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+
+/// What the engine tells its controller: new parameters, scene, camera or size (each
+/// starts a new generation), unlimited samples, pause, slides to render ahead, stop.
+pub(super) enum Command {
+    Params(Params),
+    Scene(Arc<Scene>),
+    Camera(Camera),
+    Resize(u32, u32),
+    Unlimited(bool),
+    Pause(bool),
+    Prerender(FilmCache, Vec<Prerender>),
+    Shutdown,
+}
 
 /// The frame channel, and the newest frame that found it full.
 struct Outbox {

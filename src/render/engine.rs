@@ -9,7 +9,7 @@
 //! next pixel and stop, and every frame is tagged with the generation it belongs to, so
 //! no frame mixes samples of two.
 
-use super::controller::Controller;
+use super::controller::{Command, Controller};
 use super::prerender::{FilmCache, Prerender};
 use super::{Film, Frame};
 use crate::camera::Camera;
@@ -19,16 +19,7 @@ use crossbeam_channel::{Receiver, Sender};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
-use std::time::Duration;
 
-/// The resolution pyramid that opens every generation: previews with one sample per block
-/// of these sides, each upsampled smoothly, before the full passes. The first costs 1/64
-/// of a pass, so it shows within a frame; a change cancels the rest.
-pub const PREVIEW_LEVELS: [u32; 3] = [8, 4, 2];
-/// The most samples per pixel one pass adds.
-pub const MAX_PASS_SPP: u32 = 16;
-/// Passes are kept about this long, so that frames keep coming.
-pub const PASS_BUDGET: Duration = Duration::from_millis(250);
 /// Frames the channel holds before the newest waits in the engine for room.
 const FRAME_CAPACITY: usize = 4;
 
@@ -73,17 +64,6 @@ fn cores() -> usize {
 #[derive(Debug, thiserror::Error)]
 #[error("cannot start the render threads: {0}")]
 pub struct EngineError(#[from] std::io::Error);
-
-pub(super) enum Command {
-    Params(Params),
-    Scene(Arc<Scene>),
-    Camera(Camera),
-    Resize(u32, u32),
-    Unlimited(bool),
-    Pause(bool),
-    Prerender(FilmCache, Vec<Prerender>),
-    Shutdown,
-}
 
 /// The progressive renderer, driven from the caller's thread.
 pub struct Engine {

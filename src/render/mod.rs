@@ -9,6 +9,7 @@ mod engine;
 mod exr_file;
 mod film;
 mod frame;
+mod generation;
 mod incidence;
 mod kernel;
 pub mod output;
@@ -23,9 +24,10 @@ pub mod tev;
 pub(crate) mod text;
 
 pub use drag::{DragReport, simulate_drag};
-pub use engine::{Engine, EngineConfig, EngineError, MAX_PASS_SPP, PREVIEW_LEVELS};
+pub use engine::{Engine, EngineConfig, EngineError};
 pub use film::{Accum, CLEAN_NOISE, Film, FilmError, to_srgba8, write_image, write_png};
 pub use frame::{Frame, Progress};
+pub use generation::{MAX_PASS_SPP, PREVIEW_LEVELS};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{
     BAND_ROWS, Cancelled, Crop, PassObserver, render_crop_pass, render_pass, render_pass_by,

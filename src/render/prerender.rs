@@ -214,7 +214,7 @@ impl Ahead {
         let within = self
             .per_spp
             .map_or(1, |s| (AHEAD_PASS.as_secs_f64() / s) as u32);
-        let n = super::engine::MAX_PASS_SPP
+        let n = super::generation::MAX_PASS_SPP
             .min(job.params.spp.saturating_sub(film.spp()))
             .min(within)
             .max(1);
