@@ -1,7 +1,8 @@
 //! Scenes embedded in the binary, so that raylab works with no files at all. They are the
 //! files of `scenes/`, compiled in: one source for both.
 
-use super::file::{Assets, parse};
+use super::file::parse;
+use super::source::Assets;
 use super::{Scene, SceneError, SceneSource};
 
 /// A scene compiled into the binary.

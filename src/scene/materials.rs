@@ -1,7 +1,7 @@
 //! Materials in scene files: the `[material.NAME]` tables, and the material each becomes.
 
 use super::SceneError;
-use super::file::Source;
+use super::source::Source;
 use super::values::{
     Abbe, CheckerScale, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit,
 };

@@ -9,6 +9,7 @@ mod materials;
 pub mod memory;
 mod obj;
 mod objects;
+mod source;
 mod values;
 
 pub use builtin::{BUILTIN_SCENES, BuiltinScene, builtin};
@@ -293,7 +294,7 @@ impl Scene {
         let label = path.display().to_string();
         // The mesh goes through the scene format, so that its errors and .mtl materials are
         // those of any scene; the rest is added around it.
-        let assets = file::ModelAssets {
+        let assets = source::ModelAssets {
             name: format!("model.{}", input::extension(path).unwrap_or_default()),
             model: full.clone(),
         };
@@ -382,7 +383,7 @@ impl Scene {
         file_label: &str,
         base_dir: &Path,
     ) -> Result<Scene, SceneError> {
-        let desc = file::parse(text, file_label, &file::FsAssets(base_dir.to_path_buf()))?;
+        let desc = file::parse(text, file_label, &source::FsAssets(base_dir.to_path_buf()))?;
         Ok(Scene::new(desc, SceneSource::Code))
     }
 

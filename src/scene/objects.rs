@@ -1,10 +1,10 @@
 //! A scene file's objects: spheres, planes, quads, boxes and meshes (OBJ or glTF), each
 //! with its material, built and checked where they are written.
 
-use super::file::{Assets, Source};
 use super::gltf::load_gltf;
 use super::materials::{MaterialTable, RawMaterial, default_material, material, material_def};
 use super::obj::{Model, ModelCamera, load_obj};
+use super::source::{Assets, Source};
 use super::values::{Dir, Length, V3};
 use super::{Material, Object, SceneError};
 use crate::geometry::{Instance, Mesh, Plane, Quad, SMALL_MESH, Shape, SharedMesh, Sphere};
