@@ -1,5 +1,6 @@
 //! The tests of writing: atomic replacement, pairs cut at every step, sweeps, links.
 
+use super::pair::{Cut, write_pair_cut};
 use super::*;
 
 /// The steps of [`write_pair`].
