@@ -152,3 +152,192 @@ fn the_layer_reader_sees_imports_and_skips_comments() {
         "{layers:?}"
     );
 }
+
+/// The module path of a file of `src/` (`src/tracer/wave/shade.rs`: tracer, wave, shade;
+/// a `mod.rs` is its folder's module; `src/lib.rs` the crate's root, no names).
+fn module_path(path: &Path) -> Vec<String> {
+    let rel = path.strip_prefix("src").unwrap().with_extension("");
+    let mut names: Vec<String> = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    if names.last().is_some_and(|n| n == "mod" || n == "lib") {
+        names.pop();
+    }
+    names
+}
+
+/// Every module path named in `code` (comments cut off) by `crate::` or `super::` paths,
+/// as written from the file of module `own` (whose `super` is its parent, for a `mod.rs`
+/// its folder's parent), grouped imports (`use super::{a::X, b::{Y, Z}}`) expanded.
+fn named_paths(code: &str, own: &[String]) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let bytes = code.as_bytes();
+    let mut at = 0;
+    while at < code.len() {
+        let rest = &code[at..];
+        let starts_path = !code[..at]
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':');
+        let (base, len) = if starts_path && rest.starts_with("crate::") {
+            (Vec::new(), "crate::".len())
+        } else if starts_path && rest.starts_with("super::") {
+            let mut base = own.to_vec();
+            let mut len = 0;
+            while code[at + len..].starts_with("super::") {
+                base.pop();
+                len += "super::".len();
+            }
+            (base, len)
+        } else {
+            at += code[at..].chars().next().map_or(1, char::len_utf8);
+            continue;
+        };
+        at += len;
+        at = path_tree(code, bytes, at, base, &mut out);
+    }
+    out
+}
+
+/// Reads a path (`a::b::X` or `a::{b::X, c}`) at `at` below `base` into `out`; returns
+/// where it ends.
+fn path_tree(
+    code: &str,
+    bytes: &[u8],
+    mut at: usize,
+    mut base: Vec<String>,
+    out: &mut Vec<Vec<String>>,
+) -> usize {
+    loop {
+        let start = at;
+        while at < bytes.len() && (bytes[at].is_ascii_alphanumeric() || bytes[at] == b'_') {
+            at += 1;
+        }
+        if at > start {
+            base.push(code[start..at].to_string());
+        }
+        let group = if code[at..].starts_with("::{") {
+            Some(3)
+        } else {
+            (at == start && code[at..].starts_with('{')).then_some(1)
+        };
+        if let Some(skip) = group {
+            at += skip;
+            loop {
+                while at < bytes.len() && bytes[at].is_ascii_whitespace() {
+                    at += 1;
+                }
+                if at >= bytes.len() || bytes[at] == b'}' {
+                    return at + 1;
+                }
+                at = path_tree(code, bytes, at, base.clone(), out);
+                while at < bytes.len() && (bytes[at].is_ascii_whitespace() || bytes[at] == b',') {
+                    at += 1;
+                }
+            }
+        } else if code[at..].starts_with("::") {
+            at += 2;
+        } else {
+            out.push(base);
+            return at;
+        }
+    }
+}
+
+/// The files of `src/` that use each other in a circle: within a folder, a file using a
+/// sibling (or a sibling's descendant) that uses it back, directly or round a longer
+/// loop. A file and the folder module that holds it (its `mod.rs`) use each other by
+/// nature and are not counted.
+#[test]
+fn no_two_files_use_each_other() {
+    let mut files = Vec::new();
+    rust_files(Path::new("src"), &mut files);
+    files.sort();
+    let modules: Vec<Vec<String>> = files.iter().map(|f| module_path(f)).collect();
+    let index: HashMap<&[String], usize> = modules
+        .iter()
+        .enumerate()
+        .map(|(i, m)| (m.as_slice(), i))
+        .collect();
+    // The file a path names: its longest prefix that is a file's module.
+    let file_of = |path: &[String]| {
+        (0..=path.len())
+            .rev()
+            .find_map(|k| index.get(&path[..k]).copied())
+    };
+    let mut uses = vec![std::collections::BTreeSet::new(); files.len()];
+    let mut named = 0;
+    for (i, file) in files.iter().enumerate() {
+        let text = std::fs::read_to_string(file).unwrap();
+        let code: String = text
+            .lines()
+            .map(|l| l.split("//").next().unwrap())
+            .collect::<Vec<_>>()
+            .join("\n");
+        for path in named_paths(&code, &modules[i]) {
+            named += 1;
+            let Some(j) = file_of(&path) else { continue };
+            let (a, b) = (&modules[i], &modules[j]);
+            // A file and a module holding it use each other by nature.
+            if j != i && !a.starts_with(b) && !b.starts_with(a) {
+                uses[i].insert(j);
+            }
+        }
+    }
+    assert!(
+        named > 500,
+        "only {named} paths found: is the reader right?"
+    );
+    // A file is in a circle when it reaches itself.
+    let mut circles = Vec::new();
+    for start in 0..files.len() {
+        let mut seen = vec![false; files.len()];
+        let mut stack: Vec<(usize, Vec<usize>)> =
+            uses[start].iter().map(|&j| (j, vec![start, j])).collect();
+        while let Some((at, route)) = stack.pop() {
+            if at == start {
+                let names: Vec<String> = route
+                    .iter()
+                    .map(|&k| files[k].display().to_string())
+                    .collect();
+                circles.push(names.join(" -> "));
+                break;
+            }
+            if std::mem::replace(&mut seen[at], true) {
+                continue;
+            }
+            for &next in &uses[at] {
+                let mut route = route.clone();
+                route.push(next);
+                stack.push((next, route));
+            }
+        }
+    }
+    assert!(
+        circles.is_empty(),
+        "files that use each other:\n{}",
+        circles.join("\n")
+    );
+}
+
+#[test]
+fn the_cycle_reader_resolves_super_and_groups() {
+    let own: Vec<String> = ["tracer", "wave", "shade"].map(String::from).to_vec();
+    let paths = named_paths(
+        "use super::types::{Child, Node};\nuse super::super::{Tracer, media::Arrival};\nuse crate::math::{lanes::Real, Color};",
+        &own,
+    );
+    let strings: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
+    assert_eq!(
+        strings,
+        [
+            "tracer::wave::types::Child",
+            "tracer::wave::types::Node",
+            "tracer::Tracer",
+            "tracer::media::Arrival",
+            "math::lanes::Real",
+            "math::Color",
+        ]
+    );
+}

@@ -8,7 +8,7 @@
 use raylab::lecture::{LECTURE, slide_setup};
 use raylab::math::Color;
 use raylab::math::lanes::Width;
-use raylab::params::{Params, TreeMode};
+use raylab::params::{Params, Transport, TreeMode};
 use raylab::render::{Film, render_pass_by, render_preview};
 use raylab::scene::{BUILTIN_SCENES, Scene};
 use raylab::tracer::{Stats, Tracer, Traversal};
@@ -82,7 +82,7 @@ fn every_width_and_the_recursion_give_every_scene_and_slide_bit_for_bit() {
         let in_waves = Tracer::new(&scene, &params, SIZE.0, SIZE.1).traces_waves();
         let tree = !params.transport.traces_paths() && params.polarizer.is_none();
         assert_eq!(in_waves, tree, "{name}");
-        dispersive += scene.materials.iter().any(|m| m.disperses()) as u32;
+        dispersive += scene.materials.iter().any(|m| m.needs_wavelength()) as u32;
     }
     // Dispersion's scene and slide, where the waves split into wavelengths, among them.
     assert!(dispersive >= 2, "{dispersive} dispersive cases");
@@ -369,4 +369,193 @@ fn glowing_surfaces_give_the_recursions_image_at_every_width_in_either_tree() {
             sum(&unlit)
         );
     }
+}
+
+/// One of every material kind (each Fresnel mode of a dielectric, an absorbing and a
+/// dispersive one, a glaze of each reflectance, a smooth and a rough conductor, a glossy
+/// metal, a mirror, a plain, a specular and a glowing diffuse, a light; and a glass box), in rows over a
+/// checkered floor before a mirror, under ambient light, two point lights and an area
+/// light (whose points are drawn: `{light}` turns it off where the split tree needs the
+/// recursion's order of draws).
+const EVERY_KIND: &str = r#"
+description = "one of every material kind"
+ambient = [0.03, 0.03, 0.03]
+[image]
+width = 40
+height = 30
+[params]
+spp = 4
+max_depth = 5
+[camera]
+position = [0.0, 1.4, 6.5]
+look_at = [0.0, 0.7, 0.0]
+fov = 62
+[material.exact]
+type = "dielectric"
+ior = 1.5
+[material.schlick]
+type = "dielectric"
+ior = 1.6
+fresnel = "schlick"
+[material.naive]
+type = "dielectric"
+ior = 1.45
+fresnel = "schlick_naive"
+[material.constant]
+type = "dielectric"
+ior = 1.33
+fresnel = "constant"
+constant_reflectance = 0.1
+[material.tinted]
+type = "dielectric"
+ior = 1.5
+absorption = [0.9, 0.2, 0.05]
+[material.flint]
+type = "dielectric"
+ior = 1.7
+abbe = 30
+[material.glaze]
+type = "glazed"
+color = [0.0, 0.0, 0.0]
+[material.glaze_constant]
+type = "glazed"
+color = [0.2, 0.4, 0.7]
+fresnel = "constant"
+constant_reflectance = 0.08
+[material.gold]
+type = "conductor"
+metal = "gold"
+[material.brushed]
+type = "conductor"
+metal = "aluminium"
+exponent = 300
+[material.glossy]
+type = "glossy"
+reflectance = [0.8, 0.6, 0.5]
+exponent = 80
+[material.mirror]
+type = "mirror"
+reflectance = [0.9, 0.9, 0.9]
+[material.chalk]
+type = "diffuse"
+color = [0.7, 0.2, 0.2]
+[material.plastic]
+type = "diffuse"
+color = [0.1, 0.5, 0.2]
+specular = [0.4, 0.4, 0.4]
+exponent = 40
+[material.ember]
+type = "diffuse"
+color = [0.5, 0.2, 0.1]
+emission = [1.5, 0.6, 0.1]
+[material.lamp]
+type = "emissive"
+color = [4.0, 3.5, 3.0]
+[material.floor]
+type = "diffuse"
+color = [0.8, 0.8, 0.8]
+checker = { color = [0.2, 0.2, 0.2], scale = 0.5 }
+{spheres}
+[[box]]
+min = [2.7, 0.0, -1.0]
+max = [3.5, 1.6, -0.4]
+rotate = [0.0, 35.0, 0.0]
+material = "exact"
+[[quad]]
+corner = [-5.0, 0.0, -2.5]
+edge_u = [10.0, 0.0, 0.0]
+edge_v = [0.0, 3.5, 0.0]
+material = "mirror"
+[[plane]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 1.0, 0.0]
+material = "floor"
+[[point_light]]
+position = [1.0, 4.0, 3.0]
+intensity = 30.0
+[[point_light]]
+position = [-3.0, 2.5, 2.0]
+intensity = 12.0
+{light}
+"#;
+
+/// The area light of [`EVERY_KIND`].
+const AREA_LIGHT: &str = r#"
+[[rect_light]]
+center = [0.0, 3.5, 1.0]
+edge_u = [1.0, 0.0, 0.0]
+edge_v = [0.0, 0.0, 1.0]
+intensity = 20.0
+"#;
+
+#[test]
+fn one_of_every_material_kind_gives_the_recursions_image_at_every_width() {
+    let kinds = [
+        "exact",
+        "schlick",
+        "naive",
+        "constant",
+        "tinted",
+        "flint",
+        "glaze",
+        "glaze_constant",
+        "gold",
+        "brushed",
+        "glossy",
+        "mirror",
+        "chalk",
+        "plastic",
+        "ember",
+        "lamp",
+    ];
+    // Two rows of spheres, the dielectrics in front.
+    let spheres = |kinds: &[&str]| -> String {
+        let at = |i: usize| (-3.15 + 0.9 * (i % 8) as f32, 1.2 - 1.6 * (i / 8) as f32);
+        kinds
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let (x, z) = at(i);
+                format!(
+                    "[[sphere]]\ncenter = [{x}, 0.45, {z}]\nradius = 0.42\nmaterial = \"{m}\"\n"
+                )
+            })
+            .collect()
+    };
+    let scene_with = |light: &str, spheres: &str| {
+        let text = EVERY_KIND
+            .replace("{spheres}", spheres)
+            .replace("{light}", light);
+        Scene::from_toml_str(&text, "every_kind.toml", Path::new(".")).unwrap()
+    };
+    // In the split tree, the kinds that draw numbers at a hit (glossy lobes) are there in
+    // the stochastic tree only: below a split, the waves draw a level's numbers before the
+    // level below, the recursion one branch after another (the same image within noise:
+    // `where_the_numbers_are_drawn_in_another_order_...`).
+    let still: Vec<&str> = kinds
+        .into_iter()
+        .filter(|k| !["glossy", "brushed"].contains(k))
+        .collect();
+    let lit = scene_with(AREA_LIGHT, &spheres(&kinds));
+    let point_lit = scene_with("", &spheres(&still));
+    let mut all = Stats::default();
+    for transport in [Transport::Whitted, Transport::TransmissiveShadows] {
+        for (tree, scene) in [(TreeMode::Stochastic, &lit), (TreeMode::Split, &point_lit)] {
+            let params = Params {
+                tree,
+                transport,
+                ..scene.params.clone()
+            };
+            let what = format!("{transport:?}, {tree:?}");
+            let (film, stats) = the_waves_are_the_recursion(scene, &params, &what);
+            assert!(
+                stats.refraction_rays > 0 && stats.shadow_rays > 0,
+                "{what}: {stats:?}"
+            );
+            assert!(film.pixels().all(|p| p.is_finite()), "{what}");
+            all += stats;
+        }
+    }
+    // Total internal reflection is met too (inside the box).
+    assert!(all.tir_events > 0, "{all:?}");
 }

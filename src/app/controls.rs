@@ -1,30 +1,8 @@
 //! The side panel: every parameter of the lecture, by topic, each with a tooltip that
 //! explains the concept. Labels, ranges and explanations come from the parameter table.
 
-use super::widgets::{Hint, param_ui};
-use crate::camera::Camera;
-use crate::params::Params;
-use crate::scene::Scene;
+use super::widgets::{Controls, Hint, param_ui};
 use egui::{CollapsingHeader, ComboBox, Slider, Ui};
-
-/// What the side panel edits.
-pub(crate) struct Controls<'a> {
-    /// The parameter model.
-    pub params: &'a mut Params,
-    /// The camera (field of view).
-    pub camera: &'a mut Camera,
-    /// Run on past the target samples per pixel.
-    pub unlimited: &'a mut bool,
-    /// The next click on the image sets the focus distance.
-    pub click_to_focus: &'a mut bool,
-    /// Render resolution as a fraction of the scene's image size.
-    pub resolution: &'a mut f32,
-    /// The scene, for its own values (shown while a parameter keeps them).
-    pub scene: &'a Scene,
-    /// Parameters whose sections to open now (a lecture slide just arrived that asks for
-    /// them).
-    pub open: &'a [&'static str],
-}
 
 /// A section of the panel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

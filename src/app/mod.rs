@@ -35,7 +35,7 @@ use crate::params::Params;
 use crate::render::{EngineConfig, EngineError};
 use crate::scene::{BUILTIN_SCENES, Scene};
 use compare::Compare;
-use controls::{Controls, controls_ui};
+use controls::controls_ui;
 use egui::{CentralPanel, Panel};
 use history::History;
 use instruments::Instruments;
@@ -49,6 +49,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 use toasts::Toasts;
 use view::ViewState;
+use widgets::Controls;
 
 /// How the window starts.
 #[derive(Clone, Debug)]

@@ -3,7 +3,7 @@
 //! UI scale with a projector preset, and the help overlay listing every shortcut.
 
 use super::RaylabApp;
-use super::controls::Controls;
+use super::widgets::Controls;
 use super::widgets::{param_ui, step_param};
 use crate::lecture::LECTURE;
 use egui::{Color32, Key, RichText};

@@ -2,12 +2,31 @@
 //! the ones a slide asks for: its slider, menu or buttons, with its readouts. Labels,
 //! ranges and explanations come from the parameter table.
 
-use super::controls::Controls;
+use crate::camera::Camera;
 use crate::material::Material;
 use crate::optics::{FresnelMode, brewster_angle, critical_angle};
 use crate::params::{Kind, Params, SliderRange, choice_of, choices, spec};
 use crate::scene::Scene;
 use egui::{ComboBox, DragValue, Slider, Ui};
+
+/// What the side panel edits.
+pub(crate) struct Controls<'a> {
+    /// The parameter model.
+    pub params: &'a mut Params,
+    /// The camera (field of view).
+    pub camera: &'a mut Camera,
+    /// Run on past the target samples per pixel.
+    pub unlimited: &'a mut bool,
+    /// The next click on the image sets the focus distance.
+    pub click_to_focus: &'a mut bool,
+    /// Render resolution as a fraction of the scene's image size.
+    pub resolution: &'a mut f32,
+    /// The scene, for its own values (shown while a parameter keeps them).
+    pub scene: &'a Scene,
+    /// Parameters whose sections to open now (a lecture slide just arrived that asks for
+    /// them).
+    pub open: &'a [&'static str],
+}
 
 /// A tooltip that stays away while a mouse button is held: mid-drag it would pop up over
 /// the readouts the drag is about (the Brewster and critical angles, the f-number).

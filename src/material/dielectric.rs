@@ -95,6 +95,24 @@ impl Dielectric {
             .reflectance(cos_i, n1, n2, self.constant_reflectance)
     }
 
+    /// [`Dielectric::reflectance`] for `N` hits on `dielectrics` at once, lane i on
+    /// `dielectrics[i]`, bit for bit what it gives each: where every one computes R by the
+    /// exact equations, those are made in lanes ([`fresnel_exact_of`], whose `f32`
+    /// instance the exact mode is); else each hit asks its own interface.
+    #[inline(always)]
+    fn reflectance_lanes<const N: usize>(
+        dielectrics: &[&Dielectric; N],
+        cos_i: Lanes<N>,
+        n1: Lanes<N>,
+        n2: Lanes<N>,
+    ) -> Lanes<N> {
+        if dielectrics.iter().all(|d| d.fresnel == FresnelMode::Exact) {
+            fresnel_exact_of(cos_i, n1, n2).2
+        } else {
+            Lanes::from_fn(|i| dielectrics[i].reflectance(cos_i.0[i], n1.0[i], n2.0[i]))
+        }
+    }
+
     /// The indices (n1, n2) on the side the ray comes from and the other, at the ray's
     /// wavelength.
     fn sides(&self, hit: &Interaction) -> (f32, f32) {
@@ -178,12 +196,7 @@ pub(crate) fn split_lanes<'d, const N: usize>(
     let n1 = Lanes::select(entering, outside_ior, ior);
     let n2 = Lanes::select(entering, ior, outside_ior);
     let split = split_of::<Lanes<N>>(dir, n_geom, n_shade, n1, n2);
-    let exact = dielectrics.iter().all(|d| d.fresnel == FresnelMode::Exact);
-    let r = if exact {
-        fresnel_exact_of(split.cos_i, n1, n2).2
-    } else {
-        Lanes::from_fn(|i| dielectrics[i].reflectance(split.cos_i.0[i], n1.0[i], n2.0[i]))
-    };
+    let r = Dielectric::reflectance_lanes(&dielectrics, split.cos_i, n1, n2);
     let r = Lanes::select(split.refracts, r, Lanes::splat(1.0));
     (0..N).map(move |i| Split {
         mirror: split.mirror.get(i),
@@ -249,13 +262,19 @@ impl Split {
         ]
     }
 
+    /// Whether the refracted ray does not exist.
+    #[inline(always)]
+    pub(crate) fn total_internal_reflection(&self) -> bool {
+        self.refracted.is_none()
+    }
+
     /// Its lobes ([`Split::lobes`]) and interface, as a scatter.
     #[inline]
     pub(crate) fn scatter(&self) -> Scatter {
         Scatter {
             lobes: self.lobes(),
             interface: Some(self.interface),
-            total_internal_reflection: self.refracted.is_none(),
+            total_internal_reflection: self.total_internal_reflection(),
             ..Scatter::default()
         }
     }

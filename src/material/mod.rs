@@ -343,9 +343,9 @@ impl Material {
         }
     }
 
-    /// Whether its index of refraction depends on the wavelength: a sample that meets it
-    /// must carry one. (A glaze's coat ignores its Abbe number.)
-    pub fn disperses(&self) -> bool {
+    /// Whether a ray that meets it must carry a wavelength: its index of refraction
+    /// depends on the wavelength. (A glaze's coat ignores its Abbe number.)
+    pub fn needs_wavelength(&self) -> bool {
         match self {
             Material::Dielectric(d) => d.disperses(),
             Material::Diffuse(_)

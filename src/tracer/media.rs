@@ -2,6 +2,7 @@
 //! Beer–Lambert attenuation along a segment, and which side of a surface a ray arrives on.
 
 use crate::geometry::SurfaceHit;
+use crate::math::lanes::{Real, Vector};
 use crate::math::{Color, Vec3};
 use crate::scene::Hit;
 
@@ -99,6 +100,44 @@ pub(super) fn transmittance(sigma: Color, t: f32) -> Color {
     Color::select(sigma.cmpeq(Color::ZERO), Color::ONE, (-sigma * t).exp())
 }
 
+/// What a ray's segment through one medium does to the light along it: Beer–Lambert,
+/// exp(−σ t), where some material of the scene absorbs; nothing at all elsewhere (no exp,
+/// and no multiply by 1, so that the light is the same bits). Both walks ask this.
+#[derive(Clone, Copy)]
+pub(super) struct Segment {
+    // σ of the medium; `None` in a scene where nothing absorbs.
+    sigma: Option<Color>,
+}
+
+impl Segment {
+    /// A segment through a medium of absorption `sigma` (`None`: a scene where nothing
+    /// absorbs).
+    #[inline(always)]
+    pub(super) fn new(sigma: Option<Color>) -> Segment {
+        Segment { sigma }
+    }
+
+    /// Whether the scene has absorbing media (even where this one absorbs nothing).
+    #[inline(always)]
+    pub(super) fn absorbs(self) -> bool {
+        self.sigma.is_some()
+    }
+
+    /// `l` once it has come `t` along the segment.
+    #[inline(always)]
+    pub(super) fn along(self, t: f32, l: Color) -> Color {
+        self.sigma.map_or(l, |s| transmittance(s, t) * l)
+    }
+
+    /// To a hit at distance `t`: the transmittance (`None`: 1, nothing absorbs) and the
+    /// path weight `weight` becomes, times its largest channel.
+    #[inline(always)]
+    pub(super) fn to_hit(self, t: f32, weight: f32) -> (Option<Color>, f32) {
+        let tr = self.sigma.map(|s| transmittance(s, t));
+        (tr, tr.map_or(weight, |tr| weight * tr.max_element()))
+    }
+}
+
 /// How a ray meets a surface.
 pub(super) struct Arrival {
     /// It arrives from the surface's outside (against its normal).
@@ -126,13 +165,22 @@ impl Arrival {
     /// geometric and shading normals turned to face it.
     #[inline(always)]
     pub(super) fn facing(dir: Vec3, s: &SurfaceHit) -> (bool, Vec3, Vec3) {
-        let entering = dir.dot(s.n_geom) < 0.0;
-        if entering {
-            (entering, s.n_geom, s.n_shade)
-        } else {
-            (entering, -s.n_geom, -s.n_shade)
-        }
+        facing_of::<f32>(dir, s.n_geom, s.n_shade)
     }
+}
+
+/// [`Arrival::facing`] for one ray or one per lane: whether a ray along `dir` arrives
+/// against the geometric normal `n_geom` (from the outside), and `n_geom` and `n_shade`
+/// turned to face it. Both walks ask this.
+#[inline(always)]
+pub(super) fn facing_of<R: Real>(
+    dir: R::V3,
+    n_geom: R::V3,
+    n_shade: R::V3,
+) -> (R::Mask, R::V3, R::V3) {
+    let entering = dir.dot(n_geom).less(R::splat(0.0));
+    let facing = |n: R::V3| R::V3::select(entering, n, n.neg());
+    (entering, facing(n_geom), facing(n_shade))
 }
 
 #[cfg(test)]

@@ -7,9 +7,7 @@
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
 mod emitters;
-mod lights;
 mod media;
-mod nodes;
 mod path;
 mod photons;
 mod polarized;
@@ -18,10 +16,9 @@ mod shade;
 mod shadow;
 mod spectral;
 mod stats;
-mod surfaces;
 mod wave;
 
-use media::Arrival;
+use media::{Arrival, Segment};
 pub use media::{MAX_NESTING, Media};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_ROW, TreeNode};
 pub use stats::Stats;
@@ -37,7 +34,6 @@ use crate::params::{Params, Transport};
 use crate::scene::{Hit, Scene};
 use emitters::Emitters;
 use glam::Vec2;
-use media::transmittance;
 use polarized::{Polarization, Unpolarized};
 
 /// The most reflected and refracted rays one camera sample may trace. Depth and weight
@@ -201,7 +197,7 @@ impl<'a> Tracer<'a> {
         Tracer {
             scene,
             params,
-            dispersive: materials.iter().any(|m| m.disperses()),
+            dispersive: materials.iter().any(|m| m.needs_wavelength()),
             absorbs: materials.iter().any(|m| m.absorbs()),
             materials,
             emitters,
@@ -360,6 +356,12 @@ impl<'a> Tracer<'a> {
         })
     }
 
+    /// A ray's segment through the innermost of `media`.
+    #[inline(always)]
+    fn segment(&self, media: &Media) -> Segment {
+        Segment::new(self.absorption(media))
+    }
+
     /// [`Tracer::absorption`], 0 where nothing absorbs.
     fn absorption_in(&self, media: &Media) -> Color {
         self.absorption(media).unwrap_or(Color::ZERO)
@@ -473,41 +475,29 @@ impl<'a> Tracer<'a> {
         pol: &P,
     ) -> Color {
         let id = w.rec.ray(|| b.node(ray, ray.at(100.0), End::Miss));
-        // Beer–Lambert along the segment, where some material absorbs: elsewhere every
-        // transmittance is exactly 1, and multiplying by it changes no bit.
-        let sigma = self.absorption(media);
-        let along = |t: f32, l: Color| sigma.map_or(l, |s| transmittance(s, t) * l);
+        let segment = self.segment(media);
         let hit = self.scene.intersect(ray, f32::INFINITY);
         // Area lights are seen where nothing is in front of them.
         let mut nearest = hit.map_or(f32::INFINITY, |h| h.surface.t);
         let (radiance, end) = if let Some((_, radiance)) = self.light_seen(ray, &mut nearest) {
-            (pol.seen(along(nearest, radiance)), End::LightHit)
+            (pol.seen(segment.along(nearest, radiance)), End::LightHit)
         } else if let Some(hit) = &hit {
-            let tr = sigma.map(|s| transmittance(s, hit.surface.t));
-            let b = match tr {
-                Some(tr) => Branch {
-                    weight: b.weight * tr.max_element(),
-                    ..b
-                },
-                None => b,
-            };
+            let (tr, weight) = segment.to_hit(hit.surface.t, b.weight);
+            let b = Branch { weight, ..b };
             let m = Meet {
                 ray,
                 hit,
                 media,
                 id,
             };
-            let (l, end) = if self.dispersive
-                && b.wavelength.is_none()
-                && self.materials[hit.material as usize].disperses()
-            {
+            let (l, end) = if self.splits_into_wavelengths(hit.material, b.wavelength) {
                 self.shade_spectral(b, w, |b, w| self.shade(m, b, w, pol))
             } else {
                 self.shade(m, b, w, pol)
             };
             (tr.map_or(l, |tr| tr * l), end)
         } else {
-            let l = along(f32::INFINITY, self.scene.background.radiance(ray.dir));
+            let l = segment.along(f32::INFINITY, self.scene.background.radiance(ray.dir));
             (pol.seen(l), End::Miss)
         };
         if w.rec.on() {

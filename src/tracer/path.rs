@@ -382,10 +382,7 @@ impl Tracer<'_> {
         weight: &mut Color,
         rng: &mut SampleStream,
     ) -> Interaction {
-        if self.dispersive
-            && wavelength.is_none()
-            && self.materials[hit.material as usize].disperses()
-        {
+        if self.splits_into_wavelengths(hit.material, *wavelength) {
             let lambda = dispersion::wavelength(rng.with_image_position());
             *wavelength = Some(lambda);
             *weight *= dispersion::channel_weight(lambda);

@@ -2,7 +2,7 @@
 //! quantities at each interface, and why it ended. The renderer records nothing
 //! ([`NoRecorder`] compiles away); the inspector records a [`RayTree`].
 
-use crate::material::{Interaction, Interface};
+use crate::material::{Interaction, Interface, Side};
 use crate::math::{Color, Ray, Vec3};
 use crate::scene::Hit;
 
@@ -17,6 +17,16 @@ pub enum RayKind {
     Refract,
     /// Towards a light.
     Shadow,
+}
+
+impl RayKind {
+    /// The kind of a child ray on `side` of a surface.
+    pub(super) fn of_side(side: Side) -> RayKind {
+        match side {
+            Side::Reflect => RayKind::Reflect,
+            Side::Transmit => RayKind::Refract,
+        }
+    }
 }
 
 /// Why a branch of the ray tree ended.

@@ -7,8 +7,8 @@ use super::record::{record_hit, record_interface};
 use super::{
     Branch, End, MAX_TREE_RAYS, Media, Meet, RayKind, Recorder, Stats, Tracer, TreeNode, Walk,
 };
-use crate::material::{Lobe, Scatter, Side};
-use crate::math::{Color, Ray, offset_ray_origin};
+use crate::material::{Lobe, Side};
+use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::params::TreeMode;
 
 impl Tracer<'_> {
@@ -40,20 +40,8 @@ impl Tracer<'_> {
         let scatter = material.scatter(&at, w.rng);
         // The polariser's analyzer in this interface's s/p frame.
         let s_frame = pol.at_interface(ray.dir, at.n_shade);
-        let child_ray = |lobe: &Lobe| Ray {
-            origin: offset_ray_origin(
-                s.p,
-                match lobe.side {
-                    Side::Reflect => n_geom,
-                    Side::Transmit => -n_geom,
-                },
-            ),
-            dir: lobe.dir,
-            time: ray.time,
-        };
-        if scatter.total_internal_reflection {
-            w.stats.tir_events += 1;
-        }
+        let child_ray = |lobe: &Lobe| child_ray(s.p, n_geom, lobe, ray.time);
+        w.stats.count_tir(scatter.total_internal_reflection);
         if w.rec.on() {
             if let Some(i) = scatter.interface {
                 record_interface(w.rec, id, i);
@@ -88,72 +76,89 @@ impl Tracer<'_> {
         if let Some(glow) = material.glow(at.uv) {
             l += pol.seen(glow);
         }
-        let lobes = scatter.lobes().count();
-        if lobes == 0 {
+        if scatter.lobes().next().is_none() {
             return (l, End::Absorbed);
         }
-        // Each child traced through the media on its side of the surface.
-        let mut trace_child = |lobe: &Lobe, factor: f32, weight: f32, w: &mut Walk<R>| {
-            // Built only for a crossing ray: the stack is copied whole.
+        for f in self.children(&scatter.lobes, b.depth, b.weight, w.rng) {
+            // Each child traced through the media on its side of the surface, the stack
+            // copied (whole) only for a crossing ray.
             let beyond;
-            let (kind, media) = match lobe.side {
-                Side::Reflect => (RayKind::Reflect, media),
+            let media = match f.lobe.side {
+                Side::Reflect => media,
                 Side::Transmit => {
-                    beyond = if entering {
-                        media.entered(hit.object, hit.material)
-                    } else {
-                        media.left(hit.object)
-                    };
-                    (RayKind::Refract, &beyond)
+                    beyond = media.crossed(entering, hit);
+                    &beyond
                 }
             };
             let child = Branch {
                 depth: b.depth + 1,
-                weight,
-                kind,
+                weight: f.weight,
+                kind: RayKind::of_side(f.lobe.side),
                 parent: Some(id as u32),
-                factor,
+                factor: f.factor,
                 wavelength: b.wavelength,
             };
-            let child_pol = s_frame.child(material, &at, lobe);
-            self.child(child, &child_ray(lobe), media, w, &child_pol)
-        };
-        if self.params.tree == TreeMode::Stochastic && lobes > 1 {
-            l += self.follow_one(&scatter, b, w, &mut trace_child);
-        } else {
-            for lobe in scatter.lobes() {
-                let factor = lobe.weight.max_element();
-                // A lobe of weight 0 adds nothing: it is not traced.
-                if factor > 0.0 {
-                    l += lobe.weight * trace_child(lobe, factor, b.weight * factor, w);
-                }
-            }
+            let child_pol = s_frame.child(material, &at, f.lobe);
+            l += f.tint * self.child(child, &child_ray(f.lobe), media, w, &child_pol);
         }
         (l, End::Split)
     }
 
-    /// Stochastic mode: follows one lobe, chosen with probability equal to its branch
-    /// weight (the last takes any rounding remainder). Dividing by that probability, a
-    /// dielectric's R / P(reflect) = 1 leaves the path weight unchanged.
-    fn follow_one<R: Recorder>(
+    /// The children a hit of path weight `weight` at `depth` traces along its `lobes`, in
+    /// order, as the tree mode says. Both walks ask this (the recursion here, the waves
+    /// when they queue a node's children), so that they cannot choose differently.
+    ///
+    /// In the split tree, and wherever there is one lobe: every lobe of weight above 0 (a
+    /// lobe of weight 0 adds nothing), tinted by its weight. In the stochastic tree, of two
+    /// lobes one, chosen with probability its branch weight ([`pick_lobe`], one number
+    /// drawn) and tinted by its weight over that probability: a dielectric's R / P(reflect)
+    /// = 1 leaves the path weight unchanged. A branch past the depth or weight limit draws
+    /// nothing and follows the first lobe untinted, so that [`Tracer::pruned`] counts (and
+    /// the recorder records) the cut once.
+    #[inline(always)]
+    pub(super) fn children<'s>(
         &self,
-        scatter: &Scatter,
-        b: Branch,
-        w: &mut Walk<R>,
-        trace_child: &mut impl FnMut(&Lobe, f32, f32, &mut Walk<R>) -> Color,
-    ) -> Color {
-        let mut lobes = scatter.lobes();
-        let Some(first) = lobes.next() else {
-            return Color::ZERO;
-        };
-        if b.depth >= self.params.max_depth || b.weight < self.params.min_weight {
-            // Let `child` count and record the cut, once.
-            return trace_child(first, 1.0, b.weight, w);
-        }
-        let Some((chosen, tint)) = pick_lobe(first, lobes, w.rng.next_1d()) else {
-            return Color::ZERO;
-        };
-        tint * trace_child(chosen, tint.max_element(), b.weight * tint.max_element(), w)
+        lobes: &'s [Option<Lobe>; 2],
+        depth: u32,
+        weight: f32,
+        rng: &mut SampleStream,
+    ) -> impl Iterator<Item = Follow<'s>> + use<'s> {
+        let mut all = lobes.iter().flatten();
+        let chosen =
+            if self.params.tree == TreeMode::Stochastic && lobes.iter().flatten().count() > 1 {
+                let first = all.next();
+                let one = first.and_then(|first| {
+                    if depth >= self.params.max_depth || weight < self.params.min_weight {
+                        return Some(Follow {
+                            lobe: first,
+                            tint: Color::ONE,
+                            factor: 1.0,
+                            weight,
+                        });
+                    }
+                    let (lobe, tint) = pick_lobe(first, all.by_ref(), rng.next_1d())?;
+                    let factor = tint.max_element();
+                    Some(Follow {
+                        lobe,
+                        tint,
+                        factor,
+                        weight: weight * factor,
+                    })
+                });
+                [one, None]
+            } else {
+                [all.next(), all.next()].map(|lobe| {
+                    let lobe = lobe?;
+                    let factor = lobe.weight.max_element();
+                    (factor > 0.0).then_some(Follow {
+                        lobe,
+                        tint: lobe.weight,
+                        factor,
+                        weight: weight * factor,
+                    })
+                })
+            };
+        chosen.into_iter().flatten()
     }
 
     /// Traces a child ray if the pruning rules allow, recording why not.
@@ -218,4 +223,31 @@ pub(super) fn pick_lobe<'s>(
     }
     let p = chosen.weight.max_element();
     (p > 0.0).then(|| (chosen, chosen.weight / p))
+}
+
+/// A child a hit traces ([`Tracer::children`]): the lobe it follows, the tint its radiance
+/// is multiplied by, its branch factor (the largest channel of the tint, in the record)
+/// and its path weight.
+pub(super) struct Follow<'s> {
+    pub(super) lobe: &'s Lobe,
+    pub(super) tint: Color,
+    pub(super) factor: f32,
+    pub(super) weight: f32,
+}
+
+/// The ray of a child along `lobe` from the hit point `p` at `time`, `n_geom` the
+/// geometric normal facing the parent's ray: it leaves just off the surface on the lobe's
+/// side (above for a reflected ray, below for a refracted one), so that it does not meet
+/// the surface it leaves.
+#[inline(always)]
+pub(super) fn child_ray(p: Vec3, n_geom: Vec3, lobe: &Lobe, time: f32) -> Ray {
+    let n_side = match lobe.side {
+        Side::Reflect => n_geom,
+        Side::Transmit => -n_geom,
+    };
+    Ray {
+        origin: offset_ray_origin(p, n_side),
+        dir: lobe.dir,
+        time,
+    }
 }

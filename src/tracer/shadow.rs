@@ -7,6 +7,7 @@ use super::media::transmittance;
 use super::record::shadow_node;
 use super::{Media, Meet, Recorder, Tracer, Walk};
 use crate::material::{Direct, Interaction};
+use crate::math::lanes::{Real, Vector};
 use crate::math::{Color, Ray, offset_ray_origin};
 use crate::params::Transport;
 
@@ -17,6 +18,18 @@ const MAX_SHADOW_CROSSINGS: u32 = 64;
 /// How far a shadow ray reaches, as a fraction of the distance to the light's point: just
 /// short of the light's surface (which is not in the BVH anyway).
 pub(super) const SHADOW_REACH: f32 = 1.0 - 1e-4;
+
+/// cos θ = n · l between the shading normal and the direction `dir` to a light's point,
+/// for one ray or one per lane, and whether a shadow ray is traced there: the light must
+/// be in front of the shading normal (cos θ > 0, else it adds nothing) and of the
+/// geometric one (else the shadow ray would start into the surface). `n_geom` and
+/// `n_shade` face the arriving ray. Both walks ask this.
+#[inline(always)]
+pub(super) fn faces_light<R: Real>((n_geom, n_shade): (R::V3, R::V3), dir: R::V3) -> (R, R::Mask) {
+    let zero = R::splat(0.0);
+    let cos = n_shade.dot(dir);
+    (cos, !cos.less_eq(zero) & !n_geom.dot(dir).less_eq(zero))
+}
 
 impl Tracer<'_> {
     /// Shading by the lights: ambient plus every light, one shadow ray to one sampled point
@@ -47,8 +60,8 @@ impl Tracer<'_> {
             let Some(ls) = light.sample(p, u) else {
                 continue;
             };
-            let cos = n.dot(ls.dir);
-            if cos <= 0.0 || n_geom.dot(ls.dir) <= 0.0 {
+            let (cos, lit) = faces_light::<f32>((n_geom, n), ls.dir);
+            if !lit {
                 continue;
             }
             w.stats.shadow_rays += 1;
@@ -123,11 +136,7 @@ impl Tracer<'_> {
             if t.max_element() <= 0.0 {
                 return Color::ZERO;
             }
-            media = if at.entering {
-                media.entered(hit.object, hit.material)
-            } else {
-                media.left(hit.object)
-            };
+            media = media.crossed(at.entering, &hit);
             left -= s.t;
             ray = Ray {
                 origin: offset_ray_origin(s.p, -at.n_geom),

@@ -1,9 +1,8 @@
 //! Dispersion in the ray tree: at a branch's first dispersive surface the tree splits into
 //! three wavelengths, one per colour channel (see optics::dispersion).
 
-use super::wave::Queue;
-use super::{Branch, End, NoRecorder, Tracer, Walk};
-use crate::math::Color;
+use super::{Branch, End, Tracer, Walk};
+use crate::math::{Color, SampleStream};
 use crate::optics::dispersion;
 use crate::params::TreeMode;
 use crate::tracer::Recorder;
@@ -25,7 +24,6 @@ impl Tracer<'_> {
         w: &mut Walk<R>,
         shade: impl Fn(Branch, &mut Walk<R>) -> (Color, End),
     ) -> (Color, End) {
-        let u = w.rng.with_image_position();
         let shade_at = |lambda: f32, w: &mut Walk<R>| {
             let b = Branch {
                 wavelength: Some(lambda),
@@ -33,56 +31,54 @@ impl Tracer<'_> {
             };
             shade(b, w)
         };
-        if self.params.tree == TreeMode::Stochastic {
-            let lambda = dispersion::wavelength(u);
-            let (l, end) = shade_at(lambda, w);
-            return (dispersion::channel_weight(lambda) * l, end);
-        }
-        let mut sum = Color::ZERO;
-        let mut end = End::Split;
-        for c in 0..3 {
-            let (l, e) = shade_at(dispersion::wavelength_in(c, u), w);
-            sum[c] = l[c];
-            end = e;
-        }
-        (sum, end)
-    }
-
-    /// `shade_spectral` for a node of the waves, whose segment's transmittance is `tr`:
-    /// `scatter` shades its hit at one wavelength, queueing that wavelength's children.
-    /// Returns the node's light and the factor its sum is multiplied by, so that the
-    /// level-by-level sums give the recursion's radiance bit for bit: in the split tree,
-    /// each wavelength's light in its own channel and its children's weights kept to that
-    /// channel only (the other channels add exact zeros); in the stochastic tree, the
-    /// channel weight folded into `tr` (exactly the recursion's where nothing absorbs,
-    /// tr = 1; within a rounding where something does).
-    // (Out of line: a node of its own kind, once per sample; measured, 0.2 % fewer
-    // instructions on the dispersion scene than inlined.)
-    #[inline(never)]
-    pub(super) fn spectral_node(
-        &self,
-        tr: Color,
-        w: &mut Walk<NoRecorder>,
-        queue: &mut Queue,
-        scatter: impl Fn(f32, &mut Walk<NoRecorder>, &mut Queue) -> Color,
-    ) -> (Color, Color) {
-        let u = w.rng.with_image_position();
-        if self.params.tree == TreeMode::Stochastic {
-            let lambda = dispersion::wavelength(u);
-            let local = scatter(lambda, w, queue);
-            return (local, tr * dispersion::channel_weight(lambda));
-        }
-        let mut sum = Color::ZERO;
-        for c in 0..3 {
-            let first = queue.children.len();
-            let l = scatter(dispersion::wavelength_in(c, u), w, queue);
-            sum[c] = l[c];
-            for child in &mut queue.children[first..] {
-                let mut only = Color::ZERO;
-                only[c] = child.weight[c];
-                child.weight = only;
+        match self.wavelengths(w.rng) {
+            Wavelengths::One(lambda) => {
+                let (l, end) = shade_at(lambda, w);
+                (dispersion::channel_weight(lambda) * l, end)
+            }
+            Wavelengths::PerChannel(lambdas) => {
+                let mut sum = Color::ZERO;
+                let mut end = End::Split;
+                for (c, lambda) in lambdas.into_iter().enumerate() {
+                    let (l, e) = shade_at(lambda, w);
+                    sum[c] = l[c];
+                    end = e;
+                }
+                (sum, end)
             }
         }
-        (sum, tr)
     }
+
+    /// Whether a ray carrying `wavelength` (`None`: none yet) that meets `material` splits
+    /// into wavelengths there: at its first surface whose index depends on the wavelength.
+    /// Every walk asks this (the recursion, the waves, paths and photons).
+    #[inline(always)]
+    pub(super) fn splits_into_wavelengths(&self, material: u32, wavelength: Option<f32>) -> bool {
+        self.dispersive
+            && wavelength.is_none()
+            && self.materials[material as usize].needs_wavelength()
+    }
+
+    /// The wavelengths a branch takes at its first dispersive surface, from one number u
+    /// (the third coordinate of the sample's image position, drawn from `rng`): in the
+    /// split tree one in each colour channel's box, each brought back in its channel only
+    /// (weight 1); in the stochastic tree one uniform over 400–700 nm, brought back in its
+    /// box's channel times 3 ([`dispersion::channel_weight`]).
+    #[inline(always)]
+    pub(super) fn wavelengths(&self, rng: &mut SampleStream) -> Wavelengths {
+        let u = rng.with_image_position();
+        if self.params.tree == TreeMode::Stochastic {
+            Wavelengths::One(dispersion::wavelength(u))
+        } else {
+            Wavelengths::PerChannel([0, 1, 2].map(|c| dispersion::wavelength_in(c, u)))
+        }
+    }
+}
+
+/// The wavelengths (nm) a branch splits into ([`Tracer::wavelengths`]).
+pub(super) enum Wavelengths {
+    /// One, over the whole spectrum (the stochastic tree).
+    One(f32),
+    /// One in each colour channel's box (the split tree).
+    PerChannel([f32; 3]),
 }

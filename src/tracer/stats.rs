@@ -30,6 +30,12 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// Counts a hit where the refracted ray does not exist (`total_internal_reflection`).
+    #[inline(always)]
+    pub(super) fn count_tir(&mut self, total_internal_reflection: bool) {
+        self.tir_events += u64::from(total_internal_reflection);
+    }
+
     /// All rays traced, of every kind.
     pub fn total_rays(&self) -> u64 {
         self.camera_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays

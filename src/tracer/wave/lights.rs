@@ -4,13 +4,13 @@
 //! the formulas the recursion uses (their `f32` instances), so that a node's light is the
 //! recursion's bit for bit. The BVH and each BRDF are asked ray by ray.
 
-use super::Tracer;
-use super::shadow::SHADOW_REACH;
 use crate::geometry::PrimRef;
 use crate::material::Brdf;
-use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, Real, Vector};
+use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, Real};
 use crate::math::rng::{Pair, SobolDraw, sobol_pairs};
 use crate::math::{Color, Vec3};
+use crate::tracer::Tracer;
+use crate::tracer::shadow::{SHADOW_REACH, faces_light};
 use glam::Vec2;
 
 /// The area light each ray of a level sees in front of its nearest hit, if any: the
@@ -195,10 +195,8 @@ impl LaneKernel for Shadows<'_, '_> {
                 };
                 let (dir, dist, factor, valid) = light.toward::<Lanes<N>>(c.lanes3(i, P), q);
                 let (n, view) = (c.lanes3::<N>(i, N_SHADE), c.lanes3::<N>(i, VIEW));
-                let cos = n.dot(dir);
-                let zero = Lanes::splat(0.0);
-                let n_geom = c.lanes3(i, N_GEOM);
-                let lit = valid & !cos.less_eq(zero) & !n_geom.dot(dir).less_eq(zero);
+                let (cos, faces) = faces_light::<Lanes<N>>((c.lanes3(i, N_GEOM), n), dir);
+                let lit = valid & faces;
                 let reach = dist * Lanes::splat(SHADOW_REACH);
                 let blocked = if Lanes::any(lit) {
                     let rays = (c.lanes3(i, ORIGIN), dir, c.lane(i, TIME));

@@ -15,19 +15,30 @@
 //! The waves take the lecture's ray tree (not paths or photons), without a polariser; a
 //! dispersive surface splits a node into its wavelengths as the recursion splits its tree
 //! (`tracer/spectral.rs`). The recursion ([`Tracer::sample`]) stays the reference, and
-//! what the inspector records.
+//! what the inspector records. Both walks ask the same functions for each rule of the
+//! tree (which children a hit has, the media a child crosses into, the shadow rays' tests,
+//! the transmittance along a segment, the wavelength split), so that they cannot part.
+//!
+//! Here the walk, level by level; `camera.rs` makes level 0, `hits.rs` a level's hit
+//! records and dielectric splits in lanes, `shade.rs` shades one node and queues its
+//! children, `lights.rs` finds the area lights seen and traces the shadow rays in lanes,
+//! and `types.rs` holds what they share.
 
-use super::lights::{Asked, Lit, Seen, Shadows};
-use super::surfaces::{Hits, Splits, Surfaces};
-use super::{Media, Stats, Tracer};
-use crate::camera::CameraSample;
+mod camera;
+mod hits;
+mod lights;
+mod shade;
+mod types;
+
 use crate::geometry::PrimRef;
 use crate::material::Split;
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Width, asked_lanes, is_finite};
-use crate::math::rng::SobolLanes;
-use crate::math::{Color, Pattern, Ray, SampleStream};
-use crate::scene::Hit;
-use std::ops::Range;
+use crate::math::Color;
+use crate::math::lanes::{Width, asked_lanes};
+use crate::tracer::{Media, Stats, Tracer};
+use camera::CameraRays;
+use hits::{Hits, Splits, Surfaces};
+use lights::{Asked, Lit, Seen, Shadows};
+use types::{Level, Lights, Node, Queue, Rays, Slot, Surface, Value};
 
 /// How the kernel walks each sample's ray tree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,103 +96,6 @@ pub struct Traced {
     pub rays: u32,
 }
 
-/// Where a ray of a wave sits: its sample, the media it travels through (in the wave's
-/// list of them), its path weight, and the wavelength it carries since its first
-/// dispersive surface. Its depth in the tree is its level's. Kept beside the rays, which
-/// the hit search reads on their own; 16 bytes (with the depth and an `Option` it was 24,
-/// and glass slides were 3 % slower).
-#[derive(Clone, Copy)]
-pub(super) struct Node {
-    // The sample of the wave it belongs to.
-    pub(super) slot: u32,
-    pub(super) media: u32,
-    pub(super) weight: f32,
-    // The wavelength in nm; 0: none.
-    wavelength: f32,
-}
-
-impl Node {
-    /// A node of `slot`'s tree in `media` with path weight `weight`, carrying
-    /// `wavelength`.
-    #[inline(always)]
-    pub(super) fn new(slot: u32, media: u32, weight: f32, wavelength: Option<f32>) -> Node {
-        Node {
-            slot,
-            media,
-            weight,
-            wavelength: wavelength.unwrap_or(0.0),
-        }
-    }
-
-    /// The wavelength (nm) it carries, if it has met a dispersive surface.
-    #[inline(always)]
-    pub(super) fn wavelength(&self) -> Option<f32> {
-        (self.wavelength > 0.0).then_some(self.wavelength)
-    }
-}
-
-/// How a node's radiance is made: (local + Σ weight · L(child), over its children in
-/// order) × tr, the transmittance along its segment (1 where nothing absorbs: 1 · x is x
-/// bit for bit). A node whose ray meets a light or nothing has no children and tr 1.
-pub(super) struct Value {
-    pub(super) local: Color,
-    pub(super) tr: Color,
-    pub(super) children: Range<u32>,
-}
-
-/// A child of a node: what its radiance is multiplied by, and its node in the next level
-/// (`None`: pruned, radiance 0).
-pub(super) struct Child {
-    pub(super) weight: Color,
-    pub(super) node: Option<u32>,
-}
-
-/// One level of the waves: how each node's radiance is made, and the children they list.
-#[derive(Default)]
-struct Level {
-    values: Vec<Value>,
-    children: Vec<Child>,
-}
-
-/// A sample's state while its tree is traced.
-pub(super) struct Slot {
-    pub(super) rng: SampleStream,
-    pub(super) tree_rays: u32,
-    pub(super) rays: u32,
-}
-
-/// The rays of one level and where each sits.
-#[derive(Default)]
-pub(super) struct Rays {
-    pub(super) rays: RayColumns,
-    pub(super) nodes: Vec<Node>,
-}
-
-impl Rays {
-    fn clear(&mut self) {
-        self.rays.clear();
-        self.nodes.clear();
-    }
-
-    pub(super) fn push(&mut self, ray: &Ray, node: Node) -> u32 {
-        self.rays.push(ray);
-        self.nodes.push(node);
-        self.nodes.len() as u32 - 1
-    }
-}
-
-/// What is known of a node's surface before it is shaded: the hit (`None`: its ray met
-/// nothing, or met a light whose record the lanes did not make), its distance, the area
-/// light seen in front of it (its distance and radiance), the radiance the surface emits
-/// where it is a light, and a dielectric's split where the lanes made it.
-pub(super) struct Surface<'s> {
-    pub(super) hit: Option<&'s Hit>,
-    pub(super) t: f32,
-    pub(super) seen: Option<(f32, Color)>,
-    pub(super) emitted: Option<Color>,
-    pub(super) split: Option<&'s Split>,
-}
-
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
 #[derive(Default)]
 pub struct Waves {
@@ -210,124 +124,6 @@ pub struct Waves {
     radiance: Vec<Color>,
     below: Vec<Color>,
     traced: Vec<Traced>,
-}
-
-/// Where a node's children go: the level below `depth`, its rays, the media they enter, the
-/// list of the level's children; and the shadow rays it asks for, traced after the level.
-pub(super) struct Queue<'q> {
-    // The depth of the level whose children these are.
-    pub(super) depth: u32,
-    pub(super) next: &'q mut Rays,
-    pub(super) media: &'q mut Vec<Media>,
-    pub(super) children: &'q mut Vec<Child>,
-    pub(super) lights: Lights<'q>,
-}
-
-/// The shadow rays a level's nodes ask for, per light, the nodes whose sum of lights is
-/// then scaled, with the scale, and the nodes on glowing surfaces, with the glow added
-/// after that (as the recursion adds it after the lights).
-pub(super) struct Lights<'q> {
-    pub(super) shadows: &'q mut [Asked],
-    pub(super) scaled: &'q mut Vec<(u32, f32)>,
-    pub(super) glowing: &'q mut Vec<(u32, Color)>,
-}
-
-/// The camera rays of a wave, with each sample's random numbers after the camera's, into
-/// its slots, roots and level 0: with the Sobol pattern, `N` at a time in lanes, the draws
-/// and the rays; with the others (the sampling lecture's patterns), ray by ray.
-struct CameraRays<'a, 't> {
-    tracer: &'a Tracer<'t>,
-    samples: &'a [(u32, u32, u32)],
-    stats: &'a mut Stats,
-    slots: &'a mut Vec<Slot>,
-    roots: &'a mut Vec<Option<u32>>,
-    level: &'a mut Rays,
-}
-
-impl CameraRays<'_, '_> {
-    /// A sample's slot (its stream `rng`), and its root: its camera ray's node, if the ray
-    /// can be traced (`ray` finite; `None`: not).
-    #[inline(always)]
-    fn push(&mut self, rng: SampleStream, ray: Option<&Ray>) {
-        let node = ray.map(|ray| {
-            let node = Node::new(self.slots.len() as u32, 0, 1.0, None);
-            self.level.push(ray, node)
-        });
-        self.push_slot(rng, node);
-    }
-
-    #[inline(always)]
-    fn push_slot(&mut self, rng: SampleStream, root: Option<u32>) {
-        self.stats.samples += 1;
-        self.stats.camera_rays += root.is_some() as u64;
-        self.roots.push(root);
-        self.slots.push(Slot {
-            rng,
-            tree_rays: 0,
-            rays: root.is_some() as u32,
-        });
-    }
-}
-
-impl LaneKernel for CameraRays<'_, '_> {
-    type Output = ();
-    #[inline(always)]
-    fn run<const N: usize>(mut self) {
-        let t = self.tracer;
-        let sobol = t.params.pattern == Pattern::Sobol;
-        let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
-        let (chunks, rest) = self.samples.split_at(in_lanes);
-        for chunk in chunks.chunks_exact(N) {
-            let pixels = std::array::from_fn(|i| chunk[i].1 * t.width + chunk[i].0);
-            let numbers = std::array::from_fn(|i| chunk[i].2);
-            let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
-            let cs = t.frame.draw_samples(&mut lanes);
-            let lane = |f: fn(&CameraSample) -> f32| Lanes::<N>::from_fn(|i| f(&cs[i]));
-            let xy = (
-                Lanes::from_fn(|i| chunk[i].0 as f32),
-                Lanes::from_fn(|i| chunk[i].1 as f32),
-            );
-            let pixel = (lane(|c| c.pixel.x), lane(|c| c.pixel.y));
-            let lens = (lane(|c| c.lens.x), lane(|c| c.lens.y));
-            let (o, d, time) = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
-            let finite = |v: V3<Lanes<N>>| is_finite(v.x) & is_finite(v.y) & is_finite(v.z);
-            // Each stream is made where it is stored: an array of them built first and
-            // copied out stalls on store-to-load forwarding.
-            if Lanes::all(finite(o) & finite(d)) {
-                // The usual case: the rays go to the level as they are, `N` at a time.
-                let first = self.level.nodes.len() as u32;
-                let slot = self.slots.len() as u32;
-                self.level.rays.push_lanes((o, d, time));
-                let node = |i| Node::new(slot + i, 0, 1.0, None);
-                self.level.nodes.extend((0..N as u32).map(node));
-                // (Counted once for the `N`: an add to memory per sample waited on the last.)
-                self.stats.samples += N as u64;
-                self.stats.camera_rays += N as u64;
-                self.roots.extend((first..first + N as u32).map(Some));
-                self.slots.extend((0..N).map(|i| Slot {
-                    rng: lanes.stream(i),
-                    tree_rays: 0,
-                    rays: 1,
-                }));
-            } else {
-                for i in 0..N {
-                    let ray = Ray {
-                        origin: o.get(i),
-                        dir: d.get(i),
-                        time: time.0[i],
-                    };
-                    let traced = ray.origin.is_finite() && ray.dir.is_finite();
-                    self.push(lanes.stream(i), traced.then_some(&ray));
-                }
-            }
-        }
-        for &(x, y, s) in rest {
-            let (rng, cs) = t.camera_draw(x, y, s);
-            let ray = t.camera_ray(x, y, &cs);
-            let traced = ray.origin.is_finite() && ray.dir.is_finite();
-            self.push(rng, traced.then_some(&ray));
-        }
-    }
 }
 
 /// The most lights a scene traced in waves has. A wave's level keeps a shadow ray for
@@ -397,7 +193,14 @@ impl Tracer<'_> {
         shadows.resize_with(self.lights.len(), Asked::default);
         media.clear();
         media.push(Media::default());
-        self.camera_level(samples, width, stats, (slots, roots, level));
+        width.dispatch(CameraRays {
+            tracer: self,
+            samples,
+            stats,
+            slots,
+            roots,
+            level,
+        });
         let mut depth = 0;
         while !level.rays.is_empty() {
             self.scene.intersect_wave(&level.rays, width, nearest);
@@ -500,28 +303,6 @@ impl Tracer<'_> {
             rays: slot.rays,
         }));
         traced
-    }
-
-    /// Level 0 of a wave: the camera ray of each of `samples` (made `width` at a time),
-    /// each sample's slot, and its root node (`None`: its camera ray could not be traced).
-    fn camera_level(
-        &self,
-        samples: &[(u32, u32, u32)],
-        width: Width,
-        stats: &mut Stats,
-        (slots, roots, level): (&mut Vec<Slot>, &mut Vec<Option<u32>>, &mut Rays),
-    ) {
-        slots.clear();
-        roots.clear();
-        level.clear();
-        width.dispatch(CameraRays {
-            tracer: self,
-            samples,
-            stats,
-            slots,
-            roots,
-            level,
-        });
     }
 }
 

@@ -6,13 +6,14 @@
 //! dielectrics split `N` at a time after. Either way each is what the scalar code gives,
 //! bit for bit.
 
-use super::wave::Node;
-use super::{Media, Tracer};
+use super::types::Node;
 use crate::geometry::PrimRef;
 use crate::material::{Dielectric, Split, split_lanes};
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3, Vector};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3};
 use crate::math::{Color, Ray};
 use crate::scene::Hit;
+use crate::tracer::media::facing_of;
+use crate::tracer::{Media, Tracer};
 
 /// The hit records of a level's rays: only the rays that have one, each ray's place in
 /// that list beside. (A list of `Option<Hit>` wrote 96 bytes for every ray without a
@@ -96,11 +97,8 @@ impl LaneKernel for Surfaces<'_, '_> {
         // scalar code does that); a ray carrying one is split at its own indices. (Asked
         // only in a scene that disperses: asking every hit cost the others 0.5 % more
         // instructions.)
-        let splits_into_wavelengths = |m: u32, k: usize| {
-            tracer.dispersive
-                && materials[m as usize].disperses()
-                && nodes[k].wavelength().is_none()
-        };
+        let splits_into_wavelengths =
+            |m: u32, k: usize| tracer.splits_into_wavelengths(m, nodes[k].wavelength());
         let dielectric = |m: u32, k: usize| {
             materials[m as usize].splitting().is_some() && !splits_into_wavelengths(m, k)
         };
@@ -234,16 +232,20 @@ impl Tracer<'_> {
         (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
         of_ray: impl Fn(usize) -> (&'m Media, u32, Option<f32>),
     ) -> impl Iterator<Item = Split> + 'd {
-        let entering = dir.dot(n_geom).less(Lanes::splat(0.0));
-        let facing = |n: V3<Lanes<N>>| V3::select(entering, n, n.neg());
+        let (entering, n_geom, n_shade) = facing_of::<Lanes<N>>(dir, n_geom, n_shade);
         let mut ior = Lanes::<N>::splat(0.0);
         let outside_ior = Lanes::<N>::from_fn(|k| {
             let (media, object, wavelength) = of_ray(k);
             ior.0[k] = dielectrics[k].ior_at(wavelength);
             self.ior_of(media.outside(entering.0[k] != 0, object), wavelength)
         });
-        let normals = (facing(n_geom), facing(n_shade));
-        split_lanes(dielectrics, dir, normals, entering, (ior, outside_ior))
+        split_lanes(
+            dielectrics,
+            dir,
+            (n_geom, n_shade),
+            entering,
+            (ior, outside_ior),
+        )
     }
 
     /// The hit of a ray that met `near` (its primitive, the ray, the distance), and the
