@@ -184,11 +184,6 @@ impl Mesh {
         &self.indices
     }
 
-    /// Whether the mesh carries per-vertex normals (smooth shading).
-    pub fn has_normals(&self) -> bool {
-        self.normals.is_some()
-    }
-
     /// Bounds of triangle `i` over the whole frame.
     pub fn triangle_bounds(&self, i: usize) -> Aabb {
         let [v0, e1, e2] = self.edges[i];

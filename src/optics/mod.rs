@@ -289,16 +289,6 @@ impl FresnelMode {
         FresnelMode::Constant,
     ];
 
-    /// The name used in files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            FresnelMode::Exact => "exact",
-            FresnelMode::Schlick => "schlick",
-            FresnelMode::SchlickNaive => "schlick_naive",
-            FresnelMode::Constant => "constant",
-        }
-    }
-
     /// The reflectance at incidence cosine `cos_i` from `n1` into `n2`; `k` is the
     /// constant mode's reflectance.
     #[inline]
