@@ -137,7 +137,8 @@ impl Direct {
     }
 
     /// The nearest hit in (0, t_max), and its distance. Always inlined into
-    /// [`Accel::intersect`]: as a call it cost the specular benchmark 2 % (measured).
+    /// [`Accel::intersect`], which calls it for every ray (docs/performance.md, "Shaped by
+    /// measurement").
     #[inline(always)]
     pub(super) fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
         let (t, place) = self.nearest(ray.origin, ray.dir, ray.time, t_max);

@@ -27,8 +27,8 @@ pub enum Texture {
 
 impl Texture {
     /// The colour at surface coordinates `uv`.
-    // Always inlined: as a call per shaded hit it cost the depth-of-field slide (its
-    // checker floor) 2 % of its instructions; a picture's lookup stays a call of its own.
+    // Always inlined: it runs at every shaded hit, where a call costs more than the checker
+    // (docs/performance.md, "Shaped by measurement"); a picture's lookup stays a call.
     #[inline(always)]
     pub fn eval(&self, uv: Vec2) -> Color {
         match self {

@@ -13,7 +13,8 @@ pub fn srgb_encode(linear: f32) -> f32 {
 
 /// sRGB encoding of a linear value clamped to [0, 1], from a table of 4096 steps with
 /// linear interpolation (within 2e-5 of [`srgb_encode`]): the noise estimate runs it nine
-/// times a pixel for every frame, where `powf` took 42 ms at 960×540.
+/// times a pixel for every frame, where `powf` is too slow (docs/performance.md, "Shaped
+/// by measurement").
 #[inline]
 pub(crate) fn srgb_encode_table(linear: f32) -> f32 {
     static TABLE: std::sync::OnceLock<Vec<f32>> = std::sync::OnceLock::new();

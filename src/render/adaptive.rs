@@ -23,8 +23,8 @@ pub fn acts(params: &crate::params::Params) -> bool {
 /// per doubling (32, 40, 48, 56, 64, 80, ..., 128, 160, ...). A pixel then takes at most a
 /// quarter more samples than it needed, and a decision (a pass over the whole film) stays
 /// rare beside the samples between two. (Powers of two alone keep each pixel's Sobol
-/// prefix evenly spread, but a pixel that needed 70 samples took 128: measured slower on
-/// the glossy slide at its 1.5 % target, 1.6 against 2.2 times uniform sampling's speed.)
+/// prefix evenly spread, but a pixel that needed 70 samples took 128, which was slower
+/// overall: docs/performance.md, "Shaped by measurement".)
 pub(crate) fn is_checkpoint(k: u32) -> bool {
     if k < FIRST_CHECK {
         return false;

@@ -262,8 +262,8 @@ fn pass_in_waves(
             stats,
             |wave, traced, stats| {
                 // A pixel's samples of the wave summed in a copy of its sums, which stays
-                // in registers: summed in place, each f64 add waited on the last one's
-                // store (measured: a tenth of the depth-of-field scene's time).
+                // in registers: summed in place, each f64 add waits on the last one's
+                // store (docs/performance.md, "Shaped by measurement").
                 let mut samples = wave.iter().zip(traced).peekable();
                 while let Some((&(x, y, s), t)) = samples.next() {
                     let pixel = &mut pixels[((y - oy - y0) * width + x - ox) as usize];

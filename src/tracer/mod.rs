@@ -150,8 +150,8 @@ pub struct Tracer<'a> {
     lights_seen: bool,
     // Whether the waves trace the shadow rays in lanes, after each level: with opaque
     // shadows, and lights that all aim at points ([`PreparedLight::aims_at_points`]),
-    // point lights alone too (measured: the default scene 1.03-1.05x and metals 1.07x
-    // faster at 16 lanes, 8 lanes even, for 1.4 % more instructions).
+    // point lights alone too (faster even there: docs/performance.md, "Shadow rays in
+    // lanes").
     shadows_in_lanes: bool,
     // The emitting surfaces, for path tracing's light samples (empty in other transports).
     emitters: Emitters,

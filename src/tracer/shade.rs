@@ -123,42 +123,41 @@ impl Tracer<'_> {
         weight: f32,
         rng: &mut SampleStream,
     ) -> impl Iterator<Item = Follow<'s>> + use<'s> {
-        let mut all = lobes.iter().flatten();
-        let chosen =
-            if self.params.tree == TreeMode::Stochastic && lobes.iter().flatten().count() > 1 {
-                let first = all.next();
-                let one = first.and_then(|first| {
-                    if depth >= self.params.max_depth || weight < self.params.min_weight {
-                        return Some(Follow {
-                            lobe: first,
-                            tint: Color::ONE,
-                            factor: 1.0,
-                            weight,
-                        });
-                    }
-                    let (lobe, tint) = pick_lobe(first, all.by_ref(), rng.next_1d())?;
-                    let factor = tint.max_element();
+        // The stochastic tree's one child, or every lobe (none for the split tree).
+        let (one, every): (_, &[Option<Lobe>]) = match lobes {
+            [Some(first), Some(second)] if self.params.tree == TreeMode::Stochastic => {
+                let one = if depth >= self.params.max_depth || weight < self.params.min_weight {
                     Some(Follow {
-                        lobe,
-                        tint,
-                        factor,
-                        weight: weight * factor,
+                        lobe: first,
+                        tint: Color::ONE,
+                        factor: 1.0,
+                        weight,
                     })
-                });
-                [one, None]
-            } else {
-                [all.next(), all.next()].map(|lobe| {
-                    let lobe = lobe?;
-                    let factor = lobe.weight.max_element();
-                    (factor > 0.0).then_some(Follow {
-                        lobe,
-                        tint: lobe.weight,
-                        factor,
-                        weight: weight * factor,
+                } else {
+                    pick_lobe(first, std::iter::once(second), rng.next_1d()).map(|(lobe, tint)| {
+                        let factor = tint.max_element();
+                        Follow {
+                            lobe,
+                            tint,
+                            factor,
+                            weight: weight * factor,
+                        }
                     })
-                })
-            };
-        chosen.into_iter().flatten()
+                };
+                (one, &[])
+            }
+            _ => (None, lobes),
+        };
+        let each = every.iter().flatten().filter_map(move |lobe| {
+            let factor = lobe.weight.max_element();
+            (factor > 0.0).then_some(Follow {
+                lobe,
+                tint: lobe.weight,
+                factor,
+                weight: weight * factor,
+            })
+        });
+        one.into_iter().chain(each)
     }
 
     /// Traces a child ray if the pruning rules allow, recording why not.

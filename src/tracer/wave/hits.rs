@@ -16,8 +16,9 @@ use crate::tracer::media::facing_of;
 use crate::tracer::{Media, Tracer};
 
 /// The hit records of a level's rays: only the rays that have one, each ray's place in
-/// that list beside. (A list of `Option<Hit>` wrote 96 bytes for every ray without a
-/// record, most of a level where its rays meet a light: measured, a third of `Surfaces`.)
+/// that list beside. (A list of `Option<Hit>` writes 96 bytes for every ray without a
+/// record, most of a level where its rays meet a light: docs/performance.md, "Shaped by
+/// measurement".)
 #[derive(Default)]
 pub(super) struct Hits {
     records: Vec<Hit>,
@@ -95,10 +96,11 @@ impl LaneKernel for Surfaces<'_, '_> {
         let materials = &tracer.materials;
         // A dispersive glass splits a ray without a wavelength into its wavelengths (the
         // scalar code does that); a ray carrying one is split at its own indices. (Asked
-        // only in a scene that disperses: asking every hit cost the others 0.5 % more
-        // instructions.)
-        let splits_into_wavelengths =
-            |m: u32, k: usize| tracer.splits_into_wavelengths(m, nodes[k].wavelength());
+        // only in a scene that disperses, so that the others do not pay for it.)
+        let splits_into_wavelengths = |m: u32, k: usize| {
+            // (The node read only in such a scene.)
+            tracer.dispersive && tracer.splits_into_wavelengths(m, nodes[k].wavelength())
+        };
         let dielectric = |m: u32, k: usize| {
             materials[m as usize].splitting().is_some() && !splits_into_wavelengths(m, k)
         };

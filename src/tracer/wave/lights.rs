@@ -109,10 +109,10 @@ const EXPONENT: usize = 18;
 #[derive(Default)]
 pub(super) struct Asked {
     columns: Columns<19>,
-    // Apart: a (node, BRDF) pair built field by field and copied whole stalled on
-    // store-to-load forwarding (measured: 8 % of the default scene); so did a BRDF copied
-    // whole, its exponent stored alone and loaded with the padding beside it (perf: most
-    // of `push` on the soft-shadow slide), so the exponent is a column.
+    // Apart: a (node, BRDF) pair built field by field and copied whole stalls on
+    // store-to-load forwarding; so does a BRDF copied whole, its exponent stored alone and
+    // loaded with the padding beside it, so the exponent is a column (docs/performance.md,
+    // "Shaped by measurement").
     nodes: Vec<u32>,
     colours: Vec<[Color; 2]>,
     // The light's points still to be drawn, one a ray, where its Sobol pairs are drawn

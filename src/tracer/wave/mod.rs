@@ -267,6 +267,8 @@ impl Tracer<'_> {
                     .map(|(_, s)| s);
                 let slot = &mut slots[node.slot as usize];
                 let surface = Surface {
+                    index: i,
+                    node,
                     hit,
                     t: near.map_or(f32::INFINITY, |(_, t)| t),
                     seen,
@@ -275,7 +277,6 @@ impl Tracer<'_> {
                 };
                 values.push(self.shade_node::<SPECTRAL>(
                     &level.rays,
-                    (i, node),
                     surface,
                     slot,
                     stats,
@@ -288,7 +289,7 @@ impl Tracer<'_> {
                     asked: shadows,
                     out: lit,
                 });
-                add_lights((lit, scaled), values, &level.nodes, slots, stats);
+                add_lights(lit, scaled, values, &level.nodes, slots, stats);
             }
             for &(node, glow) in glowing.iter() {
                 values[node as usize].local += glow;
@@ -310,7 +311,8 @@ impl Tracer<'_> {
 /// order (`lit`, each shadow ray counted to its sample), then each lit node's sum scaled
 /// (`scaled`), as `Tracer::direct` does.
 fn add_lights(
-    (lit, scaled): (&[Lit], &[(u32, f32)]),
+    lit: &[Lit],
+    scaled: &[(u32, f32)],
     values: &mut [Value],
     nodes: &[Node],
     slots: &mut [Slot],

@@ -15,37 +15,47 @@ use crate::tracer::shade::{Follow, child_ray};
 use crate::tracer::spectral::Wavelengths;
 use crate::tracer::{Branch, Meet, NoRecorder, RayKind, Stats, Tracer, Walk};
 
-/// Where a node's children set out from: its node, its ray's time, its hit, whether the
-/// ray arrived from the surface's outside, the geometric normal facing it, and the
-/// wavelength they carry.
+/// A node's hit being shaded: the node and its place in the level, its ray and the hit,
+/// the wavelength it carries, and its path weight there (after the segment's
+/// transmittance).
+#[derive(Clone, Copy)]
+struct AtNode<'a> {
+    index: usize,
+    node: &'a Node,
+    ray: &'a Ray,
+    hit: &'a Hit,
+    wavelength: Option<f32>,
+    weight: f32,
+}
+
+/// Where a node's children set out from: the node's hit, whether its ray arrived from the
+/// surface's outside, and the geometric normal facing the ray.
 #[derive(Clone, Copy)]
 struct From<'a> {
-    node: &'a Node,
-    time: f32,
-    hit: &'a Hit,
+    at: AtNode<'a>,
     entering: bool,
     n_geom: Vec3,
-    wavelength: Option<f32>,
 }
 
 impl Tracer<'_> {
-    /// What the recursion's `trace_in` does at `node` once its ray's `surface` is known
+    /// What the recursion's `trace_in` does at a node once its `surface` is known
     /// (the hit, the radiance it emits, a dielectric's split where the lanes made it): the
     /// light it meets, or the hit's own light, with its children queued. `SPECTRAL`: the
     /// scene has a dispersive surface, where the node may split into its wavelengths
-    /// (a constant, so that the waves of other scenes carry no wavelengths: with the
-    /// checks made at run time they took 3.4 to 4.0 % more instructions).
+    /// (a constant, so that the waves of other scenes carry no wavelengths and make no
+    /// checks for them: docs/performance.md, "Shaped by measurement").
     #[inline(always)]
     pub(super) fn shade_node<const SPECTRAL: bool>(
         &self,
         rays: &RayColumns,
-        (index, node): (usize, &Node),
         surface: Surface,
         slot: &mut Slot,
         stats: &mut Stats,
         queue: &mut Queue,
     ) -> Value {
         let Surface {
+            index,
+            node,
             hit,
             t,
             seen,
@@ -73,6 +83,15 @@ impl Tracer<'_> {
             return value(l, Color::ONE, queue);
         };
         let ray = &rays.get(index);
+        let wavelength = if SPECTRAL { node.wavelength() } else { None };
+        let at = AtNode {
+            index,
+            node,
+            ray,
+            hit,
+            wavelength,
+            weight: node.weight,
+        };
         if let Some(split) = split
             && !segment.absorbs()
         {
@@ -82,9 +101,7 @@ impl Tracer<'_> {
                 rec: &mut NoRecorder,
                 tree_rays: slot.tree_rays,
             };
-            let wavelength = if SPECTRAL { node.wavelength() } else { None };
-            let from = (node, wavelength);
-            let traced = self.split_children(ray, from, hit, split, &mut w, queue);
+            let traced = self.split_children(at, split, &mut w, queue);
             slot.tree_rays = w.tree_rays;
             slot.rays += traced;
             return value(Color::ZERO, Color::ONE, queue);
@@ -100,14 +117,13 @@ impl Tracer<'_> {
             // A surface whose light is all it has (diffuse): its shadow rays queued, no
             // children, without an Interaction or a Scatter built for it.
             let (_, n_geom, n_shade) = Arrival::facing(ray.dir, &hit.surface);
-            let shadow = (ray, hit, index);
             let normals = (n_geom, n_shade);
-            let local =
-                self.queue_shadows(shadow, normals, &direct, &mut slot.rng, &mut queue.lights);
+            let local = self.queue_shadows(&at, normals, &direct, &mut slot.rng, &mut queue.lights);
             return value(local, Color::ONE, queue);
         }
         let (tr, weight) = segment.to_hit(hit.surface.t, node.weight);
         let tr = tr.unwrap_or(Color::ONE);
+        let at = AtNode { weight, ..at };
         // The rays this node traces (none above, where its ray ends).
         let before = stats.total_rays();
         let mut rec = NoRecorder;
@@ -117,38 +133,44 @@ impl Tracer<'_> {
             rec: &mut rec,
             tree_rays: slot.tree_rays,
         };
-        let wavelength = if SPECTRAL { node.wavelength() } else { None };
         let (local, tr) = if SPECTRAL && self.splits_into_wavelengths(hit.material, wavelength) {
             // The node splits into its wavelengths; their lights (if any) are traced
             // here, each summed into its own channel.
             let scatter = |lambda: f32, w: &mut Walk<NoRecorder>, queue: &mut Queue| {
-                let at = (index, node, Some(lambda));
-                self.scatter_node((ray, hit), at, (None, weight), w, (queue, false))
+                let at = AtNode {
+                    wavelength: Some(lambda),
+                    ..at
+                };
+                self.scatter_node(at, None, false, w, queue)
             };
             self.spectral_node(tr, &mut w, queue, scatter)
         } else {
-            let at = (index, node, wavelength);
-            let local = self.scatter_node((ray, hit), at, (split, weight), &mut w, (queue, true));
-            (local, tr)
+            (self.scatter_node(at, split, true, &mut w, queue), tr)
         };
         slot.tree_rays = w.tree_rays;
         slot.rays += (w.stats.total_rays() - before) as u32;
         value(local, tr, queue)
     }
 
-    /// The hit of the node `node`'s ray (its place `index` in the level), carrying
-    /// `wavelength`, scattered by its material (or by the lanes' `split` of it) with path
-    /// weight `weight`: its children queued, its light returned, the shadow rays queued
-    /// where `in_lanes` (else traced here).
+    /// A node's hit `at` scattered by its material (or by the lanes' `split` of it): its
+    /// children queued, its light returned, the shadow rays queued where `in_lanes` (else
+    /// traced here).
     #[inline(always)]
     fn scatter_node(
         &self,
-        (ray, hit): (&Ray, &Hit),
-        (index, node, wavelength): (usize, &Node, Option<f32>),
-        (split, weight): (Option<&Split>, f32),
+        at: AtNode,
+        split: Option<&Split>,
+        in_lanes: bool,
         w: &mut Walk<NoRecorder>,
-        (queue, in_lanes): (&mut Queue, bool),
+        queue: &mut Queue,
     ) -> Color {
+        let AtNode {
+            ray,
+            hit,
+            node,
+            wavelength,
+            ..
+        } = at;
         // (Read from the queue, whose list of media grows once the children are queued.)
         let media = &queue.media[node.media as usize];
         let m = Meet {
@@ -157,65 +179,65 @@ impl Tracer<'_> {
             media,
             id: 0,
         };
-        let at = self.interaction(ray, hit, media, wavelength);
+        let seen = self.interaction(ray, hit, media, wavelength);
         let scatter = match split {
             Some(split) => split.scatter(),
-            None => self.materials[hit.material as usize].scatter(&at, w.rng),
+            None => self.materials[hit.material as usize].scatter(&seen, w.rng),
         };
         w.stats.count_tir(scatter.total_internal_reflection);
         let local = match scatter.direct {
             Some(direct) if in_lanes => {
-                self.node_light(m, &at, &direct, index, w, &mut queue.lights)
+                self.node_light(m, &at, &seen, &direct, w, &mut queue.lights)
             }
-            Some(direct) => direct.scale * self.direct(m, &at, &direct, w),
+            Some(direct) => direct.scale * self.direct(m, &seen, &direct, w),
             None => Color::ZERO,
         };
         let from = From {
-            node,
-            time: ray.time,
-            hit,
-            entering: at.entering,
-            n_geom: at.n_geom,
-            wavelength,
+            at,
+            entering: seen.entering,
+            n_geom: seen.n_geom,
         };
-        self.queue_children(&from, &scatter.lobes, weight, w, queue);
+        self.queue_children(&from, &scatter.lobes, w, queue);
         local
     }
 
-    /// The lights' shading of the hit `m` (a `direct` term): where shadow rays go to the
-    /// lanes, the node's ambient term, its shadow rays queued in `lights` per light (their
-    /// random numbers drawn here, in the recursion's order) to be completed and scaled
-    /// after the level; else the whole sum, traced here.
+    /// The lights' shading of the node's hit `at` (met as `m`, seen by its material as
+    /// `seen`; a `direct` term): where shadow rays go to the lanes, the node's ambient
+    /// term, its shadow rays queued in `lights` per light (their random numbers drawn here,
+    /// in the recursion's order) to be completed and scaled after the level; else the
+    /// whole sum, traced here.
     #[inline(always)]
     fn node_light(
         &self,
         m: Meet,
-        at: &Interaction,
+        at: &AtNode,
+        seen: &Interaction,
         direct: &Direct,
-        index: usize,
         w: &mut Walk<NoRecorder>,
         lights: &mut Lights,
     ) -> Color {
         if !self.shadows_in_lanes {
-            return direct.scale * self.direct(m, at, direct, w);
+            return direct.scale * self.direct(m, seen, direct, w);
         }
-        let shadow = (m.ray, m.hit, index);
-        self.queue_shadows(shadow, (at.n_geom, at.n_shade), direct, w.rng, lights)
+        self.queue_shadows(at, (seen.n_geom, seen.n_shade), direct, w.rng, lights)
     }
 
-    /// The shadow rays of a hit (its ray, the hit, its node's place in the level) with
-    /// the normals `n_geom` and `n_shade` facing the ray, shaded by `direct`: queued in
-    /// `lights` per light (their random numbers drawn here, in the recursion's order), the
-    /// node listed to be scaled after the level; its ambient term returned.
+    /// The shadow rays of a node's hit `at` with the normals `n_geom` and `n_shade` facing
+    /// its ray, shaded by `direct`: queued in `lights` per light (their random numbers
+    /// drawn here, in the recursion's order), the node listed to be scaled after the level;
+    /// its ambient term returned.
     #[inline(always)]
     fn queue_shadows(
         &self,
-        (ray, hit, index): (&Ray, &Hit, usize),
+        at: &AtNode,
         (n_geom, n_shade): (Vec3, Vec3),
         direct: &Direct,
         rng: &mut SampleStream,
         lights: &mut Lights,
     ) -> Color {
+        let AtNode {
+            index, ray, hit, ..
+        } = *at;
         let p = hit.surface.p;
         let origin = offset_ray_origin(p, n_geom);
         for (light, asked) in self.lights.iter().zip(lights.shadows.iter_mut()) {
@@ -235,20 +257,18 @@ impl Tracer<'_> {
         self.ambient(direct)
     }
 
-    /// The children of the node `from` along `lobes` (a scatter's child rays; its path
-    /// weight `weight`), as the recursion's `shade` traces them ([`Tracer::children`]):
-    /// each listed in `queue.children`, and queued as a ray where the pruning rules let it
-    /// be traced.
+    /// The children of the node `from` along `lobes` (a scatter's child rays), as the
+    /// recursion's `shade` traces them ([`Tracer::children`]): each listed in
+    /// `queue.children`, and queued as a ray where the pruning rules let it be traced.
     #[inline(always)]
     fn queue_children(
         &self,
         from: &From,
         lobes: &[Option<Lobe>; 2],
-        weight: f32,
         w: &mut Walk<NoRecorder>,
         queue: &mut Queue,
     ) {
-        for f in self.children(lobes, queue.depth, weight, w.rng) {
+        for f in self.children(lobes, queue.depth, from.at.weight, w.rng) {
             let node = self.queue_child(from, &f, w, queue);
             queue.children.push(Child {
                 weight: f.tint,
@@ -257,32 +277,27 @@ impl Tracer<'_> {
         }
     }
 
-    /// The children of a node (carrying `wavelength`) on a dielectric whose split the lanes
-    /// made, where nothing absorbs: its reflected and refracted lobes (R and 1 − R) queued
-    /// as `queue_children` queues any scatter's, without the scatter built. Returns the
-    /// rays it queued.
+    /// The children of a node's hit `at` on a dielectric whose split the lanes made, where
+    /// nothing absorbs: its reflected and refracted lobes (R and 1 − R) queued as
+    /// `queue_children` queues any scatter's, without the scatter built. Returns the rays
+    /// it queued.
     #[inline(always)]
     fn split_children(
         &self,
-        ray: &Ray,
-        (node, wavelength): (&Node, Option<f32>),
-        hit: &Hit,
+        at: AtNode,
         split: &Split,
         w: &mut Walk<NoRecorder>,
         queue: &mut Queue,
     ) -> u32 {
-        let (entering, n_geom, _) = Arrival::facing(ray.dir, &hit.surface);
+        let (entering, n_geom, _) = Arrival::facing(at.ray.dir, &at.hit.surface);
         let from = From {
-            node,
-            time: ray.time,
-            hit,
+            at,
             entering,
             n_geom,
-            wavelength,
         };
         w.stats.count_tir(split.total_internal_reflection());
         let before = w.stats.total_rays();
-        self.queue_children(&from, &split.lobes(), node.weight, w, queue);
+        self.queue_children(&from, &split.lobes(), w, queue);
         (w.stats.total_rays() - before) as u32
     }
 
@@ -297,12 +312,16 @@ impl Tracer<'_> {
         q: &mut Queue,
     ) -> Option<u32> {
         let From {
-            node,
-            time,
-            hit,
+            at:
+                AtNode {
+                    node,
+                    ray,
+                    hit,
+                    wavelength,
+                    ..
+                },
             entering,
             n_geom,
-            wavelength,
         } = *from;
         let branch = Branch {
             depth: q.depth + 1,
@@ -323,7 +342,7 @@ impl Tracer<'_> {
                 q.media.len() as u32 - 1
             }
         };
-        let ray = child_ray(hit.surface.p, n_geom, f.lobe, time);
+        let ray = child_ray(hit.surface.p, n_geom, f.lobe, ray.time);
         let child = Node::new(node.slot, media, f.weight, wavelength);
         Some(q.next.push(&ray, child))
     }
@@ -336,8 +355,7 @@ impl Tracer<'_> {
     /// channel only (the other channels add exact zeros); in the stochastic tree, the
     /// channel weight folded into `tr` (exactly the recursion's where nothing absorbs,
     /// tr = 1; within a rounding where something does).
-    // (Out of line: a node of its own kind, once per sample; measured, 0.2 % fewer
-    // instructions on the dispersion scene than inlined.)
+    // (Out of line: a node of its own kind, once per sample.)
     #[inline(never)]
     pub(super) fn spectral_node(
         &self,

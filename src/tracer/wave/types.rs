@@ -14,8 +14,8 @@ use std::ops::Range;
 /// Where a ray of a wave sits: its sample, the media it travels through (in the wave's
 /// list of them), its path weight, and the wavelength it carries since its first
 /// dispersive surface. Its depth in the tree is its level's. Kept beside the rays, which
-/// the hit search reads on their own; 16 bytes (with the depth and an `Option` it was 24,
-/// and glass slides were 3 % slower).
+/// the hit search reads on their own; 16 bytes (with the depth and an `Option` it would be
+/// 24, and slower: docs/performance.md, "Shaped by measurement").
 #[derive(Clone, Copy)]
 pub(super) struct Node {
     // The sample of the wave it belongs to.
@@ -96,11 +96,14 @@ impl Rays {
     }
 }
 
-/// What is known of a node's surface before it is shaded: the hit (`None`: its ray met
-/// nothing, or met a light whose record the lanes did not make), its distance, the area
-/// light seen in front of it (its distance and radiance), the radiance the surface emits
-/// where it is a light, and a dielectric's split where the lanes made it.
+/// A node of a level (its place in the level, and where it sits) and what is known of its
+/// surface before it is shaded: the hit (`None`: its ray met nothing, or met a light whose
+/// record the lanes did not make), its distance, the area light seen in front of it (its
+/// distance and radiance), the radiance the surface emits where it is a light, and a
+/// dielectric's split where the lanes made it.
 pub(super) struct Surface<'s> {
+    pub(super) index: usize,
+    pub(super) node: &'s Node,
     pub(super) hit: Option<&'s Hit>,
     pub(super) t: f32,
     pub(super) seen: Option<(f32, Color)>,
