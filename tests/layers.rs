@@ -172,7 +172,6 @@ fn module_path(path: &Path) -> Vec<String> {
 /// its folder's parent), grouped imports (`use super::{a::X, b::{Y, Z}}`) expanded.
 fn named_paths(code: &str, own: &[String]) -> Vec<Vec<String>> {
     let mut out = Vec::new();
-    let bytes = code.as_bytes();
     let mut at = 0;
     while at < code.len() {
         let rest = &code[at..];
@@ -195,7 +194,7 @@ fn named_paths(code: &str, own: &[String]) -> Vec<Vec<String>> {
             continue;
         };
         at += len;
-        at = path_tree(code, bytes, at, base, &mut out);
+        at = path_tree(code, at, base, &mut out);
     }
     out
 }
@@ -204,11 +203,11 @@ fn named_paths(code: &str, own: &[String]) -> Vec<Vec<String>> {
 /// where it ends.
 fn path_tree(
     code: &str,
-    bytes: &[u8],
     mut at: usize,
     mut base: Vec<String>,
     out: &mut Vec<Vec<String>>,
 ) -> usize {
+    let bytes = code.as_bytes();
     loop {
         let start = at;
         while at < bytes.len() && (bytes[at].is_ascii_alphanumeric() || bytes[at] == b'_') {
@@ -231,7 +230,7 @@ fn path_tree(
                 if at >= bytes.len() || bytes[at] == b'}' {
                     return at + 1;
                 }
-                at = path_tree(code, bytes, at, base.clone(), out);
+                at = path_tree(code, at, base.clone(), out);
                 while at < bytes.len() && (bytes[at].is_ascii_whitespace() || bytes[at] == b',') {
                     at += 1;
                 }

@@ -11,7 +11,7 @@ use raylab::math::lanes::Width;
 use raylab::params::{Params, Transport, TreeMode};
 use raylab::render::{Film, render_pass_by, render_preview};
 use raylab::scene::{BUILTIN_SCENES, Scene};
-use raylab::tracer::{Stats, Tracer, Traversal};
+use raylab::tracer::{Stats, Tracer, Traversal, pick};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -387,8 +387,8 @@ height = 30
 spp = 4
 max_depth = 5
 [camera]
-position = [0.0, 1.4, 6.5]
-look_at = [0.0, 0.7, 0.0]
+position = [0.0, 3.6, 6.0]
+look_at = [0.0, 0.2, 0.0]
 fov = 62
 [material.exact]
 type = "dielectric"
@@ -538,6 +538,23 @@ fn one_of_every_material_kind_gives_the_recursions_image_at_every_width() {
         .collect();
     let lit = scene_with(AREA_LIGHT, &spheres(&kinds));
     let point_lit = scene_with("", &spheres(&still));
+    // Every kind is in the picture: each object (the spheres, then the box, the mirror
+    // and the floor) is the first hit of some camera ray.
+    for (scene, spheres) in [(&lit, kinds.len()), (&point_lit, still.len())] {
+        let mut seen = vec![false; spheres + 3];
+        for (x, y) in (0..SIZE.0).flat_map(|x| (0..SIZE.1).map(move |y| (x, y))) {
+            let film = glam::Vec2::new(
+                (x as f32 + 0.5) / SIZE.0 as f32,
+                (y as f32 + 0.5) / SIZE.1 as f32,
+            );
+            let aspect = SIZE.0 as f32 / SIZE.1 as f32;
+            if let Some(p) = pick(scene, &scene.camera, aspect, film) {
+                seen[p.object as usize] = true;
+            }
+        }
+        let hidden: Vec<_> = (0..seen.len()).filter(|&i| !seen[i]).collect();
+        assert!(hidden.is_empty(), "objects out of sight: {hidden:?}");
+    }
     let mut all = Stats::default();
     for transport in [Transport::Whitted, Transport::TransmissiveShadows] {
         for (tree, scene) in [(TreeMode::Stochastic, &lit), (TreeMode::Split, &point_lit)] {

@@ -294,9 +294,7 @@ impl Tracer<'_> {
         if let Some(i) = scatter.interface {
             record_interface(w.rec, id, i);
         }
-        if scatter.total_internal_reflection {
-            w.stats.tir_events += 1;
-        }
+        w.stats.count_tir(scatter.total_internal_reflection);
         // One part, in proportion to its weight.
         let parts = scatter.parts();
         let sum: f32 = parts.iter().flatten().map(Part::weight).sum();

@@ -134,7 +134,7 @@ impl Tracer<'_> {
                         weight,
                     })
                 } else {
-                    pick_lobe(first, std::iter::once(second), rng.next_1d()).map(|(lobe, tint)| {
+                    pick_lobe(first, second, rng.next_1d()).map(|(lobe, tint)| {
                         let factor = tint.max_element();
                         Follow {
                             lobe,
@@ -202,24 +202,16 @@ impl Tracer<'_> {
     }
 }
 
-/// The stochastic tree's choice among the lobes `first` and `rest` by the uniform number
-/// `u`: each with probability its branch weight (the last takes any rounding remainder),
-/// and the tint its radiance is multiplied by (its weight over that probability); `None`
-/// for a lobe of weight 0.
-pub(super) fn pick_lobe<'s>(
-    first: &'s Lobe,
-    rest: impl Iterator<Item = &'s Lobe>,
-    u: f32,
-) -> Option<(&'s Lobe, Color)> {
-    let mut chosen = first;
-    let mut cumulative = first.weight.max_element();
-    for lobe in rest {
-        if u < cumulative {
-            break;
-        }
-        chosen = lobe;
-        cumulative += lobe.weight.max_element();
-    }
+/// The stochastic tree's choice between the lobes `first` and `second` by the uniform
+/// number `u`: `first` with probability its branch weight, `second` otherwise (it takes
+/// any rounding remainder), and the tint its radiance is multiplied by (its weight over
+/// that probability); `None` for a lobe of weight 0.
+fn pick_lobe<'s>(first: &'s Lobe, second: &'s Lobe, u: f32) -> Option<(&'s Lobe, Color)> {
+    let chosen = if u < first.weight.max_element() {
+        first
+    } else {
+        second
+    };
     let p = chosen.weight.max_element();
     (p > 0.0).then(|| (chosen, chosen.weight / p))
 }

@@ -25,7 +25,7 @@ pub(super) const SHADOW_REACH: f32 = 1.0 - 1e-4;
 /// geometric one (else the shadow ray would start into the surface). `n_geom` and
 /// `n_shade` face the arriving ray. Both walks ask this.
 #[inline(always)]
-pub(super) fn faces_light<R: Real>((n_geom, n_shade): (R::V3, R::V3), dir: R::V3) -> (R, R::Mask) {
+pub(super) fn faces_light<R: Real>(n_geom: R::V3, n_shade: R::V3, dir: R::V3) -> (R, R::Mask) {
     let zero = R::splat(0.0);
     let cos = n_shade.dot(dir);
     (cos, !cos.less_eq(zero) & !n_geom.dot(dir).less_eq(zero))
@@ -60,7 +60,7 @@ impl Tracer<'_> {
             let Some(ls) = light.sample(p, u) else {
                 continue;
             };
-            let (cos, lit) = faces_light::<f32>((n_geom, n), ls.dir);
+            let (cos, lit) = faces_light::<f32>(n_geom, n, ls.dir);
             if !lit {
                 continue;
             }

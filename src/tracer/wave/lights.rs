@@ -195,7 +195,7 @@ impl LaneKernel for Shadows<'_, '_> {
                 };
                 let (dir, dist, factor, valid) = light.toward::<Lanes<N>>(c.lanes3(i, P), q);
                 let (n, view) = (c.lanes3::<N>(i, N_SHADE), c.lanes3::<N>(i, VIEW));
-                let (cos, faces) = faces_light::<Lanes<N>>((c.lanes3(i, N_GEOM), n), dir);
+                let (cos, faces) = faces_light::<Lanes<N>>(c.lanes3(i, N_GEOM), n, dir);
                 let lit = valid & faces;
                 let reach = dist * Lanes::splat(SHADOW_REACH);
                 let blocked = if Lanes::any(lit) {

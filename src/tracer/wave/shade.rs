@@ -117,8 +117,8 @@ impl Tracer<'_> {
             // A surface whose light is all it has (diffuse): its shadow rays queued, no
             // children, without an Interaction or a Scatter built for it.
             let (_, n_geom, n_shade) = Arrival::facing(ray.dir, &hit.surface);
-            let normals = (n_geom, n_shade);
-            let local = self.queue_shadows(&at, normals, &direct, &mut slot.rng, &mut queue.lights);
+            let lights = &mut queue.lights;
+            let local = self.queue_shadows(&at, n_geom, n_shade, &direct, &mut slot.rng, lights);
             return value(local, Color::ONE, queue);
         }
         let (tr, weight) = segment.to_hit(hit.surface.t, node.weight);
@@ -219,7 +219,7 @@ impl Tracer<'_> {
         if !self.shadows_in_lanes {
             return direct.scale * self.direct(m, seen, direct, w);
         }
-        self.queue_shadows(at, (seen.n_geom, seen.n_shade), direct, w.rng, lights)
+        self.queue_shadows(at, seen.n_geom, seen.n_shade, direct, w.rng, lights)
     }
 
     /// The shadow rays of a node's hit `at` with the normals `n_geom` and `n_shade` facing
@@ -230,7 +230,8 @@ impl Tracer<'_> {
     fn queue_shadows(
         &self,
         at: &AtNode,
-        (n_geom, n_shade): (Vec3, Vec3),
+        n_geom: Vec3,
+        n_shade: Vec3,
         direct: &Direct,
         rng: &mut SampleStream,
         lights: &mut Lights,
