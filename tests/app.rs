@@ -85,6 +85,9 @@ fn save_writes_the_png_and_a_sidecar_with_the_right_parameters() {
     });
     h.get_by_label("Save snapshot").click();
     h.step();
+    // Written on a thread of its own: the window goes on meanwhile, and says when.
+    assert!(h.state().saving());
+    step_until(&mut h, "the snapshot written", |a| !a.saving());
     let files: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .flatten()
@@ -111,6 +114,29 @@ fn save_writes_the_png_and_a_sidecar_with_the_right_parameters() {
 }
 
 #[test]
+fn a_window_closed_just_after_ctrl_s_still_writes_the_snapshot_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.step();
+    assert!(h.state().saving());
+    // Closed before the writing thread is done: the window waits for it.
+    drop(h);
+    let png = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .find(|p| p.extension().is_some_and(|e| e == "png"))
+        .expect("a PNG");
+    let img = image::open(&png).expect("a whole PNG");
+    assert_eq!((img.width(), img.height()), (960, 540));
+    assert!(Sidecar::read(&sidecar_path(&png)).is_ok());
+}
+
+#[test]
 fn a_failed_save_says_so_and_keeps_the_image() {
     let dir = tempfile::tempdir().unwrap();
     // A file where the snapshot folder should be: nothing can be written there.
@@ -122,6 +148,7 @@ fn a_failed_save_says_so_and_keeps_the_image() {
     });
     h.get_by_label("Save snapshot").click();
     h.step();
+    step_until(&mut h, "the snapshot tried", |a| !a.saving());
     assert!(
         h.state()
             .toasts()
@@ -162,6 +189,7 @@ fn save_as_asks_before_replacing_a_file() {
     h.run_steps(3);
     h.get_by_label("Replace").click();
     h.run_steps(3);
+    step_until(&mut h, "the snapshot written", |a| !a.saving());
     assert!(image::open(&mine).is_ok(), "a PNG now");
     assert!(dir.path().join("mine.png.json").is_file());
 }

@@ -14,6 +14,19 @@ use raylab::optics::FresnelMode;
 use raylab::render::to_srgba8;
 use window::{app, click_at, glass_sphere, step_until};
 
+/// Opens the inspector from the Instruments menu and clicks the glass sphere.
+fn click_on_the_glass_sphere_with_the_inspector(h: &mut Harness<'static, RaylabApp>) {
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Ray-tree inspector: click a pixel").click();
+    h.run_steps(3);
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    let centre = glass_sphere(h, "Ray-tree inspector");
+    click_at(h, centre);
+    h.run_steps(1);
+}
+
 #[test]
 fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     let dir = tempfile::tempdir().unwrap();
@@ -21,15 +34,7 @@ fn the_inspector_shows_the_tree_of_the_clicked_pixel() {
     step_until(&mut h, "a full frame", |a| {
         a.latest_frame().is_some_and(|f| !f.is_preview())
     });
-    h.get_by_label("Instruments").click();
-    h.run_steps(3);
-    h.get_by_label("Ray-tree inspector: click a pixel").click();
-    h.run_steps(3);
-    h.key_press(egui::Key::Escape);
-    h.run_steps(3);
-    let centre = glass_sphere(&h, "Ray-tree inspector");
-    click_at(&mut h, centre);
-    h.run_steps(1);
+    click_on_the_glass_sphere_with_the_inspector(&mut h);
     let tree = h.state().inspected_tree().expect("a tree");
     let root = &tree.nodes[0];
     let hit = root.hit.expect("the camera ray hits something");
@@ -303,4 +308,33 @@ fn the_fresnel_plot_marks_an_inspected_ray_only_where_it_meets_glass() {
     h.query_all_by_label_contains("inspected ray")
         .next()
         .expect("the plot marks the ray on glass");
+}
+
+#[test]
+fn a_tree_that_needs_photons_is_traced_off_the_windows_thread_and_arrives() {
+    // With photons the inspected sample first needs its 20,000 photons shot: the window
+    // does that on a thread of its own, and the tree arrives frames later, the same as
+    // traced in place.
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string("scenes/glass.toml").unwrap();
+    let text = text.replace("max_depth = 10", "max_depth = 10\ntransport = \"photons\"");
+    let path = dir.path().join("glass-photons.toml");
+    std::fs::write(&path, text).unwrap();
+    let mut h = app(path.to_str().unwrap(), dir.path());
+    step_until(&mut h, "a full frame", |a| {
+        a.latest_frame().is_some_and(|f| !f.is_preview())
+    });
+    click_on_the_glass_sphere_with_the_inspector(&mut h);
+    // The click's frame did not wait for the photons.
+    assert!(h.state().tracing_inspection());
+    assert!(h.state().inspected_tree().is_none());
+    step_until(&mut h, "the tree", |a| a.inspected_tree().is_some());
+    assert!(!h.state().tracing_inspection());
+    let a = h.state();
+    let pixel = a.inspected_pixel().unwrap();
+    let mut tracer =
+        raylab::tracer::Tracer::with_camera(a.scene(), &a.scene().camera, a.params(), 960, 540);
+    tracer.prepare_photons(0);
+    let (tree, _) = tracer.inspect(pixel.0, pixel.1, 0);
+    assert_eq!(a.inspected_tree(), Some(&tree));
 }

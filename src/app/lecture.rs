@@ -2,6 +2,7 @@
 //! scene and parameters, opening what the slide opens and showing its caption.
 
 use super::RaylabApp;
+use super::command::Command;
 use super::compare::CompareKind;
 use super::instruments::SectionMode;
 use crate::lecture::{Instrument, LECTURE, Shown, Slide};
@@ -72,7 +73,7 @@ impl RaylabApp {
     pub(super) fn lecture_menu_ui(&mut self, ui: &mut egui::Ui) {
         for (i, slide) in LECTURE.iter().enumerate() {
             if ui.button(format!("{}. {}", i + 1, slide.title)).clicked() {
-                self.go_to_slide(i);
+                self.ask(ui.ctx(), Command::GoToSlide(i));
                 ui.close();
             }
         }
@@ -145,7 +146,9 @@ impl RaylabApp {
 
     /// Opens slide `i` of the lecture: its scene, then its parameters and caption.
     pub(super) fn go_to_slide(&mut self, i: usize) {
-        let slide = &LECTURE[i];
+        let Some(slide) = LECTURE.get(i) else {
+            return;
+        };
         log::info!("slide {}: {}", i + 1, slide.title);
         self.lecture.pending = Some(slide);
         self.lecture.current = Some(i);
@@ -206,7 +209,7 @@ impl RaylabApp {
         let pixel = slide.inspected_pixel(size);
         self.instruments.inspect_mode = pixel.is_some();
         if let Some(pixel) = pixel {
-            self.inspect(pixel, size);
+            self.inspect(ctx, pixel, size);
         }
     }
 }

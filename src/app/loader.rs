@@ -209,7 +209,7 @@ impl RaylabApp {
                 self.toasts.warn(warning);
             }
             self.keep_side_a();
-            self.instruments.inspection = None;
+            self.instruments.forget_inspection();
             if slide.is_none() {
                 // A slide zooms its section as it needs; any other scene starts whole.
                 self.instruments.section.zoom_to(1.0);

@@ -2,12 +2,15 @@
 //! knows egui.
 //!
 //! The window never waits. Each frame, [`eframe::App::logic`] takes what arrived (the
-//! engines' frames, loaded scenes, a finished contact sheet), tells the engines what the
-//! controls changed and uploads textures; [`eframe::App::ui`] only draws and edits state.
-//! One file per concern: a `side::Side` is an engine and its image (the main view, the A/B
-//! view's B); the loader, slides, contact sheet, snapshots, toasts, toolbar, instruments;
-//! `state` what it shows, for the tests.
+//! engines' frames, loaded scenes, a finished contact sheet, a snapshot written, a tree
+//! traced aside), tells the engines what the controls changed and uploads textures;
+//! [`eframe::App::ui`] draws and edits state, and at its end carries out the commands its
+//! keys, buttons and menus asked for (`command`). Files are written, and trees that need
+//! photons traced, on threads of their own. One file per concern: a `side::Side` is an
+//! engine and its image (the main view, the A/B view's B); the loader, slides, contact
+//! sheet, snapshots, toasts, toolbar, instruments; `state` what it shows, for the tests.
 
+mod command;
 mod compare;
 mod controls;
 mod files;
@@ -137,6 +140,10 @@ pub struct RaylabApp {
     // Whether the first window was checked against its screen (`fit.rs`).
     fitted: bool,
     tev: Option<crate::render::tev::TevStream>,
+    // What keys, buttons and menus asked for since the last frame (command.rs).
+    commands: Vec<command::Command>,
+    // Snapshots being written (snapshot.rs).
+    saving: Vec<snapshot::Saving>,
 }
 
 /// Opens the previewer window and runs it until it is closed.
@@ -277,6 +284,8 @@ impl RaylabApp {
             ui_scale,
             history: History::default(),
             fitted: false,
+            commands: Vec::new(),
+            saving: Vec::new(),
         })
     }
 
@@ -364,6 +373,34 @@ impl RaylabApp {
     }
 }
 
+impl RaylabApp {
+    /// The window at a desk: toolbar, status bar, controls, instruments and the image.
+    fn desk_ui(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        let toolbar = Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
+        Panel::bottom("status").show(ui, |ui| self.status_ui(ui));
+        Panel::left("controls")
+            .resizable(true)
+            .default_size(320.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    let open = self.lecture.take_open();
+                    self.with_controls(open, |c| controls_ui(ui, c));
+                });
+            });
+        self.instruments_dock_ui(ui);
+        CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
+        self.dialog_ui(&ctx);
+        // A slide's caption runs along the image's bottom: messages go under the toolbar.
+        let top = self
+            .lecture
+            .shown()
+            .is_some()
+            .then_some(toolbar.response.rect.max.y);
+        self.toasts.ui(&ctx, top);
+    }
+}
+
 impl eframe::App for RaylabApp {
     fn logic(&mut self, ctx: &egui::Context, _frame: &mut eframe::Frame) {
         self.fit_to_screen(ctx);
@@ -372,6 +409,7 @@ impl eframe::App for RaylabApp {
         self.loader.poll();
         self.receive_sheet();
         self.dropped_files(ctx);
+        self.receive_saves();
         self.sync_engines();
         // A pass that failed inside raylab stops its generation: the banner says so (once
         // a frame, so that Dismiss holds until the next failure).
@@ -397,7 +435,8 @@ impl eframe::App for RaylabApp {
         for side in self.compare.iter_mut().flat_map(|c| &mut c.sides) {
             side.upload(ctx, exposure, cost, sharp);
         }
-        self.refresh_inspection();
+        self.receive_inspection(ctx);
+        self.refresh_inspection(ctx);
         // Nothing here repaints by itself: an idle window sleeps until the engines, the
         // loader, a contact sheet or the user wake it.
         if let Some(t) = self.close_at {
@@ -411,8 +450,7 @@ impl eframe::App for RaylabApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
         let before = self.settings.clone();
-        self.shortcuts(&ctx);
-        self.hall_keys(&ctx);
+        self.read_keys(&ctx);
         self.settle_ui(&ctx);
         self.ui_scale = ctx.zoom_factor();
         let held = ctx.input(|i| i.pointer.any_down());
@@ -422,39 +460,14 @@ impl eframe::App for RaylabApp {
             self.presentation_ui(ui);
             // Clear of the caption strip along the bottom.
             self.toasts.ui(&ctx, Some(0.0));
-            self.help_ui(&ctx);
-            self.instruments.end_frame(&ctx);
-            if self.settings != before {
-                self.sync_engines();
-                ctx.request_repaint();
-            }
-            return;
+        } else {
+            self.desk_ui(ui);
         }
-        let toolbar = Panel::top("toolbar").show(ui, |ui| self.toolbar_ui(ui));
-        Panel::bottom("status").show(ui, |ui| self.status_ui(ui));
-        Panel::left("controls")
-            .resizable(true)
-            .default_size(320.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    let open = self.lecture.take_open();
-                    self.with_controls(open, |c| controls_ui(ui, c));
-                });
-            });
-        self.instruments_dock_ui(ui);
-        CentralPanel::default().show(ui, |ui| self.image_panel_ui(ui));
-        self.dialog_ui(&ctx);
-        // A slide's caption runs along the image's bottom: messages go under the toolbar.
-        let top = self
-            .lecture
-            .shown()
-            .is_some()
-            .then_some(toolbar.response.rect.max.y);
-        self.toasts.ui(&ctx, top);
         self.help_ui(&ctx);
         self.instruments.end_frame(&ctx);
-        // What the controls changed reaches the engines now, not in the next frame: the
-        // first preview (a millisecond's work) is there for the next frame to show.
+        self.apply_commands(&ctx);
+        // What the controls and commands changed reaches the engines now, not in the next
+        // frame: the first preview (a millisecond's work) is there for the next frame.
         if self.settings != before {
             self.sync_engines();
             ctx.request_repaint();

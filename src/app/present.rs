@@ -3,50 +3,21 @@
 //! UI scale with a projector preset, and the help overlay listing every shortcut.
 
 use super::RaylabApp;
+use super::command::{COMMANDS, Command, EGUI_KEYS};
 use super::widgets::Controls;
 use super::widgets::{param_ui, step_param};
 use crate::lecture::LECTURE;
-use egui::{Color32, Key, RichText};
+use egui::{Color32, RichText};
 
-/// Every keyboard shortcut, as the help overlay lists it: the keys, and what they do.
-pub(crate) const SHORTCUTS: &[(&str, &str)] = &[
-    (
-        "F5 or F11",
-        "presentation mode: the image fullscreen, panels hidden, caption large",
-    ),
-    (
-        "Esc",
-        "leave presentation mode (or close the shortcut list)",
-    ),
-    (
-        "Page Down, Right or Down arrow",
-        "next slide (presentation mode)",
-    ),
-    (
-        "Page Up, Left or Up arrow",
-        "previous slide (presentation mode)",
-    ),
-    (
-        "Space",
-        "pause or resume refining (not in presentation mode, where a clicker may send it)",
-    ),
-    (
-        "[ and ]",
-        "step the slide's first control down or up (presentation mode)",
-    ),
-    ("R", "restart refining from the first sample"),
-    ("F", "fit the image to the window"),
-    ("1", "one image pixel per screen pixel"),
-    ("Ctrl+Z", "undo the last parameter change"),
-    ("Ctrl+Shift+Z or Ctrl+Y", "redo the change last undone"),
-    ("Ctrl+S", "save a snapshot (image and parameters)"),
-    ("Ctrl+O", "open a scene file"),
-    (
-        "Ctrl+= / Ctrl+- / Ctrl+0",
-        "UI scale up, down, back to 100 %",
-    ),
-    ("F1 or ?", "list these shortcuts"),
-];
+/// Every keyboard shortcut, as the help overlay lists it: the keys, and what they do
+/// (the commands' table, and the keys egui answers itself).
+pub(crate) fn shortcuts() -> impl Iterator<Item = (&'static str, &'static str)> {
+    COMMANDS
+        .iter()
+        .filter(|c| !c.keys_text.is_empty())
+        .map(|c| (c.keys_text, c.what))
+        .chain(EGUI_KEYS.iter().copied())
+}
 
 /// How long a window may take to become fullscreen or leave it.
 const SETTLE: std::time::Duration = std::time::Duration::from_millis(1500);
@@ -145,53 +116,6 @@ impl StripWords {
 }
 
 impl RaylabApp {
-    /// The keys of presentation mode and help, read before the panels are drawn.
-    pub(super) fn hall_keys(&mut self, ctx: &egui::Context) {
-        let pressed = |keys: &[Key]| ctx.input(|i| keys.iter().any(|k| i.key_pressed(*k)));
-        let typed_question = ctx.input(|i| {
-            i.events
-                .iter()
-                .any(|e| matches!(e, egui::Event::Text(t) if t == "?"))
-        });
-        if pressed(&[Key::F5, Key::F11]) {
-            self.set_presenting(ctx, !self.hall.presenting);
-        }
-        if pressed(&[Key::F1]) || (typed_question && !ctx.egui_wants_keyboard_input()) {
-            self.hall.help = !self.hall.help;
-        }
-        if pressed(&[Key::Escape]) {
-            if self.hall.help {
-                self.hall.help = false;
-            } else if self.hall.presenting {
-                self.set_presenting(ctx, false);
-            }
-        }
-        if self.hall.presenting {
-            // Every press counts: three quick clicks (or xdotool's three keys) can land in
-            // one frame, where `key_pressed` would see one.
-            let presses = |keys: &[Key]| {
-                ctx.input(|i| {
-                    i.events
-                        .iter()
-                        .filter(|e| {
-                            matches!(e, egui::Event::Key { key, pressed: true, modifiers, .. }
-                                if keys.contains(key) && modifiers.is_none())
-                        })
-                        .count() as i32
-                })
-            };
-            let by = presses(&[Key::PageDown, Key::ArrowRight, Key::ArrowDown])
-                - presses(&[Key::PageUp, Key::ArrowLeft, Key::ArrowUp]);
-            if by != 0 {
-                self.step_slide(by);
-            }
-            let notches = presses(&[Key::CloseBracket]) - presses(&[Key::OpenBracket]);
-            for _ in 0..notches.unsigned_abs() {
-                self.step_first_control(notches > 0);
-            }
-        }
-    }
-
     /// Enters or leaves presentation mode (fullscreen, panels hidden, image fitted).
     pub(super) fn set_presenting(&mut self, ctx: &egui::Context, on: bool) {
         if on && !self.hall.presenting {
@@ -243,7 +167,7 @@ impl RaylabApp {
 
     /// The slide `by` away from the one shown (the first, with none shown yet), within
     /// the lecture.
-    fn step_slide(&mut self, by: i32) {
+    pub(super) fn step_slide(&mut self, by: i32) {
         let next = match self.lecture.current() {
             Some(i) => (i as i32 + by).clamp(0, LECTURE.len() as i32 - 1) as usize,
             None => 0,
@@ -262,7 +186,7 @@ impl RaylabApp {
     }
 
     /// `]` and `[`: the slide's first control one notch up or down.
-    fn step_first_control(&mut self, up: bool) {
+    pub(super) fn step_first_control(&mut self, up: bool) {
         self.with_slide_controls(|c, controls| {
             if let Some(name) = controls.first() {
                 step_param(c, name, up);
@@ -391,9 +315,9 @@ impl RaylabApp {
                     .num_columns(2)
                     .spacing([24.0, 6.0])
                     .show(ui, |ui| {
-                        for (keys, what) in SHORTCUTS {
-                            ui.label(RichText::new(*keys).strong());
-                            ui.label(*what);
+                        for (keys, what) in shortcuts() {
+                            ui.label(RichText::new(keys).strong());
+                            ui.label(what);
                             ui.end_row();
                         }
                     });
@@ -403,9 +327,8 @@ impl RaylabApp {
 
     /// The View menu: presentation mode, the UI scale, streaming to tev, help.
     pub(super) fn view_menu_ui(&mut self, ui: &mut egui::Ui) {
-        if ui.button("Presentation mode (F5)").clicked() {
-            self.set_presenting(ui.ctx(), true);
-            ui.close();
+        for command in [Command::Present, Command::Fit, Command::OneToOne] {
+            self.command_item(ui, command);
         }
         ui.separator();
         ui.label("UI scale");
@@ -424,10 +347,7 @@ impl RaylabApp {
         ui.separator();
         self.tev_menu_ui(ui);
         ui.separator();
-        if ui.button("Keyboard shortcuts (F1)").clicked() {
-            self.hall.help = true;
-            ui.close();
-        }
+        self.command_item(ui, Command::Help);
     }
 }
 
@@ -438,10 +358,10 @@ mod tests {
     #[test]
     fn the_docs_list_every_shortcut_as_the_help_does() {
         let docs = include_str!("../../docs/window.md");
-        for (keys, _) in SHORTCUTS {
+        for (keys, what) in shortcuts() {
             assert!(
-                docs.contains(&format!("| {keys} |")),
-                "docs/window.md's key table lacks `{keys}`"
+                docs.contains(&format!("| {keys} | {what} |")),
+                "docs/window.md's key table lacks `| {keys} | {what} |`"
             );
         }
     }

@@ -1,11 +1,13 @@
-//! The toolbar (scene picker, refining, snapshots, view, menus), the status bar, the
-//! keyboard shortcuts, and the file dialogs and dropped files they lead to.
+//! The toolbar (scene picker, refining, snapshots, view, menus: their buttons queue the
+//! commands of `command.rs`), the status bar, and the file dialogs and dropped files they
+//! lead to.
 
 use super::RaylabApp;
+use super::command::Command;
 use super::files::{Choice, FileDialog, Purpose, snapshot_path};
 use super::system_dialog::SystemDialog;
 use crate::scene::BUILTIN_SCENES;
-use egui::{Key, KeyboardShortcut, Modifiers, RichText};
+use egui::RichText;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
@@ -17,76 +19,23 @@ impl RaylabApp {
                 ui.spinner();
             }
             ui.separator();
-            let pause = if self.main.paused() {
-                "Resume"
-            } else {
-                "Pause"
-            };
-            if ui
-                .button(pause)
-                .on_hover_text("Pause or resume refining (Space).")
-                .clicked()
-            {
-                self.main.toggle_pause();
-            }
-            if ui
-                .button("Restart")
-                .on_hover_text("Start refining again from the first sample (R).")
-                .clicked()
-            {
-                self.main.restart();
-            }
             let (can_undo, can_redo) = self.history.can();
-            if ui
-                .add_enabled(can_undo, egui::Button::new("Undo"))
-                .on_hover_text("Undo the last parameter change (Ctrl+Z).")
-                .clicked()
-            {
-                self.step_history(false);
-            }
-            if ui
-                .add_enabled(can_redo, egui::Button::new("Redo"))
-                .on_hover_text("Redo the change last undone (Ctrl+Shift+Z or Ctrl+Y).")
-                .clicked()
-            {
-                self.step_history(true);
-            }
-            if ui
-                .button("Reset")
-                .on_hover_text("Every parameter and the camera back to the scene's defaults.")
-                .clicked()
-            {
-                self.reset_to_defaults();
+            for (command, enabled) in [
+                (Command::Pause, true),
+                (Command::Restart, true),
+                (Command::Undo, can_undo),
+                (Command::Redo, can_redo),
+                (Command::Reset, true),
+            ] {
+                self.command_button(ui, command, enabled);
             }
             ui.separator();
-            if ui
-                .button("Save snapshot")
-                .on_hover_text("Save the image and its parameters to screenshots/ (Ctrl+S).")
-                .clicked()
-            {
-                self.save_snapshot();
-            }
-            if ui
-                .button("Save as…")
-                .on_hover_text("Choose where, and PNG or EXR.")
-                .clicked()
-            {
-                self.save_as_dialog(ui.ctx());
+            for command in [Command::Save, Command::SaveAs] {
+                self.command_button(ui, command, true);
             }
             ui.separator();
-            if ui
-                .button("Fit")
-                .on_hover_text("Fit the image to the window (F).")
-                .clicked()
-            {
-                self.view.fit();
-            }
-            if ui
-                .button("1:1")
-                .on_hover_text("One image pixel per screen pixel (1).")
-                .clicked()
-            {
-                self.view.one_to_one(ui.ctx().pixels_per_point());
+            for command in [Command::Fit, Command::OneToOne] {
+                self.command_button(ui, command, true);
             }
             ui.separator();
             ui.menu_button("Instruments", |ui| self.instruments_menu_ui(ui));
@@ -130,7 +79,7 @@ impl RaylabApp {
             .response
             .on_hover_text("Built-in scenes, the files in scenes/, or Open… (Ctrl+O). You can also drop a .toml or .obj file on the window.");
         match chosen {
-            Some(r) if r.is_empty() => self.open_dialog(ui.ctx()),
+            Some(r) if r.is_empty() => self.ask(ui.ctx(), Command::Open),
             Some(r) => self.open_scene(&r),
             None => {}
         }
@@ -203,69 +152,14 @@ impl RaylabApp {
         });
     }
 
-    /// Ctrl+S, Ctrl+O, and the plain keys (while no text field has the keyboard).
-    pub(super) fn shortcuts(&mut self, ctx: &egui::Context) {
-        let (save, open) = ctx.input_mut(|i| {
-            (
-                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::S)),
-                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::O)),
-            )
-        });
-        if save {
-            self.save_snapshot();
-        }
-        if open {
-            self.open_dialog(ctx);
-        }
-        if ctx.egui_wants_keyboard_input() || self.dialog.is_some() {
-            return;
-        }
-        // Ctrl+Shift+Z first: Ctrl+Z would match it too (extra Shift is allowed).
-        let (redo, undo) = ctx.input_mut(|i| {
-            let redo = i.consume_shortcut(&KeyboardShortcut::new(
-                Modifiers::COMMAND | Modifiers::SHIFT,
-                Key::Z,
-            )) || i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Y));
-            (
-                redo,
-                i.consume_shortcut(&KeyboardShortcut::new(Modifiers::COMMAND, Key::Z)),
-            )
-        });
-        if undo || redo {
-            self.step_history(redo);
-        }
-        let (space, r, f, one) = ctx.input(|i| {
-            let plain = i.modifiers.is_none();
-            (
-                plain && i.key_pressed(Key::Space),
-                plain && i.key_pressed(Key::R),
-                plain && i.key_pressed(Key::F),
-                plain && i.key_pressed(Key::Num1),
-            )
-        });
-        // A presentation clicker may send Space: it does not pause a lecture.
-        if space && !self.hall.presenting {
-            self.main.toggle_pause();
-        }
-        if r {
-            self.main.restart();
-        }
-        if f {
-            self.view.fit();
-        }
-        if one {
-            self.view.one_to_one(ctx.pixels_per_point());
-        }
-    }
-
-    fn open_dialog(&mut self, ctx: &egui::Context) {
+    pub(super) fn open_dialog(&mut self, ctx: &egui::Context) {
         let cwd = std::env::current_dir().unwrap_or_default();
         let dir = cwd.join(&self.options.scenes_dir);
         let dir = if dir.is_dir() { dir } else { cwd };
         self.dialog = Some(self.file_dialog(ctx, Purpose::Open, dir, String::new()));
     }
 
-    fn save_as_dialog(&mut self, ctx: &egui::Context) {
+    pub(super) fn save_as_dialog(&mut self, ctx: &egui::Context) {
         let dir = &self.options.snapshot_dir;
         let dir = if dir.is_dir() {
             dir.clone()
@@ -318,14 +212,8 @@ impl RaylabApp {
                 self.dialog = None;
                 match purpose {
                     Purpose::Open => self.open_scene(&path),
-                    Purpose::SaveAs => {
-                        // Snapshots go where the user last saved from now on.
-                        if self.report_save(&path)
-                            && let Some(dir) = path.parent().filter(|d| d.is_dir())
-                        {
-                            self.options.snapshot_dir = dir.to_path_buf();
-                        }
-                    }
+                    // Snapshots go where the user last saved from now on.
+                    Purpose::SaveAs => self.save_to(ctx, &path, true),
                 }
             }
         }

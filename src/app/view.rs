@@ -224,7 +224,7 @@ impl RaylabApp {
                 ViewEvent::Click(film) if self.instruments.inspect_mode => {
                     let x = ((film.x * size.0 as f32) as u32).min(size.0 - 1);
                     let y = ((film.y * size.1 as f32) as u32).min(size.1 - 1);
-                    self.inspect((x, y), size);
+                    self.inspect(ui.ctx(), (x, y), size);
                     // A new pixel's section starts whole.
                     self.instruments.section.zoom_to(1.0);
                 }

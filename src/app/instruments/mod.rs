@@ -6,12 +6,13 @@ mod heat;
 mod inspector;
 mod patterns;
 mod section;
+mod trace;
 
 pub(crate) use heat::{cost_range, draw_colour_bar, heat_map_rgba};
 pub(crate) use inspector::draw_tree_overlay;
 
 use super::RaylabApp;
-use crate::tracer::{RayTree, Tracer};
+use crate::tracer::RayTree;
 use inspector::Inspection;
 pub(crate) use section::{SectionMode, SectionState};
 
@@ -23,6 +24,8 @@ pub(crate) struct Instruments {
     /// A click on the image inspects a pixel.
     pub(crate) inspect_mode: bool,
     pub(crate) inspection: Option<Inspection>,
+    /// A tree being traced aside (`trace.rs`).
+    tracing: Option<trace::Tracing>,
     pub(crate) show_patterns: bool,
     pub(crate) show_cost: bool,
     /// The heat map's top, in rays per sample (black at 0): one fixed scale, so the same
@@ -75,6 +78,7 @@ impl Default for Instruments {
             fresnel_metal: None,
             inspect_mode: false,
             inspection: None,
+            tracing: None,
             show_patterns: false,
             show_cost: false,
             cost_top: Some(32.0),
@@ -92,6 +96,12 @@ impl Instruments {
     /// The inspected ray tree, if any.
     pub(crate) fn tree(&self) -> Option<&RayTree> {
         self.inspection.as_ref().map(|i| &i.tree)
+    }
+
+    /// No pixel inspected, and none being traced.
+    pub(crate) fn forget_inspection(&mut self) {
+        self.inspection = None;
+        self.tracing = None;
     }
 
     /// Ray `node` is under the pointer (`None`: this instrument's part has none).
@@ -164,35 +174,6 @@ impl RaylabApp {
         }
         ui.checkbox(&mut self.instruments.show_patterns, "Sample patterns")
             .on_hover_text("Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.");
-    }
-
-    /// Records the ray tree of `pixel`'s first sample with the current parameters and camera.
-    pub(super) fn inspect(&mut self, pixel: (u32, u32), size: (u32, u32)) {
-        let s = &self.settings;
-        let mut tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
-        // Sample 0 as the first pass traces it (with its photons, where there are some).
-        tracer.prepare_photons(0);
-        let (tree, radiance) = tracer.inspect(pixel.0, pixel.1, 0);
-        self.instruments.inspection = Some(Inspection {
-            pixel,
-            size,
-            params: s.params.clone(),
-            camera: s.camera.clone(),
-            tree,
-            radiance,
-        });
-    }
-
-    /// Traces the inspected pixel again when the controls changed what it shows.
-    pub(super) fn refresh_inspection(&mut self) {
-        let s = &self.settings;
-        if let Some(i) = &self.instruments.inspection
-            && (i.params != s.params || i.camera != s.camera)
-            && s.params.validate().is_ok()
-        {
-            let (pixel, size) = (i.pixel, i.size);
-            self.inspect(pixel, size);
-        }
     }
 
     /// The instruments' dock: a panel right of the image holding each open instrument, so
@@ -312,7 +293,7 @@ impl RaylabApp {
         if tabs.contains(&Tab::Inspector) && shows(Tab::Inspector) {
             if !head(ui, Tab::Inspector) {
                 i.inspect_mode = false;
-                i.inspection = None;
+                i.forget_inspection();
             }
             ui.checkbox(&mut i.inspect_mode, "Clicking the image inspects a pixel");
             let hovered = match &i.inspection {
