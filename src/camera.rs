@@ -1,6 +1,6 @@
 //! The camera: a pinhole, or a thin lens with a plane of focus, open over a shutter interval.
 
-use crate::math::lanes::{Real, Vector};
+use crate::math::lanes::{RayOf, Real, Vector};
 use crate::math::rng::SobolLanes;
 use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk_of};
 use crate::params::Params;
@@ -243,13 +243,12 @@ impl CameraFrame {
     /// pinhole ray meets it, so that plane is sharp and everything else blurs.
     #[inline]
     pub fn ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> Ray {
-        let (origin, dir, time) = self.ray_of(film.x, film.y, lens.x, lens.y, time_u);
-        Ray { origin, dir, time }
+        self.ray_of(film.x, film.y, lens.x, lens.y, time_u).into()
     }
 
     /// [`CameraFrame::ray`] for one ray or one per lane, the film position (`film_x`,
     /// `film_y`), the lens sample (`lens_x`, `lens_y`) and the time sample given
-    /// coordinate by coordinate: the ray's origin, unit direction and time.
+    /// coordinate by coordinate.
     #[inline(always)]
     pub(crate) fn ray_of<R: Real>(
         &self,
@@ -258,7 +257,7 @@ impl CameraFrame {
         lens_x: R,
         lens_y: R,
         time_u: R,
-    ) -> (R::V3, R::V3, R) {
+    ) -> RayOf<R> {
         let (one, two) = (R::splat(1.0), R::splat(2.0));
         let (x, y) = (two * film_x - one, one - two * film_y);
         let at = R::V3::splat;
@@ -267,14 +266,22 @@ impl CameraFrame {
         let (open, close) = (R::splat(self.shutter.0), R::splat(self.shutter.1));
         let time = open + time_u * (close - open);
         if self.aperture <= 0.0 {
-            return (at(self.origin), d.normalize(), time);
+            return RayOf {
+                origin: at(self.origin),
+                dir: d.normalize(),
+                time,
+            };
         }
         let focus_point = at(self.origin) + d.scale(R::splat(self.focus_distance));
         let (disk_x, disk_y) = concentric_disk_of(lens_x, lens_y);
         let aperture = R::splat(self.aperture);
         let (l_x, l_y) = (aperture * disk_x, aperture * disk_y);
         let origin = at(self.origin) + at(self.lens_u).scale(l_x) + at(self.lens_v).scale(l_y);
-        (origin, (focus_point - origin).normalize(), time)
+        RayOf {
+            origin,
+            dir: (focus_point - origin).normalize(),
+            time,
+        }
     }
 
     /// The transmission axis of a linear polariser in front of the lens at `angle_deg`
@@ -407,7 +414,7 @@ mod tests {
         let lens_u = [(0.5, 0.5), (0.9, 0.55), (0.45, 0.05), (0.0, 1.0)];
         let time_u = [0.0, 1.0, 0.37, 0.999];
         for frame in [c.pinhole(1.5), c.frame(1.5, lens)] {
-            let (o, d, t) = frame.ray_of(
+            let rays = frame.ray_of(
                 Lanes::<4>::from_fn(|i| film[i].0),
                 Lanes::from_fn(|i| film[i].1),
                 Lanes::from_fn(|i| lens_u[i].0),
@@ -421,9 +428,9 @@ mod tests {
                     time_u[i],
                 );
                 let bits = |v: Vec3| v.to_array().map(f32::to_bits);
-                assert_eq!(bits(o.get(i)), bits(r.origin));
-                assert_eq!(bits(d.get(i)), bits(r.dir));
-                assert_eq!(t.0[i].to_bits(), r.time.to_bits());
+                assert_eq!(bits(rays.origin.get(i)), bits(r.origin));
+                assert_eq!(bits(rays.dir.get(i)), bits(r.dir));
+                assert_eq!(rays.time.0[i].to_bits(), r.time.to_bits());
             }
         }
     }

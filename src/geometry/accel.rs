@@ -6,7 +6,7 @@
 use super::direct::{Direct, DirectWave};
 use super::{PrimRef, Shape};
 use crate::math::Ray;
-use crate::math::lanes::{Lanes, Mask, RayColumns, V3, Width};
+use crate::math::lanes::{Lanes, Mask, RayColumns, RayOf, Width};
 use crate::math::rng::mix64;
 use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
 use std::collections::HashMap;
@@ -220,27 +220,24 @@ impl Accel {
         self.direct.occluded(o, d, ray.time, t_max, false) || self.bvh_occluded(shapes, ray, t_max)
     }
 
-    /// [`Accel::occluded`] for `N` rays (origins `o`, directions `d`, times, each up to its
-    /// `t_max`), where `done` does not hold already: the directly tested shapes in lanes,
-    /// the BVH ray by ray. True where a ray is blocked or done.
+    /// [`Accel::occluded`] for `N` rays (each up to its `t_max`), where `done` does not
+    /// hold already: the directly tested shapes in lanes, the BVH ray by ray. True where a
+    /// ray is blocked or done.
     #[inline(always)]
     pub(crate) fn occluded_lanes<const N: usize>(
         &self,
         shapes: &[Shape],
-        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        rays: RayOf<Lanes<N>>,
         t_max: Lanes<N>,
         done: Mask<N>,
     ) -> Mask<N> {
-        let mut blocked = self.direct.occluded(o, d, time, t_max, done);
+        let mut blocked = self
+            .direct
+            .occluded(rays.origin, rays.dir, rays.time, t_max, done);
         if self.bvh.is_some() {
             for (i, b) in blocked.0.iter_mut().enumerate() {
                 if *b == 0 {
-                    let ray = Ray {
-                        origin: o.get(i),
-                        dir: d.get(i),
-                        time: time.0[i],
-                    };
-                    *b = if self.bvh_occluded(shapes, &ray, t_max.0[i]) {
+                    *b = if self.bvh_occluded(shapes, &rays.get(i), t_max.0[i]) {
                         u32::MAX
                     } else {
                         0

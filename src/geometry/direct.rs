@@ -249,8 +249,9 @@ impl LaneKernel for DirectWave<'_> {
     #[inline(always)]
     fn run<const N: usize>(self) {
         for (group, out) in self.out.chunks_mut(N).enumerate() {
-            let (o, d, time) = self.rays.lanes::<N>(group * N);
-            let (t, place) = self.direct.nearest(o, d, time, Lanes::splat(f32::INFINITY));
+            let rays = self.rays.lanes::<N>(group * N);
+            let far = Lanes::splat(f32::INFINITY);
+            let (t, place) = self.direct.nearest(rays.origin, rays.dir, rays.time, far);
             // The places made integers in lanes.
             let place: [i32; N] = std::array::from_fn(|i| place.0[i] as i32);
             for ((out, &place), &t) in out.iter_mut().zip(&place).zip(&t.0) {

@@ -18,7 +18,7 @@ pub use instance::{Instance, SharedMesh};
 pub use mesh::{Mesh, MeshError};
 pub use shapes::{Plane, Quad, Sphere};
 
-use crate::math::lanes::{Lanes, Real, V3, Vector};
+use crate::math::lanes::{Lanes, RayOf, Real, V3, Vector};
 use crate::math::{Ray, Vec3};
 use glam::Vec2;
 
@@ -83,6 +83,30 @@ pub(crate) struct SurfaceLanes<const N: usize> {
     pub(crate) p: V3<Lanes<N>>,
     pub(crate) n: V3<Lanes<N>>,
     pub(crate) uv: (Lanes<N>, Lanes<N>),
+}
+
+/// How a ray meets a surface, for one ray or one per lane: whether it arrives against the
+/// geometric normal (from the outside), and both normals turned to face it. Both walks
+/// ask this.
+pub(crate) struct Facing<R: Real> {
+    pub(crate) entering: R::Mask,
+    pub(crate) n_geom: R::V3,
+    pub(crate) n_shade: R::V3,
+}
+
+impl<R: Real> Facing<R> {
+    /// A ray along `dir` at a surface of geometric normal `n_geom` and shading normal
+    /// `n_shade`.
+    #[inline(always)]
+    pub(crate) fn of(dir: R::V3, n_geom: R::V3, n_shade: R::V3) -> Self {
+        let entering = dir.dot(n_geom).less(R::splat(0.0));
+        let facing = |n: R::V3| R::V3::select(entering, n, n.neg());
+        Facing {
+            entering,
+            n_geom: facing(n_geom),
+            n_shade: facing(n_shade),
+        }
+    }
 }
 
 impl<const N: usize> SurfaceLanes<N> {
@@ -228,16 +252,15 @@ impl Shape {
     #[inline(always)]
     pub(crate) fn surface_lanes<const N: usize>(
         &self,
-        o: V3<Lanes<N>>,
-        d: V3<Lanes<N>>,
-        time: Lanes<N>,
+        rays: RayOf<Lanes<N>>,
         t: Lanes<N>,
         with_uv: bool,
     ) -> Option<SurfaceLanes<N>> {
+        let (o, d) = (rays.origin, rays.dir);
         let zero = Lanes::splat(0.0);
         Some(match self {
             Shape::Sphere(s) if !with_uv => {
-                let (p, n) = s.surface_of(o, d, time, t);
+                let (p, n) = s.surface_of(o, d, rays.time, t);
                 SurfaceLanes {
                     p,
                     n,

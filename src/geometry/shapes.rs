@@ -311,7 +311,7 @@ mod tests {
     #[test]
     fn hit_records_made_in_lanes_are_each_rays_own_bit_for_bit() {
         use crate::geometry::Shape;
-        use crate::math::lanes::{Lanes, V3};
+        use crate::math::lanes::{Lanes, RayOf, V3};
         let moving = Sphere {
             velocity: Vec3::new(0.3, 0.0, -0.2),
             ..Sphere::new(Vec3::new(0.1, 0.2, -5.0), 1.3)
@@ -335,14 +335,15 @@ mod tests {
             Ray::new(Vec3::new(0.01 * f, -0.02, 0.3), dir, 0.25 * f)
         });
         let row = |f: &dyn Fn(&Ray) -> f32| Lanes::<4>(rays.each_ref().map(f));
-        let (o, d) = (
-            V3::from_fn(|i| rays[i].origin),
-            V3::from_fn(|i| rays[i].dir),
-        );
+        let lanes_of = |time| RayOf {
+            origin: V3::from_fn(|i| rays[i].origin),
+            dir: V3::from_fn(|i| rays[i].dir),
+            time,
+        };
         for shape in &shapes {
             let t = row(&|r| shape.intersect_t(0, r, f32::INFINITY).unwrap());
             let lanes = shape
-                .surface_lanes(o, d, row(&|r| r.time), t, false)
+                .surface_lanes(lanes_of(row(&|r| r.time)), t, false)
                 .unwrap();
             for (i, ray) in rays.iter().enumerate() {
                 let (a, b) = (
@@ -363,7 +364,7 @@ mod tests {
         let t = row(&|r| shapes[0].intersect_t(0, r, f32::INFINITY).unwrap());
         assert!(
             shapes[0]
-                .surface_lanes(o, d, row(&|r| r.time), t, true)
+                .surface_lanes(lanes_of(row(&|r| r.time)), t, true)
                 .is_none()
         );
     }

@@ -9,7 +9,7 @@
 //! its intensity shaped by a cone.
 
 use crate::geometry::{Quad, Sphere};
-use crate::math::lanes::{Real, Vector};
+use crate::math::lanes::{RayOf, Real, Vector};
 use crate::math::rng::Pair;
 use crate::math::sampling::{concentric_disk, to_world, uniform_cone};
 use crate::math::{Color, Ray, SampleStream, Uniform, Vec3, orthonormal_basis};
@@ -504,7 +504,6 @@ impl PreparedLight {
             return None;
         }
         let s = self.light.scale;
-        let (o, d) = (ray.origin, ray.dir);
         let t = match &self.light.shape {
             LightShape::Disk {
                 center,
@@ -519,7 +518,7 @@ impl PreparedLight {
                 let inside = (ray.at(t) - *center).length_squared() <= (radius * s).powi(2);
                 (t > 0.0 && t < t_max && inside).then_some(t)?
             }
-            _ => self.nearest_of::<f32>(o, d, ray.time, t_max)?,
+            _ => self.nearest_of::<f32>(ray.of(), t_max)?,
         };
         (t < f32::INFINITY).then(|| (t, self.seen_along(ray.dir)))
     }
@@ -529,15 +528,16 @@ impl PreparedLight {
     /// lane: its distance, +∞ where it misses; `None` for a disk, and for a light that
     /// [`PreparedLight::can_be_seen`] not.
     #[inline(always)]
-    pub(crate) fn nearest_of<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> Option<R> {
+    pub(crate) fn nearest_of<R: Real>(&self, ray: RayOf<R>, t_max: R) -> Option<R> {
         if !self.can_be_seen() {
             return None;
         }
+        let (o, d) = (ray.origin, ray.dir);
         match &self.light.shape {
             LightShape::Rect { .. } => Some(self.quad.as_ref()?.nearest(o, d, t_max)),
             LightShape::Sphere { center, radius } => {
                 let sphere = Sphere::new(*center, radius * self.light.scale);
-                Some(sphere.nearest(o, d, time, t_max))
+                Some(sphere.nearest(o, d, ray.time, t_max))
             }
             LightShape::Disk { .. } | LightShape::Spot { .. } => None,
         }

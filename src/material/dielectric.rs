@@ -3,7 +3,8 @@
 
 use super::{Brdf, Direct, Interaction, Interface, Lobe, Scatter, Side, Texture};
 use super::{cos_i_of, mirror_dir_of};
-use crate::math::lanes::{Lanes, Mask, Real, V3, Vector};
+use crate::geometry::Facing;
+use crate::math::lanes::{Lanes, Real, V3, Vector};
 use crate::math::{Color, Vec3};
 use crate::optics::dispersion::ior_at;
 use crate::optics::polarization::{Mueller, fresnel_amplitudes};
@@ -181,21 +182,21 @@ impl Dielectric {
 }
 
 /// [`Dielectric::scatter`] for `N` hits at once, made in lanes: hit i on `dielectrics[i]`,
-/// the rays' directions `dir`, the normals facing them (`n_geom`, `n_shade`), whether each
-/// is `entering`, and the indices inside the dielectric and on its outer side at each
-/// ray's wavelength (`ior`, `outside_ior`). Lane i's split is what `scatter` gives for hit
+/// the rays' directions `dir`, how each meets its surface (`facing`), and the indices
+/// inside the dielectric and on its outer side at each ray's wavelength (`ior`,
+/// `outside_ior`). Lane i's split is what `scatter` gives for hit
 /// i, bit for bit.
 #[inline(always)]
 pub(crate) fn split_lanes<'d, const N: usize>(
     dielectrics: [&'d Dielectric; N],
     dir: V3<Lanes<N>>,
-    (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
-    entering: Mask<N>,
-    (ior, outside_ior): (Lanes<N>, Lanes<N>),
+    facing: Facing<Lanes<N>>,
+    ior: Lanes<N>,
+    outside_ior: Lanes<N>,
 ) -> impl Iterator<Item = Split> + 'd {
-    let n1 = Lanes::select(entering, outside_ior, ior);
-    let n2 = Lanes::select(entering, ior, outside_ior);
-    let split = split_of::<Lanes<N>>(dir, n_geom, n_shade, n1, n2);
+    let n1 = Lanes::select(facing.entering, outside_ior, ior);
+    let n2 = Lanes::select(facing.entering, ior, outside_ior);
+    let split = split_of::<Lanes<N>>(dir, facing.n_geom, facing.n_shade, n1, n2);
     let r = Dielectric::reflectance_lanes(&dielectrics, split.cos_i, n1, n2);
     let r = Lanes::select(split.refracts, r, Lanes::splat(1.0));
     (0..N).map(move |i| Split {
@@ -404,8 +405,12 @@ mod tests {
             );
             let outside = Lanes::from_fn(|i| hits[i].outside_ior);
             let ior = Lanes::from_fn(|i| kinds[i].ior_at(hits[i].wavelength));
-            let normals = (v3(&|h| h.n_geom), v3(&|h| h.n_shade));
-            let lanes = split_lanes(kinds, v3(&|h| h.dir), normals, entering, (ior, outside));
+            let facing = Facing {
+                entering,
+                n_geom: v3(&|h| h.n_geom),
+                n_shade: v3(&|h| h.n_shade),
+            };
+            let lanes = split_lanes(kinds, v3(&|h| h.dir), facing, ior, outside);
             for (i, split) in lanes.enumerate() {
                 let (a, b) = (split.scatter(), kinds[i].scatter(&hits[i]));
                 let bits = |s: &Scatter| {

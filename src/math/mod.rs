@@ -29,7 +29,27 @@ pub struct Ray {
     pub time: f32,
 }
 
+impl From<lanes::RayOf<f32>> for Ray {
+    fn from(r: lanes::RayOf<f32>) -> Ray {
+        Ray {
+            origin: r.origin,
+            dir: r.dir,
+            time: r.time,
+        }
+    }
+}
+
 impl Ray {
+    /// The same ray, as the formulas written for one ray or lanes take it.
+    #[inline(always)]
+    pub fn of(&self) -> lanes::RayOf<f32> {
+        lanes::RayOf {
+            origin: self.origin,
+            dir: self.dir,
+            time: self.time,
+        }
+    }
+
     /// A ray from `origin` along `dir` (normalized here) at `time`.
     pub fn new(origin: Vec3, dir: Vec3, time: f32) -> Self {
         Ray {

@@ -24,7 +24,7 @@ use crate::camera::Camera;
 use crate::geometry::{Accel, PrimRef, Shape, SurfaceHit, SurfaceLanes};
 use crate::light::{Background, Light};
 use crate::material::{Diffuse, Material};
-use crate::math::lanes::{Lanes, Mask, RayColumns, V3, Width};
+use crate::math::lanes::{Lanes, Mask, RayColumns, RayOf, Width};
 use crate::math::{Color, Ray, Vec3};
 use crate::params::Params;
 use std::path::{Path, PathBuf};
@@ -422,7 +422,7 @@ impl Scene {
     #[inline(always)]
     pub(crate) fn occluded_lanes<const N: usize>(
         &self,
-        rays: (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        rays: RayOf<Lanes<N>>,
         t_max: Lanes<N>,
         done: Mask<N>,
     ) -> Mask<N> {
@@ -446,19 +446,18 @@ impl Scene {
         }
     }
 
-    /// The hits of `N` rays that all met `object`, at distances `t` (the rays given
-    /// coordinate by coordinate), made in lanes as [`Shape::surface_lanes`] makes them:
+    /// The hits of `N` rays that all met `object`, at distances `t`, made in lanes as [`Shape::surface_lanes`] makes them:
     /// their records and material; `None` where they are made ray by ray. Lane i's record
     /// is [`Scene::hit_at`]'s of ray i bit for bit.
     #[inline(always)]
     pub(crate) fn hits_in_lanes<const N: usize>(
         &self,
         object: u32,
-        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
+        rays: RayOf<Lanes<N>>,
         t: Lanes<N>,
     ) -> Option<(SurfaceLanes<N>, u32)> {
         let i = object as usize;
-        let surfaces = self.shapes[i].surface_lanes(o, d, time, t, self.object_uses_uv[i])?;
+        let surfaces = self.shapes[i].surface_lanes(rays, t, self.object_uses_uv[i])?;
         Some((surfaces, self.object_materials[i]))
     }
 }

@@ -1,8 +1,7 @@
 //! The media a ray travels through: the stack of dielectric objects it has entered,
 //! Beer–Lambert attenuation along a segment, and which side of a surface a ray arrives on.
 
-use crate::geometry::SurfaceHit;
-use crate::math::lanes::{Real, Vector};
+use crate::geometry::{Facing, SurfaceHit};
 use crate::math::{Color, Vec3};
 use crate::scene::Hit;
 
@@ -152,35 +151,21 @@ pub(super) struct Arrival {
 
 impl Arrival {
     pub(super) fn at(dir: Vec3, hit: &Hit, media: &Media) -> Arrival {
-        let (entering, n_geom, n_shade) = Arrival::facing(dir, &hit.surface);
+        let f = Arrival::facing(dir, &hit.surface);
         Arrival {
-            entering,
-            n_geom,
-            n_shade,
-            outside: media.outside(entering, hit.object),
+            entering: f.entering,
+            n_geom: f.n_geom,
+            n_shade: f.n_shade,
+            outside: media.outside(f.entering, hit.object),
         }
     }
 
     /// Whether a ray along `dir` arrives from `s`'s outside (against its normal), and the
     /// geometric and shading normals turned to face it.
     #[inline(always)]
-    pub(super) fn facing(dir: Vec3, s: &SurfaceHit) -> (bool, Vec3, Vec3) {
-        facing_of::<f32>(dir, s.n_geom, s.n_shade)
+    pub(super) fn facing(dir: Vec3, s: &SurfaceHit) -> Facing<f32> {
+        Facing::of(dir, s.n_geom, s.n_shade)
     }
-}
-
-/// [`Arrival::facing`] for one ray or one per lane: whether a ray along `dir` arrives
-/// against the geometric normal `n_geom` (from the outside), and `n_geom` and `n_shade`
-/// turned to face it. Both walks ask this.
-#[inline(always)]
-pub(super) fn facing_of<R: Real>(
-    dir: R::V3,
-    n_geom: R::V3,
-    n_shade: R::V3,
-) -> (R::Mask, R::V3, R::V3) {
-    let entering = dir.dot(n_geom).less(R::splat(0.0));
-    let facing = |n: R::V3| R::V3::select(entering, n, n.neg());
-    (entering, facing(n_geom), facing(n_shade))
 }
 
 #[cfg(test)]

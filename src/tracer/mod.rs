@@ -27,7 +27,7 @@ pub use wave::{MAX_WAVE_LIGHTS, Traced, Traversal, Waves};
 use crate::camera::{Camera, CameraFrame, CameraSample};
 use crate::light::PreparedLight;
 use crate::material::{Interaction, Material};
-use crate::math::lanes::Real;
+use crate::math::lanes::{RayOf, Real};
 use crate::math::{Color, Ray, SampleStream, Vec3};
 use crate::optics::polarization::Analyzer;
 use crate::params::{Params, Transport};
@@ -320,8 +320,8 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> Ray {
         let (pixel, lens) = ((cs.pixel.x, cs.pixel.y), (cs.lens.x, cs.lens.y));
-        let (origin, dir, time) = self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time);
-        Ray { origin, dir, time }
+        self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time)
+            .into()
     }
 
     /// [`Tracer::camera_ray`] for one ray or one per lane: the pixel (x, y), and the camera
@@ -333,7 +333,7 @@ impl<'a> Tracer<'a> {
         pixel: (R, R),
         lens: (R, R),
         time_u: R,
-    ) -> (R::V3, R::V3, R) {
+    ) -> RayOf<R> {
         // The film position ((x + pixel.x) / width, (y + pixel.y) / height).
         let film_x = (x + pixel.0) / R::splat(self.width as f32);
         let film_y = (y + pixel.1) / R::splat(self.height as f32);

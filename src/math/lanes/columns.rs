@@ -1,7 +1,7 @@
 //! Records as columns, the layout the lanes load from: rays, and whatever else a wave
 //! keeps per ray for its lanes.
 
-use super::{Lanes, V3};
+use super::{Lanes, RayOf, V3};
 use crate::math::{Ray, Vec3};
 
 /// The most lanes any width has.
@@ -135,13 +135,11 @@ impl RayColumns {
         self.0.push([o.x, o.y, o.z, d.x, d.y, d.z, ray.time]);
     }
 
-    /// Adds `N` rays at the end, coordinate by coordinate: (origin, direction, time).
+    /// Adds `N` rays at the end.
     #[inline(always)]
-    pub fn push_lanes<const N: usize>(
-        &mut self,
-        (o, d, time): (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>),
-    ) {
-        self.0.push_lanes([o.x, o.y, o.z, d.x, d.y, d.z, time]);
+    pub fn push_lanes<const N: usize>(&mut self, rays: RayOf<Lanes<N>>) {
+        let (o, d) = (rays.origin, rays.dir);
+        self.0.push_lanes([o.x, o.y, o.z, d.x, d.y, d.z, rays.time]);
     }
 
     /// Ray `i`.
@@ -155,11 +153,15 @@ impl RayColumns {
         }
     }
 
-    /// Rays `i..i + N` (`i` a multiple of `N`, which divides `MAX_LANES` (16)), coordinate by
-    /// coordinate: (origin, direction, time). Lanes past the last ray hold zeros.
+    /// Rays `i..i + N` (`i` a multiple of `N`, which divides `MAX_LANES` (16)). Lanes past
+    /// the last ray hold zeros.
     #[inline(always)]
-    pub fn lanes<const N: usize>(&self, i: usize) -> (V3<Lanes<N>>, V3<Lanes<N>>, Lanes<N>) {
-        (self.0.lanes3(i, 0), self.0.lanes3(i, 3), self.0.lane(i, 6))
+    pub fn lanes<const N: usize>(&self, i: usize) -> RayOf<Lanes<N>> {
+        RayOf {
+            origin: self.0.lanes3(i, 0),
+            dir: self.0.lanes3(i, 3),
+            time: self.0.lane(i, 6),
+        }
     }
 }
 

@@ -108,6 +108,38 @@ impl Real for f32 {
     }
 }
 
+/// A ray in the numbers `R`: one ray for `f32`, `N` rays coordinate by coordinate for
+/// [`Lanes<N>`] (the lanes form of [`crate::math::Ray`]).
+pub struct RayOf<R: Real> {
+    /// Where each ray starts.
+    pub origin: R::V3,
+    /// Each ray's unit direction.
+    pub dir: R::V3,
+    /// Each ray's time in the shutter interval.
+    pub time: R,
+}
+
+// By hand: a derive would ask `R: Clone` and not see that `R::V3` is `Copy`.
+impl<R: Real> Clone for RayOf<R> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<R: Real> Copy for RayOf<R> {}
+
+impl<const N: usize> RayOf<Lanes<N>> {
+    /// Lane `i`'s ray.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> super::Ray {
+        super::Ray {
+            origin: self.origin.get(i),
+            dir: self.dir.get(i),
+            time: self.time.0[i],
+        }
+    }
+}
+
 /// `N` numbers operated on together, one per lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(transparent)]

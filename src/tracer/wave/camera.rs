@@ -67,15 +67,15 @@ impl LaneKernel for CameraRays<'_, '_> {
             );
             let pixel = (lane(|c| c.pixel.x), lane(|c| c.pixel.y));
             let lens = (lane(|c| c.lens.x), lane(|c| c.lens.y));
-            let (o, d, time) = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
+            let rays = t.camera_ray_of(xy, pixel, lens, lane(|c| c.time));
             let finite = |v: V3<Lanes<N>>| is_finite(v.x) & is_finite(v.y) & is_finite(v.z);
             // Each stream is made where it is stored: an array of them built first and
             // copied out stalls on store-to-load forwarding.
-            if Lanes::all(finite(o) & finite(d)) {
+            if Lanes::all(finite(rays.origin) & finite(rays.dir)) {
                 // The usual case: the rays go to the level as they are, `N` at a time.
                 let first = self.level.nodes.len() as u32;
                 let slot = self.slots.len() as u32;
-                self.level.rays.push_lanes((o, d, time));
+                self.level.rays.push_lanes(rays);
                 let node = |i| Node::new(slot + i, 0, 1.0, None);
                 self.level.nodes.extend((0..N as u32).map(node));
                 // (Counted once for the `N`: an add to memory per sample waited on the last.)
@@ -89,11 +89,7 @@ impl LaneKernel for CameraRays<'_, '_> {
                 }));
             } else {
                 for i in 0..N {
-                    let ray = Ray {
-                        origin: o.get(i),
-                        dir: d.get(i),
-                        time: time.0[i],
-                    };
+                    let ray = rays.get(i);
                     let traced = ray.origin.is_finite() && ray.dir.is_finite();
                     self.push(lanes.stream(i), traced.then_some(&ray));
                 }

@@ -7,12 +7,11 @@
 //! bit for bit.
 
 use super::types::Node;
-use crate::geometry::PrimRef;
+use crate::geometry::{Facing, PrimRef};
 use crate::material::{Dielectric, Split, split_lanes};
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, V3};
 use crate::math::{Color, Ray};
 use crate::scene::Hit;
-use crate::tracer::media::facing_of;
 use crate::tracer::{Media, Tracer};
 
 /// The hit records of a level's rays: only the rays that have one, each ray's place in
@@ -134,7 +133,7 @@ impl LaneKernel for Surfaces<'_, '_> {
                     && !(first..first + N).any(|k| splits_into_wavelengths(material, k))
                 {
                     let made =
-                        tracer.split_in_lanes([d; N], ray_lanes.1, (lanes.n, lanes.n), |k| {
+                        tracer.split_in_lanes([d; N], ray_lanes.dir, lanes.n, lanes.n, |k| {
                             let node = &nodes[first + k];
                             (&media[node.media as usize], object, node.wavelength())
                         });
@@ -145,12 +144,12 @@ impl LaneKernel for Surfaces<'_, '_> {
             }
             // A short chunk, and rays on many objects, are made ray by ray.
             let Some(objects) = full.then(|| objects_of::<MAX_OBJECTS>(chunk)).flatten() else {
-                by_ray(
-                    (tracer, &dielectric),
-                    rays,
-                    (first, chunk),
-                    (hits, emitted, on_dielectrics),
-                );
+                let found = Found {
+                    hits,
+                    emitted,
+                    on_dielectrics,
+                };
+                found.by_ray(tracer, &dielectric, rays, first, chunk);
                 continue;
             };
             // Else object by object, each one's records in lanes where its shape has a
@@ -199,24 +198,35 @@ impl LaneKernel for Surfaces<'_, '_> {
     }
 }
 
-/// The hits of `chunk`'s rays (from ray `first` of the level) made one by one: the
-/// records, the lights' radiance, the hits on dielectrics (where `dielectric` says the
-/// material of ray k's hit splits it in lanes).
-#[inline(always)]
-fn by_ray(
-    (tracer, dielectric): (&Tracer, &impl Fn(u32, usize) -> bool),
-    rays: &RayColumns,
-    (first, chunk): (usize, &[Option<(PrimRef, f32)>]),
-    (hits, emitted, on_dielectrics): (&mut Hits, &mut Vec<Option<Color>>, &mut Vec<u32>),
-) {
-    for (k, near) in chunk.iter().enumerate() {
-        let near = near.map(|(prim, t)| (prim, rays.get(first + k), t));
-        let (hit, light) = tracer.surface_at(near);
-        emitted.push(light);
-        if hit.is_some_and(|h| dielectric(h.material, first + k)) {
-            on_dielectrics.push((first + k) as u32);
+/// Where a level's hits go: the records, the lights' radiance, and the places of the hits
+/// on dielectrics.
+struct Found<'a> {
+    hits: &'a mut Hits,
+    emitted: &'a mut Vec<Option<Color>>,
+    on_dielectrics: &'a mut Vec<u32>,
+}
+
+impl Found<'_> {
+    /// The hits of `chunk`'s rays (from ray `first` of the level) made one by one
+    /// (`dielectric` says where the material of ray k's hit splits it in lanes).
+    #[inline(always)]
+    fn by_ray(
+        self,
+        tracer: &Tracer,
+        dielectric: &impl Fn(u32, usize) -> bool,
+        rays: &RayColumns,
+        first: usize,
+        chunk: &[Option<(PrimRef, f32)>],
+    ) {
+        for (k, near) in chunk.iter().enumerate() {
+            let near = near.map(|(prim, t)| (prim, rays.get(first + k), t));
+            let (hit, light) = tracer.surface_at(near);
+            self.emitted.push(light);
+            if hit.is_some_and(|h| dielectric(h.material, first + k)) {
+                self.on_dielectrics.push((first + k) as u32);
+            }
+            self.hits.push(hit);
         }
-        hits.push(hit);
     }
 }
 
@@ -231,23 +241,19 @@ impl Tracer<'_> {
         &self,
         dielectrics: [&'d Dielectric; N],
         dir: V3<Lanes<N>>,
-        (n_geom, n_shade): (V3<Lanes<N>>, V3<Lanes<N>>),
+        n_geom: V3<Lanes<N>>,
+        n_shade: V3<Lanes<N>>,
         of_ray: impl Fn(usize) -> (&'m Media, u32, Option<f32>),
     ) -> impl Iterator<Item = Split> + 'd {
-        let (entering, n_geom, n_shade) = facing_of::<Lanes<N>>(dir, n_geom, n_shade);
+        let facing = Facing::<Lanes<N>>::of(dir, n_geom, n_shade);
+        let entering = facing.entering;
         let mut ior = Lanes::<N>::splat(0.0);
         let outside_ior = Lanes::<N>::from_fn(|k| {
             let (media, object, wavelength) = of_ray(k);
             ior.0[k] = dielectrics[k].ior_at(wavelength);
             self.ior_of(media.outside(entering.0[k] != 0, object), wavelength)
         });
-        split_lanes(
-            dielectrics,
-            dir,
-            (n_geom, n_shade),
-            entering,
-            (ior, outside_ior),
-        )
+        split_lanes(dielectrics, dir, facing, ior, outside_ior)
     }
 
     /// The hit of a ray that met `near` (its primitive, the ray, the distance), and the
@@ -308,7 +314,7 @@ impl LaneKernel for Splits<'_, '_> {
             let dir = V3::from_fn(|k| rays.get(at(k)).dir);
             let n_geom = V3::from_fn(|k| surface(k).n_geom);
             let n_shade = V3::from_fn(|k| surface(k).n_shade);
-            let made = tracer.split_in_lanes(dielectrics, dir, (n_geom, n_shade), |k| {
+            let made = tracer.split_in_lanes(dielectrics, dir, n_geom, n_shade, |k| {
                 let node = &nodes[at(k)];
                 (
                     &media[node.media as usize],

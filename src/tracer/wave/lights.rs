@@ -6,7 +6,7 @@
 
 use crate::geometry::PrimRef;
 use crate::material::Brdf;
-use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, Real};
+use crate::math::lanes::{Columns, LaneKernel, Lanes, RayColumns, RayOf, Real};
 use crate::math::rng::{Pair, SobolDraw, sobol_pairs};
 use crate::math::{Color, Vec3};
 use crate::tracer::Tracer;
@@ -48,7 +48,7 @@ impl LaneKernel for Seen<'_, '_> {
         }
         let in_lanes = nearest.len() / N * N;
         for first in (0..in_lanes).step_by(N) {
-            let (o, d, time) = rays.lanes::<N>(first);
+            let ray = rays.lanes::<N>(first);
             let mut near = Lanes::<N>::from_fn(|k| limit(first + k));
             let mut which = Lanes::<N>::splat(-1.0);
             let mut every = true;
@@ -56,7 +56,7 @@ impl LaneKernel for Seen<'_, '_> {
                 if !light.can_be_seen() {
                     continue;
                 }
-                let Some(t) = light.nearest_of(o, d, time, near) else {
+                let Some(t) = light.nearest_of(ray, near) else {
                     every = false;
                     break;
                 };
@@ -67,7 +67,7 @@ impl LaneKernel for Seen<'_, '_> {
             if every {
                 out.extend((0..N).map(|k| {
                     let light = &t.lights[(which.0[k] >= 0.0).then_some(which.0[k] as usize)?];
-                    Some((near.0[k], light.seen_along(d.get(k))))
+                    Some((near.0[k], light.seen_along(ray.dir.get(k))))
                 }));
             } else {
                 out.extend((first..first + N).map(one_by_one));
@@ -199,7 +199,11 @@ impl LaneKernel for Shadows<'_, '_> {
                 let lit = valid & faces;
                 let reach = dist * Lanes::splat(SHADOW_REACH);
                 let blocked = if Lanes::any(lit) {
-                    let rays = (c.lanes3(i, ORIGIN), dir, c.lane(i, TIME));
+                    let rays = RayOf {
+                        origin: c.lanes3(i, ORIGIN),
+                        dir,
+                        time: c.lane(i, TIME),
+                    };
                     t.scene.occluded_lanes(rays, reach, !lit)
                 } else {
                     !lit

@@ -116,9 +116,10 @@ impl Tracer<'_> {
         {
             // A surface whose light is all it has (diffuse): its shadow rays queued, no
             // children, without an Interaction or a Scatter built for it.
-            let (_, n_geom, n_shade) = Arrival::facing(ray.dir, &hit.surface);
+            let f = Arrival::facing(ray.dir, &hit.surface);
             let lights = &mut queue.lights;
-            let local = self.queue_shadows(&at, n_geom, n_shade, &direct, &mut slot.rng, lights);
+            let local =
+                self.queue_shadows(&at, f.n_geom, f.n_shade, &direct, &mut slot.rng, lights);
             return value(local, Color::ONE, queue);
         }
         let (tr, weight) = segment.to_hit(hit.surface.t, node.weight);
@@ -290,11 +291,11 @@ impl Tracer<'_> {
         w: &mut Walk<NoRecorder>,
         queue: &mut Queue,
     ) -> u32 {
-        let (entering, n_geom, _) = Arrival::facing(at.ray.dir, &at.hit.surface);
+        let f = Arrival::facing(at.ray.dir, &at.hit.surface);
         let from = From {
             at,
-            entering,
-            n_geom,
+            entering: f.entering,
+            n_geom: f.n_geom,
         };
         w.stats.count_tir(split.total_internal_reflection());
         let before = w.stats.total_rays();
