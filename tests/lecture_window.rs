@@ -1,11 +1,14 @@
-//! The lecture in the window, driven as a lecturer would: the Lecture menu, presentation
-//! mode and a clicker's keys, every slide's caption, the shortcut list.
+//! The lecture in the window, driven as a lecturer would: the Lecture menu, every slide's
+//! scene, caption and controls, the pixel a slide inspects. (Presentation mode and a
+//! clicker's keys: `presentation_window.rs`.)
 // The window's own: built with the window (the `gui` feature) only.
 #![cfg(feature = "gui")]
 // Its helpers unwrap as its tests do: a failure there fails the test (clippy.toml allows
 // unwrap in #[test] functions only).
 #![allow(clippy::unwrap_used)]
 
+#[path = "common/slides.rs"]
+mod slides;
 #[path = "common/window.rs"]
 mod window;
 
@@ -15,6 +18,7 @@ use egui_kittest::kittest::Queryable;
 use raylab::app::RaylabApp;
 use raylab::lecture::{Comparison, Instrument, LECTURE};
 use raylab::params::{Kind, TABLE, spec};
+use slides::{presses_in_one_frame, texts, wait_for_slide};
 use window::{app, app_sized, choose_from_menu, step_until};
 
 #[test]
@@ -42,74 +46,6 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.get_by_label("Sample patterns").click();
     h.run_steps(3);
     h.get_by_label("Point on the lens");
-}
-
-/// Steps until slide `i` is shown: its scene loaded, its caption up, a frame of its
-/// picture on screen (the strip's words wait for it).
-fn wait_for_slide(h: &mut Harness<'static, RaylabApp>, i: usize) {
-    let (title, scene) = (LECTURE[i].title, LECTURE[i].scene);
-    step_until(h, title, |a| {
-        // Not loading: a slide on the scene already shown must still arrive.
-        !a.is_loading()
-            && a.slide() == Some(i)
-            && a.scene().source.reference() == format!("builtin:{scene}")
-            && a.caption().is_some()
-            && a.latest_frame()
-                .is_some_and(|f| f.generation == a.engine().generation())
-    });
-}
-
-/// `n` presses of `key` that land in one frame, then its release.
-fn presses_in_one_frame(h: &mut Harness<'static, RaylabApp>, key: egui::Key, n: usize) {
-    for pressed in [vec![true; n], vec![false]].concat() {
-        h.input_mut().events.push(egui::Event::Key {
-            key,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-            repeat: false,
-            physical_key: None,
-        });
-    }
-    h.step();
-}
-
-#[test]
-fn presentation_mode_steps_through_the_slides_with_a_clickers_keys() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut h = app("default", dir.path());
-    h.step();
-    let shows = wait_for_slide;
-    h.key_press(egui::Key::F5);
-    h.step();
-    assert!(h.state().presenting(), "F5 enters presentation mode");
-    // The toolbar and the controls are hidden.
-    assert!(h.query_by_label("Instruments").is_none());
-    assert!(h.query_by_role_and_label(Role::Slider, "IOR").is_none());
-    h.key_press(egui::Key::PageDown);
-    shows(&mut h, 0);
-    h.key_press(egui::Key::ArrowRight);
-    shows(&mut h, 1);
-    h.key_press(egui::Key::PageUp);
-    shows(&mut h, 0);
-    // Before the first slide there is none: Page Up stays.
-    h.key_press(egui::Key::ArrowLeft);
-    h.run_steps(3);
-    assert_eq!(h.state().slide(), Some(0));
-    // Three presses that land in one frame (a quick clicker, xdotool) step three slides.
-    // (The harness's own key_press gives each event a frame of its own.)
-    presses_in_one_frame(&mut h, egui::Key::PageDown, 3);
-    assert_eq!(h.state().slide(), Some(3));
-    shows(&mut h, 3);
-    presses_in_one_frame(&mut h, egui::Key::PageUp, 3);
-    assert_eq!(h.state().slide(), Some(0));
-    shows(&mut h, 0);
-    // The caption is on screen, in the strip below the image.
-    let caption = h.state().caption().unwrap().to_string();
-    h.get_by_label(&caption);
-    h.key_press(egui::Key::Escape);
-    h.step();
-    assert!(!h.state().presenting(), "Esc leaves");
-    h.get_by_label("Instruments");
 }
 
 #[test]
@@ -176,23 +112,6 @@ fn a_slides_title_and_controls_come_with_its_picture() {
         wait_for_slide(&mut h, to);
         from = to;
     }
-}
-
-#[test]
-fn f1_lists_every_shortcut_and_esc_closes_the_list() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut h = app("default", dir.path());
-    h.step();
-    h.key_press(egui::Key::F1);
-    h.run_steps(2);
-    assert!(h.state().help_open());
-    h.get_by_label("Keyboard shortcuts");
-    h.get_by_label("F5 or F11");
-    h.get_by_label("Page Down, Right or Down arrow");
-    h.key_press(egui::Key::Escape);
-    h.run_steps(2);
-    assert!(!h.state().help_open());
-    assert!(h.query_by_label("F5 or F11").is_none());
 }
 
 /// Whether `text` names the control `label` as the panel writes it (a whole word or
@@ -404,50 +323,6 @@ fn every_slide_can_be_taught_without_leaving_presentation_mode() {
     }
 }
 
-#[test]
-fn presentation_mode_shows_progress_and_space_does_not_pause_it() {
-    let dir = tempfile::tempdir().unwrap();
-    let mut h = app_sized("default", dir.path(), (1920.0, 1080.0));
-    h.step();
-    h.key_press(egui::Key::F5);
-    h.key_press(egui::Key::PageDown);
-    wait_for_slide(&mut h, 0);
-    step_until(&mut h, "a full frame", |a| {
-        a.latest_frame().is_some_and(|f| !f.is_preview())
-    });
-    h.run_steps(2);
-    let target = LECTURE[0]
-        .params
-        .iter()
-        .find(|(n, _)| *n == "spp")
-        .unwrap()
-        .1;
-    assert!(
-        h.query_all_by_label_contains(&format!("/ {target} spp"))
-            .next()
-            .is_some(),
-        "the samples done of the target"
-    );
-    // A clicker's Space leaves the lecture refining.
-    h.key_press(egui::Key::Space);
-    h.run_steps(2);
-    assert!(h.query_all_by_label_contains("paused").next().is_none());
-    // Out of presentation the window's own sizes are back, Space pauses, and
-    // presentation mode says so.
-    h.key_press(egui::Key::Escape);
-    h.run_steps(2);
-    let large: Vec<_> = texts(&h).into_iter().filter(|(p, _)| *p > 25.0).collect();
-    assert!(large.is_empty(), "the hall's sizes stayed: {large:?}");
-    h.key_press(egui::Key::Space);
-    h.run_steps(2);
-    h.key_press(egui::Key::F5);
-    h.run_steps(2);
-    assert!(
-        h.query_all_by_label_contains("paused").next().is_some(),
-        "paused, shown in presentation mode"
-    );
-}
-
 /// Clicks the image where the pinhole ray meets object `name` first (the first such point
 /// of a 40 × 24 grid over the image, fitted in the middle of its area).
 fn click_on(h: &mut Harness<'static, RaylabApp>, name: &str) {
@@ -547,153 +422,4 @@ fn an_ab_slides_progress_is_its_slowest_sides() {
         h.query_all_by_label_contains("/ 256 spp").next().is_some(),
         "side B's target"
     );
-}
-
-/// Every piece of text the last frame drew where it can be seen: its size (points) and
-/// its words.
-fn texts(h: &Harness<'static, RaylabApp>) -> Vec<(f32, String)> {
-    fn walk(shape: &egui::Shape, clip: egui::Rect, out: &mut Vec<(f32, String)>) {
-        match shape {
-            egui::Shape::Vec(shapes) => shapes.iter().for_each(|s| walk(s, clip, out)),
-            egui::Shape::Text(t) => {
-                let rect = t.galley.rect.translate(t.pos.to_vec2());
-                if !rect.intersects(clip) {
-                    return;
-                }
-                let job = &t.galley.job;
-                for section in &job.sections {
-                    let r = &section.byte_range;
-                    let text = &job.text[r.start.0..r.end.0];
-                    if !text.trim().is_empty() {
-                        out.push((section.format.font_id.size, text.to_string()));
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    let screen = h.ctx.content_rect();
-    let mut out = Vec::new();
-    for clipped in &h.output().shapes {
-        walk(
-            &clipped.shape,
-            clipped.clip_rect.intersect(screen),
-            &mut out,
-        );
-    }
-    out
-}
-
-/// Whether `text` is a number as plots write them ("0.5", "30", "−0.1", "90°").
-fn numeric(text: &str) -> bool {
-    text.chars()
-        .all(|c| c.is_ascii_digit() || " .,-−+°%".contains(c))
-}
-
-#[test]
-fn every_text_in_presentation_mode_is_the_captions_size() {
-    present_every_slide(|h, slide, size| {
-        let caption = size.1 / 26.0;
-        let seen = texts(h);
-        assert!(seen.len() >= 3, "{}: {seen:?}", slide.title);
-        for (points, text) in seen {
-            // Numbers in plots may be half the caption's size; every word is its size.
-            let least = if numeric(&text) {
-                caption / 2.0
-            } else {
-                caption
-            };
-            assert!(
-                points >= least - 0.01,
-                "`{}` at {size:?}: `{text}` is {points:.1} points, under {least:.1}",
-                slide.title
-            );
-        }
-    });
-}
-
-/// Shows every slide in presentation mode, on a projector's 1920 × 1080 and a laptop's
-/// 1280 × 720, and calls `check` on each once it is shown.
-fn present_every_slide(
-    mut check: impl FnMut(&mut Harness<'static, RaylabApp>, &raylab::lecture::Slide, (f32, f32)),
-) {
-    let dir = tempfile::tempdir().unwrap();
-    for size in [(1920.0, 1080.0), (1280.0, 720.0)] {
-        let mut h = app_sized("default", dir.path(), size);
-        h.step();
-        h.key_press(egui::Key::F5);
-        for (i, slide) in LECTURE.iter().enumerate() {
-            h.key_press(egui::Key::PageDown);
-            wait_for_slide(&mut h, i);
-            h.run_steps(4);
-            check(&mut h, slide, size);
-        }
-    }
-}
-
-/// The rows the last frame laid the text `text` out in, if it drew it.
-fn rows_of(h: &Harness<'static, RaylabApp>, text: &str) -> Option<usize> {
-    fn walk(shape: &egui::Shape, text: &str) -> Option<usize> {
-        match shape {
-            egui::Shape::Vec(shapes) => shapes.iter().find_map(|s| walk(s, text)),
-            egui::Shape::Text(t) if t.galley.job.text == text => Some(t.galley.rows.len()),
-            _ => None,
-        }
-    }
-    h.output().shapes.iter().find_map(|c| walk(&c.shape, text))
-}
-
-#[test]
-fn every_caption_fits_in_three_lines_in_a_hall() {
-    let mut long = Vec::new();
-    present_every_slide(|h, slide, size| {
-        let caption = h.state().caption().unwrap();
-        let rows = rows_of(h, &caption).expect("the caption is drawn");
-        if rows > 3 {
-            long.push(format!("`{}` at {size:?}: {rows} lines", slide.title));
-        }
-    });
-    assert!(long.is_empty(), "captions over three lines: {long:#?}");
-}
-
-/// Where the last frame drew the text starting with `start`, if it drew it.
-fn text_rect(h: &Harness<'static, RaylabApp>, start: &str) -> Option<egui::Rect> {
-    fn walk(shape: &egui::Shape, start: &str) -> Option<egui::Rect> {
-        match shape {
-            egui::Shape::Vec(shapes) => shapes.iter().find_map(|s| walk(s, start)),
-            egui::Shape::Text(t) if t.galley.job.text.starts_with(start) => {
-                Some(t.galley.rect.translate(t.pos.to_vec2()))
-            }
-            _ => None,
-        }
-    }
-    h.output().shapes.iter().find_map(|c| walk(&c.shape, start))
-}
-
-#[test]
-fn messages_keep_clear_of_a_slides_caption() {
-    let dir = tempfile::tempdir().unwrap();
-    for presenting in [false, true] {
-        let mut h = app_sized("default", dir.path(), (1280.0, 720.0));
-        h.step();
-        let slide = &LECTURE[1];
-        choose_from_menu(&mut h, "Lecture", &format!("2. {}", slide.title));
-        wait_for_slide(&mut h, 1);
-        if presenting {
-            h.key_press(egui::Key::F5);
-            h.run_steps(3);
-        }
-        // A message: nothing to undo on a slide just opened.
-        h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
-        h.run_steps(3);
-        let message = text_rect(&h, "Nothing to undo").expect("the message is shown");
-        let caption = h.state().caption().unwrap();
-        let first_words: String = caption.chars().take(12).collect();
-        let caption = text_rect(&h, &first_words).expect("the caption is shown");
-        // The caption's text spans its block: clear of it means above or below it.
-        assert!(
-            message.max.y < caption.min.y || message.min.y > caption.max.y,
-            "presenting {presenting}: the message {message:?} covers the caption {caption:?}"
-        );
-    }
 }
