@@ -15,7 +15,7 @@ mod window;
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use raylab::app::RaylabApp;
+use raylab::app::{Open, RaylabApp};
 use raylab::lecture::{Comparison, Instrument, LECTURE};
 use raylab::params::{Kind, TABLE, spec};
 use slides::{presses_in_one_frame, texts, wait_for_slide};
@@ -422,4 +422,76 @@ fn an_ab_slides_progress_is_its_slowest_sides() {
         h.query_all_by_label_contains("/ 256 spp").next().is_some(),
         "side B's target"
     );
+}
+
+/// What slide `i` opens beside and over its image, as the slide declares it.
+fn declared(i: usize) -> Open {
+    let slide = &LECTURE[i];
+    let has = |kind: fn(&Instrument) -> bool| slide.instruments.iter().any(kind);
+    let workbench = has(|i| matches!(i, Instrument::Workbench { .. }));
+    Open {
+        fresnel_plot: has(|i| matches!(i, Instrument::FresnelPlot { .. })),
+        section: has(|i| matches!(i, Instrument::Section { .. })),
+        workbench,
+        outline: workbench,
+        inspected: slide.inspected_pixel((960, 540)).is_some(),
+        sides: slide.compare.map_or(0, |c| c.dividers(0.5).len()),
+    }
+}
+
+#[test]
+fn a_slide_opens_what_it_shows_and_nothing_is_left_from_the_last() {
+    // Forwards, backwards and in jumps across the lecture by its menu: each slide shows
+    // its own instruments, outline and A/B view, and none of the slide before it.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("default", dir.path());
+    h.step();
+    let n = LECTURE.len();
+    let forwards = 0..n;
+    let backwards = (0..n - 1).rev();
+    // Each slide to the one 7 on (7 and 19 have no common factor: every slide, and from
+    // every other distance than 1).
+    let jumps = (1..=n).map(|k| k * 7 % n);
+    // Last, the slide that opens the most: the lecture is left from there.
+    let opens = |o: Open| {
+        [
+            o.fresnel_plot,
+            o.section,
+            o.workbench,
+            o.outline,
+            o.inspected,
+        ]
+        .into_iter()
+        .filter(|&b| b)
+        .count()
+            + o.sides
+    };
+    let busiest = (0..n).max_by_key(|&i| opens(declared(i))).unwrap();
+    assert!(opens(declared(busiest)) >= 2);
+    let mut from = None;
+    for to in forwards.chain(backwards).chain(jumps).chain([busiest]) {
+        choose_from_menu(
+            &mut h,
+            "Lecture",
+            &format!("{}. {}", to + 1, LECTURE[to].title),
+        );
+        wait_for_slide(&mut h, to);
+        // The tree a slide inspects may need photons: it arrives on its own thread.
+        if declared(to).inspected {
+            step_until(&mut h, "the inspected tree", |a| a.open().inspected);
+        }
+        assert_eq!(
+            h.state().open(),
+            declared(to),
+            "slide {} after {from:?}",
+            to + 1
+        );
+        from = Some(to + 1);
+    }
+    // Out of the lecture: nothing of the last slide stays.
+    h.state_mut().open_scene("default");
+    step_until(&mut h, "the scene", |a| {
+        !a.is_loading() && a.slide().is_none() && a.scene().name == "default"
+    });
+    assert_eq!(h.state().open(), Open::default());
 }

@@ -97,14 +97,21 @@ impl RaylabApp {
 
     /// The A/B compare menu.
     pub(super) fn compare_menu_ui(&mut self, ui: &mut egui::Ui) {
+        // The comparison shown is marked, whether a slide or the menu started it.
+        let on = self.compare.as_ref().map(|c| match &c.kind {
+            CompareKind::Lecture(k) => Some(*k),
+            CompareKind::Frozen(_) => None,
+        });
         for (label, c) in Comparison::PRESETS {
-            if ui.button(label).clicked() {
+            let shown = on == Some(Some(c));
+            if ui.selectable_label(shown, label).clicked() {
                 self.start_compare(ui.ctx(), CompareKind::Lecture(c), c.dividers(0.5));
                 ui.close();
             }
         }
+        let shown = on == Some(None);
         let frozen = ui
-            .button("the controls | frozen copy")
+            .selectable_label(shown, "the controls | frozen copy")
             .on_hover_text("B keeps the parameters as they are now; change A with the controls.");
         if frozen.clicked() {
             let kind = CompareKind::Frozen(self.settings.params.clone());

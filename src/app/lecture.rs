@@ -168,7 +168,7 @@ impl RaylabApp {
             Ok(p) => self.settings.params = p,
             Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
         }
-        self.compare = None;
+        self.leave_slide();
         let fresnel_metal = slide.instruments.iter().find_map(|i| match i {
             Instrument::FresnelPlot { metal } => Some(*metal),
             _ => None,
@@ -178,8 +178,6 @@ impl RaylabApp {
         i.fresnel_metal = fresnel_metal
             .flatten()
             .and_then(|name| crate::material::METALS.iter().position(|m| m.name == name));
-        i.show_section = false;
-        i.hall_tab = None;
         for instrument in slide.instruments {
             match *instrument {
                 Instrument::Section { zoom, .. } => {
@@ -190,12 +188,30 @@ impl RaylabApp {
                 Instrument::Workbench { angle, out } => {
                     i.show_section = true;
                     i.section.mode = SectionMode::Workbench;
+                    i.section.outline = true;
                     i.section.angle = angle;
                     i.section.out = out;
                 }
                 Instrument::FresnelPlot { .. } | Instrument::RayTree { .. } => {}
             }
         }
+    }
+
+    /// Clears whatever a slide can show: its A/B view, its instruments (the Fresnel plot,
+    /// the section view or workbench and the workbench's outline of the image), the
+    /// inspected pixel and clicks that inspect. The next slide sets what it shows itself;
+    /// a scene that is no slide starts without them.
+    pub(super) fn leave_slide(&mut self) {
+        self.compare = None;
+        let i = &mut self.instruments;
+        i.show_fresnel = false;
+        i.fresnel_metal = None;
+        i.show_section = false;
+        // The workbench's outline is drawn while the workbench is the section's mode.
+        i.section.mode = SectionMode::Pixel;
+        i.hall_tab = None;
+        i.inspect_mode = false;
+        i.forget_inspection();
     }
 
     /// Once `slide`'s scene is shown: its A/B view and the pixel its inspector shows.

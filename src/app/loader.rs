@@ -183,10 +183,14 @@ impl RaylabApp {
                     self.history.clear();
                     s.params = scene.params.clone();
                     s.camera = scene.camera.clone();
+                    let was_slide = self.lecture.shown().is_some();
                     slide = self.lecture.arrived(&scene);
                     if let Some(slide) = slide {
                         self.hold_strip_words();
                         self.arrive_at_slide(slide, &scene.params);
+                    } else if was_slide {
+                        // Out of the lecture: nothing of the last slide stays.
+                        self.leave_slide();
                     }
                 }
                 LoadPurpose::Reload => {

@@ -47,6 +47,7 @@ use loader::Loader;
 use present::Hall;
 use sheet::SheetForm;
 use side::{Side, Told};
+pub use state::Open;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};

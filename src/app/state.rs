@@ -2,11 +2,29 @@
 //! public accessors) and by its own modules (the sides of an A/B view, the progress).
 
 use super::RaylabApp;
+use super::instruments::SectionMode;
 use super::side::Side;
 use crate::params::Params;
 use crate::render::Frame;
 use crate::scene::Scene;
 use crate::tracer::RayTree;
+
+/// What is open beside and over the image ([`RaylabApp::open`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Open {
+    /// The Fresnel plot.
+    pub fresnel_plot: bool,
+    /// The section view of a pixel's ray tree.
+    pub section: bool,
+    /// The section view on the interface workbench.
+    pub workbench: bool,
+    /// The workbench's outline over the image.
+    pub outline: bool,
+    /// An inspected pixel (its tree drawn over the image).
+    pub inspected: bool,
+    /// The A/B view's sides after A (0: no A/B view).
+    pub sides: usize,
+}
 
 impl RaylabApp {
     /// The scene shown.
@@ -75,6 +93,19 @@ impl RaylabApp {
     /// are computed.
     pub fn outlined_pixels(&self) -> Option<usize> {
         self.instruments.section.outlined()
+    }
+
+    /// What is open beside and over the image: what a slide opens, and must close.
+    pub fn open(&self) -> Open {
+        let i = &self.instruments;
+        Open {
+            fresnel_plot: i.show_fresnel,
+            section: i.show_section && i.section.mode == SectionMode::Pixel,
+            workbench: i.show_section && i.section.mode == SectionMode::Workbench,
+            outline: i.outline_shown(),
+            inspected: i.inspection.is_some(),
+            sides: self.compare.as_ref().map_or(0, |c| c.sides.len()),
+        }
     }
 
     /// Whether presentation mode is on.

@@ -175,10 +175,14 @@ impl RaylabApp {
         self.compare_overlay_ui(ui, image_rect);
         let ctx = ui.ctx().clone();
         let s = &self.settings;
-        if let Some(outline) =
-            self.instruments
-                .section
-                .outline_texture(&ctx, &self.scene, &s.camera, &s.params, size)
+        if self.instruments.outline_shown()
+            && let Some(outline) = self.instruments.section.outline_texture(
+                &ctx,
+                &self.scene,
+                &s.camera,
+                &s.params,
+                size,
+            )
         {
             let whole = Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
             ui.painter_at(image_rect.intersect(ui.min_rect())).image(

@@ -98,6 +98,12 @@ impl Instruments {
         self.inspection.as_ref().map(|i| &i.tree)
     }
 
+    /// Whether the workbench's outline is laid over the image: while the section view is
+    /// open on the workbench, with its outline on.
+    pub(crate) fn outline_shown(&self) -> bool {
+        self.show_section && self.section.outline && self.section.mode == SectionMode::Workbench
+    }
+
     /// No pixel inspected, and none being traced.
     pub(crate) fn forget_inspection(&mut self) {
         self.inspection = None;

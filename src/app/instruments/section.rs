@@ -95,7 +95,7 @@ impl SectionState {
     }
 
     /// The outline of the pixels that meet a dielectric within the band of the workbench's
-    /// angle, for the image of `size` seen through `camera` with `params`: a texture to lay
+    /// angle (asked while [`super::Instruments::outline_shown`]), for the image of `size` seen through `camera` with `params`: a texture to lay
     /// over the image, once the angles are computed (on a thread of its own, started here
     /// the first time they are asked for).
     pub(crate) fn outline_texture(
@@ -106,9 +106,6 @@ impl SectionState {
         params: &Params,
         size: (u32, u32),
     ) -> Option<&egui::TextureHandle> {
-        if !(self.outline && self.mode == SectionMode::Workbench) {
-            return None;
-        }
         let key = IncidenceKey {
             scene: Arc::as_ptr(scene) as usize,
             camera: camera.clone(),
