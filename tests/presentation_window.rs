@@ -233,3 +233,32 @@ fn messages_keep_clear_of_a_slides_caption() {
         );
     }
 }
+
+#[test]
+fn no_tooltip_covers_a_slide_in_presentation_mode() {
+    // Resting the mouse on the strip's IOR slider (as after a drag) shows no tooltip in
+    // presentation mode; at the desk the same rest shows it.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app_sized("default", dir.path(), (1920.0, 1080.0));
+    h.step();
+    choose_from_menu(&mut h, "Lecture", &format!("2. {}", LECTURE[1].title));
+    wait_for_slide(&mut h, 1);
+    let tip = raylab::params::spec("ior").unwrap().tooltip();
+    let rest_on_the_ior_slider = |h: &mut Harness<'static, RaylabApp>| {
+        let slider = h.get_by_role_and_label(Role::Slider, "IOR").rect();
+        h.hover_at(slider.center());
+        // Each step is a quarter second: three seconds' rest.
+        h.run_steps(12);
+        h.query_by_label(&tip).is_some()
+    };
+    h.key_press(egui::Key::F5);
+    h.run_steps(3);
+    assert!(h.state().presenting());
+    assert!(
+        !rest_on_the_ior_slider(&mut h),
+        "a tooltip in presentation mode"
+    );
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    assert!(rest_on_the_ior_slider(&mut h), "no tooltip at the desk");
+}

@@ -53,6 +53,11 @@ pub(crate) fn hall_style(style: &mut egui::Style, size: f32) {
     s.button_padding = egui::vec2(size * 0.3, size * 0.1);
     // Labels as bright as the caption's text: grey is lost on a projector.
     style.visuals.override_text_color = Some(Color32::from_gray(235));
+    // No tooltips: the caption explains, and a tooltip left where a slider was released
+    // covers the title and image for as long as the mouse rests. (egui waits this long
+    // for the mouse to be still; an infinite wait asks for no repaint.)
+    style.interaction.tooltip_delay = f32::INFINITY;
+    style.interaction.tooltip_grace_time = 0.0;
 }
 
 /// What the hall adds to the window's state.
