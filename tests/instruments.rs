@@ -338,3 +338,28 @@ fn a_tree_that_needs_photons_is_traced_off_the_windows_thread_and_arrives() {
     let (tree, _) = tracer.inspect(pixel.0, pixel.1, 0);
     assert_eq!(a.inspected_tree(), Some(&tree));
 }
+
+#[test]
+fn sample_patterns_mark_the_lens_and_the_shutter_only_where_the_camera_uses_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let lens = "Point on the lens";
+    let time = "Time in the shutter interval";
+    let mut h = app("default", dir.path());
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("Sample patterns").click();
+    h.run_steps(3);
+    // A pinhole with a shutter of 0: neither panel has marks, and each says why.
+    h.get_by_label("Point on the lens: none, a pinhole (aperture 0)");
+    h.query_all_by_label_contains("Time in the shutter interval: none")
+        .next()
+        .expect("the shutter's panel says it is unused");
+    assert!(h.query_by_label(lens).is_none());
+    // An aperture: the lens samples are drawn.
+    h.get_by_role_and_label(Role::Slider, "Aperture")
+        .set_value_accesskit(0.1);
+    h.run_steps(3);
+    h.get_by_label(lens);
+    assert!(h.query_by_label(time).is_none());
+}

@@ -45,7 +45,8 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.run_steps(3);
     h.get_by_label("Sample patterns").click();
     h.run_steps(3);
-    h.get_by_label("Point on the lens");
+    // The slide's camera is a pinhole.
+    h.get_by_label("Point on the lens: none, a pinhole (aperture 0)");
 }
 
 #[test]

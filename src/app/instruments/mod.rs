@@ -322,7 +322,7 @@ impl RaylabApp {
             if !head(ui, Tab::Patterns) {
                 i.show_patterns = false;
             }
-            patterns::sample_pattern_ui(ui, params.pattern, params.spp, params.seed);
+            patterns::sample_pattern_ui(ui, params);
             ui.separator();
         }
         if self.sheet.is_some() && shows(Tab::Sheet) {

@@ -1,13 +1,13 @@
 //! Where one pixel's samples fall: in the pixel, on the lens, in the shutter interval.
 
-/// Where the samples of one pixel fall, for the current pattern and count: the image
-/// position inside the pixel, the point on the lens, and the time in the shutter.
-pub(crate) fn sample_pattern_ui(
-    ui: &mut egui::Ui,
-    pattern: crate::math::Pattern,
-    spp: u32,
-    seed: u64,
-) {
+/// Where the samples of one pixel fall, for the parameters' pattern and count: the image
+/// position inside the pixel, the point on the lens, and the time in the shutter. A
+/// pinhole (aperture 0) uses no point on the lens and a shutter of 0 no time: their
+/// panels say so, with no marks.
+pub(crate) fn sample_pattern_ui(ui: &mut egui::Ui, params: &crate::params::Params) {
+    let (pattern, spp, seed) = (params.pattern, params.spp, params.seed);
+    let lens_used = params.aperture > 0.0;
+    let time_used = params.shutter > 0.0;
     use crate::camera::CameraSample;
     use crate::math::SampleStream;
     use crate::math::sampling::concentric_disk;
@@ -33,7 +33,7 @@ pub(crate) fn sample_pattern_ui(
         let side = 200.0;
         for (title, is_lens) in [
             ("Position in the pixel", false),
-            ("Point on the lens", true),
+            (LENS_TITLE[usize::from(lens_used)], true),
         ] {
             ui.vertical(|ui| {
                 ui.label(title);
@@ -70,7 +70,11 @@ pub(crate) fn sample_pattern_ui(
                         }
                     }
                 }
-                let points = if is_lens { &lens } else { &pixel };
+                let points = match (is_lens, lens_used) {
+                    (false, _) => &pixel,
+                    (true, true) => &lens,
+                    (true, false) => &Vec::new(),
+                };
                 for q in points {
                     let q = if is_lens {
                         (*q + glam::Vec2::ONE) / 2.0
@@ -86,11 +90,11 @@ pub(crate) fn sample_pattern_ui(
             });
         }
     });
-    ui.label("Time in the shutter interval");
+    ui.label(TIME_TITLE[usize::from(time_used)]);
     let (rect, _) = ui.allocate_exact_size(egui::vec2(408.0, 24.0), egui::Sense::hover());
     let p = ui.painter_at(rect);
     p.rect_filled(rect, 0.0, egui::Color32::from_gray(30));
-    for t in &time {
+    for t in time.iter().filter(|_| time_used) {
         let x = rect.min.x + t * rect.width();
         p.line_segment(
             [
@@ -101,3 +105,15 @@ pub(crate) fn sample_pattern_ui(
         );
     }
 }
+
+/// The lens panel's title: unused (a pinhole), used.
+const LENS_TITLE: [&str; 2] = [
+    "Point on the lens: none, a pinhole (aperture 0)",
+    "Point on the lens",
+];
+
+/// The shutter panel's title: unused (shutter 0), used.
+const TIME_TITLE: [&str; 2] = [
+    "Time in the shutter interval: none, the shutter is 0 (every sample at its opening)",
+    "Time in the shutter interval",
+];
