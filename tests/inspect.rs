@@ -108,3 +108,21 @@ fn the_tree_says_why_each_branch_ended() {
         assert!(ends.contains(end), "no branch ended by {end}: {ends:?}");
     }
 }
+
+#[test]
+fn the_metals_scene_shows_the_sky_along_its_top_edge_not_its_softbox() {
+    // The softbox lights the metals' highlights from above the frame: seen directly it
+    // was a white band across the top of slides 1 and 6.
+    let scene = Scene::load("metals").unwrap();
+    let (w, h) = (scene.width, scene.height);
+    let tracer = Tracer::new(&scene, &scene.params, w, h);
+    for x in (0..w).step_by(40) {
+        for sample in 0..4 {
+            let (tree, _) = tracer.inspect(x, 0, sample);
+            let hit = tree.nodes[0]
+                .hit
+                .map(|h| &scene.object_names[h.object as usize]);
+            assert_eq!(hit, None, "pixel ({x}, 0), sample {sample}");
+        }
+    }
+}
