@@ -340,7 +340,7 @@ fn a_tree_that_needs_photons_is_traced_off_the_windows_thread_and_arrives() {
 }
 
 #[test]
-fn sample_patterns_mark_the_lens_and_the_shutter_only_where_the_camera_uses_them() {
+fn sample_patterns_say_when_the_camera_takes_no_point_on_the_lens_or_no_time() {
     let dir = tempfile::tempdir().unwrap();
     let lens = "Point on the lens";
     let time = "Time in the shutter interval";

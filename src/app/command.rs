@@ -299,18 +299,18 @@ impl Entry {
 
 /// What decides which keys are live in a frame.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct KeyState {
-    pub(crate) presenting: bool,
+struct KeyState {
+    presenting: bool,
     /// The list of shortcuts is shown.
-    pub(crate) help: bool,
+    help: bool,
     /// A text field has the keyboard, or a file dialog is open.
-    pub(crate) busy: bool,
+    busy: bool,
 }
 
 /// The commands this frame's key events (and typed text) ask for, in order, every press
 /// counted (three quick clicks of a presentation clicker can land in one frame); the
 /// events taken are consumed, so that no widget also acts on them.
-pub(crate) fn read_keys(ctx: &Context, state: KeyState) -> Vec<Command> {
+fn commands_of_keys(ctx: &Context, state: KeyState) -> Vec<Command> {
     let live = |when: When| match when {
         When::Always => true,
         When::Free => !state.busy,
@@ -395,7 +395,7 @@ impl RaylabApp {
             help: self.hall.help,
             busy: ctx.egui_wants_keyboard_input() || self.dialog.is_some(),
         };
-        let keys = read_keys(ctx, state);
+        let keys = commands_of_keys(ctx, state);
         self.commands.extend(keys);
     }
 
@@ -518,7 +518,7 @@ mod tests {
             ..Default::default()
         };
         let _ = ctx.run_ui(input, |ui| {
-            out.0 = read_keys(ui.ctx(), state);
+            out.0 = commands_of_keys(ui.ctx(), state);
             out.1 = ui.input(|i| i.events.len());
         });
         out

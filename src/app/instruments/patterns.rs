@@ -70,10 +70,10 @@ pub(crate) fn sample_pattern_ui(ui: &mut egui::Ui, params: &crate::params::Param
                         }
                     }
                 }
-                let points = match (is_lens, lens_used) {
+                let points: &[glam::Vec2] = match (is_lens, lens_used) {
                     (false, _) => &pixel,
                     (true, true) => &lens,
-                    (true, false) => &Vec::new(),
+                    (true, false) => &[],
                 };
                 for q in points {
                     let q = if is_lens {

@@ -12,7 +12,7 @@ use crossbeam_channel::{Receiver, TryRecvError};
 use std::sync::Arc;
 
 /// What a pixel's tree is traced with.
-#[derive(Clone, PartialEq)]
+#[derive(Clone)]
 struct Asked {
     pixel: (u32, u32),
     size: (u32, u32),
@@ -20,11 +20,12 @@ struct Asked {
     camera: Camera,
 }
 
-/// A tree being traced on a thread of its own, and the newest asked for meanwhile (traced
-/// next: one thread at a time, and no tree the controls have already left behind).
+/// A tree being traced on a thread of its own, and the pixel (and image size) last asked
+/// for meanwhile: traced next, with the controls as they are then (one thread at a time,
+/// and no tree the controls have already left behind).
 pub(crate) struct Tracing {
     done: Receiver<Inspection>,
-    next: Option<Asked>,
+    next: Option<((u32, u32), (u32, u32))>,
 }
 
 /// Traces sample 0 of the pixel asked, as the first pass does (with its photons, where
@@ -63,6 +64,10 @@ impl RaylabApp {
     /// Traces the tree of `pixel`'s first sample with the current parameters and camera,
     /// for the inspector, the section view and the overlay.
     pub(crate) fn inspect(&mut self, ctx: &egui::Context, pixel: (u32, u32), size: (u32, u32)) {
+        if let Some(tracing) = &mut self.instruments.tracing {
+            tracing.next = Some((pixel, size));
+            return;
+        }
         let s = &self.settings;
         let asked = Asked {
             pixel,
@@ -70,10 +75,6 @@ impl RaylabApp {
             params: s.params.clone(),
             camera: s.camera.clone(),
         };
-        if let Some(tracing) = &mut self.instruments.tracing {
-            tracing.next = Some(asked);
-            return;
-        }
         let mut tracer = Tracer::with_camera(&self.scene, &s.camera, &s.params, size.0, size.1);
         let aside = tracer
             .gathers_photons()
@@ -97,17 +98,14 @@ impl RaylabApp {
         };
         let next = tracing.next.take();
         self.instruments.tracing = None;
-        let traced_asked = traced.as_ref().map(|i| Asked {
-            pixel: i.pixel,
-            size: i.size,
-            params: i.params.clone(),
-            camera: i.camera.clone(),
-        });
+        let traced_at = traced.as_ref().map(|i| (i.pixel, i.size));
         if traced.is_some() {
             self.instruments.inspection = traced;
         }
-        if let Some(next) = next.filter(|n| Some(n) != traced_asked.as_ref()) {
-            self.inspect(ctx, next.pixel, next.size);
+        // Another pixel asked for meanwhile; the same one with other controls is traced
+        // again by `refresh_inspection`, which compares them.
+        if let Some((pixel, size)) = next.filter(|&n| Some(n) != traced_at) {
+            self.inspect(ctx, pixel, size);
         }
     }
 
