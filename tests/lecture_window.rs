@@ -46,7 +46,7 @@ fn a_lecture_slide_loads_its_scene_parameters_and_caption() {
     h.get_by_label("Sample patterns").click();
     h.run_steps(3);
     // The slide's camera is a pinhole.
-    h.get_by_label("Point on the lens: none, a pinhole (aperture 0)");
+    h.get_by_label("None: a pinhole (aperture 0)");
 }
 
 #[test]

@@ -33,7 +33,7 @@ pub(crate) fn sample_pattern_ui(ui: &mut egui::Ui, params: &crate::params::Param
         let side = 200.0;
         for (title, is_lens) in [
             ("Position in the pixel", false),
-            (LENS_TITLE[usize::from(lens_used)], true),
+            ("Point on the lens", true),
         ] {
             ui.vertical(|ui| {
                 ui.label(title);
@@ -87,6 +87,9 @@ pub(crate) fn sample_pattern_ui(ui: &mut egui::Ui, params: &crate::params::Param
                         egui::Color32::from_rgb(255, 200, 80),
                     );
                 }
+                if is_lens && !lens_used {
+                    ui.label(PINHOLE);
+                }
             });
         }
     });
@@ -106,11 +109,9 @@ pub(crate) fn sample_pattern_ui(ui: &mut egui::Ui, params: &crate::params::Param
     }
 }
 
-/// The lens panel's title: unused (a pinhole), used.
-const LENS_TITLE: [&str; 2] = [
-    "Point on the lens: none, a pinhole (aperture 0)",
-    "Point on the lens",
-];
+/// Under the lens panel of a pinhole, which takes no point on the lens (under the
+/// panel, so that the two panels' titles stay one line and level).
+const PINHOLE: &str = "None: a pinhole (aperture 0)";
 
 /// The shutter panel's title: unused (shutter 0), used.
 const TIME_TITLE: [&str; 2] = [
