@@ -3,6 +3,8 @@
 // The window's own: built with the window (the `gui` feature) only.
 #![cfg(feature = "gui")]
 
+#[path = "common/slides.rs"]
+mod slides;
 #[path = "common/window.rs"]
 mod window;
 
@@ -11,7 +13,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use glam::Vec2;
 use raylab::app::RaylabApp;
-use raylab::section::{Fit, Room, Workbench, section};
+use raylab::section::{Anchor, Canvas, Fit, Room, Stroke, Theme, Workbench, paint, section};
 use window::{app, click_at, glass_sphere, step_until};
 
 /// Opens the section view from the Instruments menu.
@@ -167,31 +169,64 @@ fn dragging_the_workbench_sets_the_angle_and_outlines_the_image() {
 }
 
 #[test]
-fn in_a_hall_the_dock_shows_one_instrument_and_a_tab_for_each() {
+fn in_a_hall_the_plot_and_the_workbench_share_the_dock_in_view_and_others_get_tabs() {
+    // Slide 6's caption speaks of the plot and the workbench: both in view, whole, above
+    // the strip, at 1080p and 720p. Another instrument open gets a tab of its own.
     let dir = tempfile::tempdir().unwrap();
-    let mut h = window::app_sized("default", dir.path(), (1920.0, 1080.0));
-    h.step();
-    let slide = "6. Reflectance against angle: metal and glass";
-    window::choose_from_menu(&mut h, "Lecture", slide);
-    step_until(&mut h, "the slide", |a| {
-        a.slide() == Some(5) && a.caption().is_some() && !a.is_loading()
-    });
-    h.key_press(egui::Key::F5);
-    h.run_steps(3);
-    assert!(h.state().presenting());
-    // The plot first; the workbench behind its tab, drawn once the tab is picked.
-    h.get_by_label("Fresnel plot");
-    assert!(h.query_by_label("Workbench diagram").is_none());
-    h.get_by_label("Section view").click();
-    h.run_steps(3);
-    let canvas = h.get_by_label("Workbench diagram").rect();
-    let image = h.get_by_label("Image").rect();
-    assert!(
-        canvas.left() >= image.right(),
-        "beside the image, not over it"
-    );
-    assert!(canvas.height() > 200.0, "room to draw: {canvas:?}");
-    assert!(h.query_by_label("Compare with a metal:").is_none());
+    for size in [(1920.0, 1080.0), (1280.0, 720.0)] {
+        let mut h = window::app_sized("default", dir.path(), size);
+        h.step();
+        window::choose_from_menu(
+            &mut h,
+            "Lecture",
+            "6. Reflectance against angle: metal and glass",
+        );
+        step_until(&mut h, "the slide", |a| {
+            a.slide() == Some(5) && a.caption().is_some() && !a.is_loading()
+        });
+        h.key_press(egui::Key::F5);
+        h.run_steps(4);
+        assert!(h.state().presenting());
+        let image = h.get_by_label("Image").rect();
+        // The plot's last legend entry (the glass's curve) and the workbench's drawing,
+        // under the plot, both beside the image and above the strip.
+        let glass = h.get_by_label("—\u{a0}R n = 1.50").rect();
+        let canvas = h.get_by_label("Workbench diagram").rect();
+        for (what, r) in [("the plot's legend", glass), ("the workbench", canvas)] {
+            assert!(
+                r.left() >= image.right() && r.bottom() <= image.bottom() + 1.0,
+                "{size:?}: {what} at {r:?}, the image at {image:?}"
+            );
+        }
+        assert!(
+            canvas.top() > glass.bottom(),
+            "{size:?}: the workbench under the plot"
+        );
+        assert!(
+            canvas.height() > 0.25 * image.height(),
+            "{size:?}: room to draw: {canvas:?}"
+        );
+        // The workbench's controls stay at the desk: dragging its drawing sets the angle.
+        assert!(
+            h.query_by_role_and_label(Role::Slider, "Angle of incidence")
+                .is_none()
+        );
+        // Sample patterns opened at the desk: behind their tab; picked, they replace both.
+        h.key_press(egui::Key::Escape);
+        h.run_steps(2);
+        window::choose_from_menu(&mut h, "Instruments", "Sample patterns");
+        h.key_press(egui::Key::Escape);
+        h.key_press(egui::Key::F5);
+        h.run_steps(4);
+        h.get_by_label("Workbench diagram");
+        h.get_by_label("Sample patterns").click();
+        h.run_steps(3);
+        assert!(h.query_by_label("Workbench diagram").is_none());
+        assert!(h.query_by_label("—\u{a0}R n = 1.50").is_none());
+        h.get_by_label("Fresnel plot").click();
+        h.run_steps(3);
+        h.get_by_label("Workbench diagram");
+    }
 }
 
 #[test]
@@ -208,4 +243,123 @@ fn snells_slide_opens_the_section_zoomed_on_its_pixels_sphere() {
     let hit = h.state().inspected_tree().unwrap().nodes[0].hit.unwrap();
     assert_eq!(hit.n1_n2, Some((1.0, 1.5)), "the pixel meets the glass");
     assert_eq!(h.state().section_zoom(), 3.0);
+}
+
+/// A canvas that keeps the texts painted on it: the tree node whose interface each
+/// labels, its words and its height.
+#[derive(Default)]
+struct Drawn {
+    group: Option<usize>,
+    texts: Vec<(Option<usize>, String, f32)>,
+}
+
+impl Canvas for Drawn {
+    fn polyline(&mut self, _: &[Vec2], _: Stroke) {}
+    fn circle(&mut self, _: Vec2, _: f32, _: Option<[u8; 4]>, _: Option<Stroke>) {}
+    fn polygon(&mut self, _: &[Vec2], _: [u8; 4]) {}
+    fn text(&mut self, _: Vec2, text: &str, size: f32, _: [u8; 4], _: Anchor) {
+        self.texts.push((self.group, text.to_string(), size));
+    }
+    fn group(&mut self, node: Option<usize>) {
+        self.group = node;
+    }
+}
+
+#[test]
+fn snells_section_keeps_its_hit_and_labels_legible_over_the_iors_range() {
+    // The caption says "Drag the IOR": over the slider's range the section keeps the
+    // glass as large, its hit in view and every label of the way in and out drawn, at the
+    // caption's size. (Framed by the whole tree, IOR 2.19 sent a refracted ray far across
+    // the floor and the sphere shrank to a few dozen points, its labels dropped.)
+    let dir = tempfile::tempdir().unwrap();
+    for size in [(1920.0, 1080.0), (1280.0, 720.0)] {
+        let mut h = window::app_sized("default", dir.path(), size);
+        h.step();
+        h.key_press(egui::Key::F5);
+        h.key_press(egui::Key::PageDown);
+        h.key_press(egui::Key::PageDown);
+        slides::wait_for_slide(&mut h, 1);
+        h.run_steps(3);
+        let text = body_text(&h);
+        assert!(
+            (text - size.1 / 26.0).abs() < 0.01,
+            "the caption's size: {text}"
+        );
+        let mut chords = Vec::new();
+        for ior in [1.0, 1.25, 1.5, 1.75, 2.0, 2.19, 2.5] {
+            h.get_by_role_and_label(Role::Slider, "IOR")
+                .set_value_accesskit(ior);
+            h.run_steps(3);
+            let what = format!("{size:?} at IOR {ior}");
+            let tree = h.state().inspected_tree().unwrap().clone();
+            let hit = tree.nodes[0].hit.unwrap();
+            assert_eq!(
+                hit.n1_n2,
+                Some((1.0, ior as f32)),
+                "{what}: the tree follows"
+            );
+            let canvas = h.get_by_label("Section diagram").rect();
+            let scene = h.state().scene();
+            let frame = h.state().latest_frame().unwrap();
+            let (w, hgt) = (frame.width, frame.height);
+            let camera = &scene.camera;
+            let view = camera.frame(w as f32 / hgt as f32, camera.exposure(h.state().params()));
+            let room = Room {
+                size: Vec2::new(canvas.width(), canvas.height()),
+                text,
+                zoom: h.state().section_zoom(),
+                titled: false,
+            };
+            let pixel = h.state().inspected_pixel().unwrap();
+            let diagram = section(scene, &view, &tree, pixel, room).unwrap();
+            let top_left = Vec2::new(canvas.min.x, canvas.min.y);
+            let fit = Fit::new(&diagram, top_left, room.size, text);
+            let mut drawn = Drawn::default();
+            paint(&diagram, &mut drawn, &fit, Theme::Dark, None);
+            // The hit, and the way through the glass, in view and large.
+            let (refracted, _) = tree
+                .children(0)
+                .find(|(_, n)| n.kind == raylab::tracer::RayKind::Refract)
+                .unwrap();
+            let through = diagram.rays().find(|r| r.node == Some(refracted)).unwrap();
+            let (a, b) = (fit.to_canvas(through.a), fit.to_canvas(through.b));
+            for (end, p) in [("in", a), ("out", b)] {
+                assert!(
+                    canvas.contains(egui::pos2(p.x, p.y)),
+                    "{what}: the way {end} at {p} off the canvas {canvas:?}"
+                );
+            }
+            let chord = a.distance(b);
+            chords.push(chord);
+            assert!(
+                chord > 0.25 * canvas.width().min(canvas.height()),
+                "{what}: the way through the glass {chord} points long in {canvas:?}"
+            );
+            // Every label of the way in, and the bends of the way out (its θr, equal to
+            // its θi, may yield to them), drawn, none left out for want of room; and the
+            // indices in the line under the drawing. All at the caption's size.
+            let wanted = diagram.labels.iter().filter(|l| {
+                l.node == Some(0) || (l.node == Some(refracted) && !l.text.starts_with("θr"))
+            });
+            let indices = format!("η1 = 1.0, η2 = {}", raylab::section::index(ior as f32));
+            let expected = wanted
+                .map(|l| (l.node, l.text.clone()))
+                .chain([(None, indices)]);
+            for (node, words) in expected {
+                let shown = drawn
+                    .texts
+                    .iter()
+                    .any(|(n, t, s)| *n == node && *t == words && *s == text);
+                assert!(shown, "{what}: `{words}` not drawn");
+            }
+        }
+        // The glass keeps its size over the range: within a factor of two.
+        let (lo, hi) = chords
+            .iter()
+            .fold((f32::MAX, 0.0f32), |(l, h), &c| (l.min(c), h.max(c)));
+        assert!(
+            hi < 2.0 * lo,
+            "{size:?}: the way through the glass from {lo} to {hi} points"
+        );
+    }
 }

@@ -2,7 +2,7 @@
 //! frozen), each in an engine of its own; dividers split the image between the sides.
 
 use super::RaylabApp;
-use super::side::Side;
+use super::side::{Side, Told};
 use crate::lecture::Comparison;
 use crate::params::Params;
 use crate::render::EngineConfig;
@@ -28,7 +28,7 @@ impl CompareKind {
     }
 
     /// Side A's parameters when the comparison starts.
-    fn side_a(&self, p: &Params) -> Params {
+    pub(super) fn side_a(&self, p: &Params) -> Params {
         match self {
             CompareKind::Lecture(c) => c.side_a(p),
             CompareKind::Frozen(_) => p.clone(),
@@ -66,24 +66,41 @@ impl RaylabApp {
         dividers: Vec<f32>,
     ) {
         self.settings.params = kind.side_a(&self.settings.params);
-        let others = kind.others(&self.settings.params);
-        let started: Result<Vec<Side>, _> = others
+        let (told, a) = (self.told(), self.settings.params.clone());
+        if let Some(c) = self.new_compare(ctx, &told, kind, dividers, &a) {
+            self.compare = Some(c);
+        }
+    }
+
+    /// The sides after A of `kind`'s comparison, side A's parameters `a`, each rendering
+    /// `told` in an engine of its own (none, said in a message, if they cannot start).
+    pub(super) fn new_compare(
+        &mut self,
+        ctx: &egui::Context,
+        told: &Told,
+        kind: CompareKind,
+        dividers: Vec<f32>,
+        a: &Params,
+    ) -> Option<Compare> {
+        let started: Result<Vec<Side>, _> = kind
+            .others(a)
             .into_iter()
             .zip(TEXTURES)
             .map(|(p, name)| {
                 let cache = self.main.cache().clone();
-                Side::new(ctx, name, self.told(), p, EngineConfig::with_ui(), cache)
+                Side::new(ctx, name, told.clone(), p, EngineConfig::with_ui(), cache)
             })
             .collect();
         match started {
-            Ok(sides) => {
-                self.compare = Some(Compare {
-                    kind,
-                    sides,
-                    dividers,
-                })
+            Ok(sides) => Some(Compare {
+                kind,
+                sides,
+                dividers,
+            }),
+            Err(e) => {
+                self.toasts.error(format!("Cannot compare: {e}"));
+                None
             }
-            Err(e) => self.toasts.error(format!("Cannot compare: {e}")),
         }
     }
 

@@ -3,10 +3,8 @@
 
 use super::RaylabApp;
 use super::command::Command;
-use super::compare::CompareKind;
 use super::instruments::SectionMode;
 use crate::lecture::{Instrument, LECTURE, Shown, Slide};
-use crate::params::Params;
 use crate::render::Prerender;
 use crate::scene::Scene;
 use egui::Color32;
@@ -33,9 +31,7 @@ impl Lecture {
     /// shown from now on). A scene asked for before the slide (a quick Page Down twice)
     /// leaves the slide pending; any other scene takes the caption down.
     pub(crate) fn arrived(&mut self, scene: &Scene) -> Option<&'static Slide> {
-        let slide = self
-            .pending
-            .filter(|s| scene.source.reference() == s.reference());
+        let slide = self.pending_for(scene);
         self.shown = slide;
         self.open = slide.map_or(&[], |s| s.controls);
         if slide.is_some() {
@@ -45,6 +41,12 @@ impl Lecture {
             self.current = None;
         }
         slide
+    }
+
+    /// The slide pending, if `scene` is its scene.
+    pub(crate) fn pending_for(&self, scene: &Scene) -> Option<&'static Slide> {
+        self.pending
+            .filter(|s| scene.source.reference() == s.reference())
     }
 
     /// The number (in the lecture) of the slide last asked for, while it is shown.
@@ -160,14 +162,9 @@ impl RaylabApp {
         self.open_scene(slide.reference());
     }
 
-    /// `slide`'s scene has arrived with its parameters `base`: the controls take the
-    /// slide's parameters, and the slide's own comparison and instrument replace those
-    /// open (none, if it has none).
-    pub(super) fn arrive_at_slide(&mut self, slide: &Slide, base: &Params) {
-        match slide.params_on(base) {
-            Ok(p) => self.settings.params = p,
-            Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
-        }
+    /// `slide`'s scene has arrived (with the slide's parameters, `arrival.rs`): the
+    /// slide's own instruments replace those open (none, if it has none).
+    pub(super) fn arrive_at_slide(&mut self, slide: &Slide) {
         self.leave_slide();
         let fresnel_metal = slide.instruments.iter().find_map(|i| match i {
             Instrument::FresnelPlot { metal } => Some(*metal),
@@ -214,11 +211,8 @@ impl RaylabApp {
         i.forget_inspection();
     }
 
-    /// Once `slide`'s scene is shown: its A/B view and the pixel its inspector shows.
+    /// Once `slide`'s scene is shown: the pixel its inspector shows.
     pub(super) fn show_slide(&mut self, slide: &Slide, ctx: &egui::Context) {
-        if let Some(c) = slide.compare {
-            self.start_compare(ctx, CompareKind::Lecture(c), slide.dividers());
-        }
         // A slide about the ray tree opens the inspector on its pixel; the others leave
         // clicks on the image to the view.
         let size = super::render_size(&self.scene, self.settings.resolution);

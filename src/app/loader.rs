@@ -117,6 +117,11 @@ impl Loader {
         self.loading > 0
     }
 
+    /// Whether an Open was asked after Open number `opens` (whose scene is then stale).
+    pub(crate) fn overtaken(&self, opens: u64) -> bool {
+        self.opens != opens
+    }
+
     fn set_watched(&self, watched: Watched) {
         *self.watched.lock().unwrap_or_else(|e| e.into_inner()) = watched;
     }
@@ -163,8 +168,9 @@ impl RaylabApp {
             .load(reference.as_ref().to_os_string(), LoadPurpose::Open);
     }
 
-    /// Takes the scenes that finished loading: a good one replaces the scene shown, a bad
-    /// one leaves it and shows what is wrong and where.
+    /// Takes the scenes that finished loading: a good one opened starts arriving
+    /// (`arrival.rs`), a good one reloaded replaces the scene shown at once, a bad one
+    /// leaves it and shows what is wrong and where.
     pub(super) fn receive_scenes(&mut self, ctx: &egui::Context) {
         while let Some(loaded) = self.loader.receive() {
             let scene = match loaded.result {
@@ -176,54 +182,19 @@ impl RaylabApp {
                     continue;
                 }
             };
-            let s = &mut self.settings;
-            let mut slide = None;
             match loaded.purpose {
-                LoadPurpose::Open => {
-                    self.history.clear();
-                    s.params = scene.params.clone();
-                    s.camera = scene.camera.clone();
-                    let was_slide = self.lecture.shown().is_some();
-                    slide = self.lecture.arrived(&scene);
-                    if let Some(slide) = slide {
-                        self.hold_strip_words();
-                        self.arrive_at_slide(slide, &scene.params);
-                    } else if was_slide {
-                        // Out of the lecture: nothing of the last slide stays.
-                        self.leave_slide();
-                    }
-                }
+                LoadPurpose::Open => self.stage(ctx, scene, loaded.opens),
                 LoadPurpose::Reload => {
+                    let s = &mut self.settings;
                     s.params = merge_defaults(&s.params, &self.scene.params, &scene.params);
                     // A camera the user moved stays.
                     if s.camera == self.scene.camera {
                         s.camera = scene.camera.clone();
                     }
+                    self.keep_side_a();
+                    self.instruments.section.zoom_to(1.0);
+                    self.replace_scene(scene, Some("Reloaded"));
                 }
-            }
-            let verb = match loaded.purpose {
-                LoadPurpose::Open => "Opened",
-                LoadPurpose::Reload => "Reloaded",
-            };
-            // A slide in presentation mode says what it is in its own title.
-            if !(self.hall.presenting && slide.is_some()) {
-                self.toasts.info(format!("{verb} {}", scene.name));
-            }
-            for warning in &scene.warnings {
-                self.toasts.warn(warning);
-            }
-            self.keep_side_a();
-            self.instruments.forget_inspection();
-            if slide.is_none() {
-                // A slide zooms its section as it needs; any other scene starts whole.
-                self.instruments.section.zoom_to(1.0);
-            }
-            self.error = None;
-            self.view.fit();
-            self.loader.watch(&scene);
-            self.scene = scene;
-            if let Some(slide) = slide {
-                self.show_slide(slide, ctx);
             }
         }
     }

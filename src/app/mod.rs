@@ -10,6 +10,7 @@
 //! engine and its image (the main view, the A/B view's B); the loader, slides, contact
 //! sheet, snapshots, toasts, toolbar, instruments; `state` what it shows, for the tests.
 
+mod arrival;
 mod command;
 mod compare;
 mod controls;
@@ -145,6 +146,8 @@ pub struct RaylabApp {
     commands: Vec<command::Command>,
     // Snapshots being written (snapshot.rs).
     saving: Vec<snapshot::Saving>,
+    // A scene opened, being rendered before it replaces the one shown (arrival.rs).
+    arriving: Option<arrival::Arriving>,
 }
 
 /// Opens the previewer window and runs it until it is closed.
@@ -287,6 +290,7 @@ impl RaylabApp {
             fitted: false,
             commands: Vec::new(),
             saving: Vec::new(),
+            arriving: None,
         })
     }
 
@@ -309,8 +313,12 @@ impl RaylabApp {
         })
     }
 
-    /// Tells the engines what the controls changed (each is told only what differs).
+    /// Tells the engines what the controls changed (each is told only what differs). A
+    /// scene arriving has its engines told already, and the controls are the last scene's.
     fn sync_engines(&mut self) {
+        if self.arriving.is_some() {
+            return;
+        }
         let told = self.told();
         let params = &self.settings.params;
         self.main.sync(&told, params);
@@ -415,7 +423,7 @@ impl eframe::App for RaylabApp {
         // A pass that failed inside raylab stops its generation: the banner says so (once
         // a frame, so that Dismiss holds until the next failure).
         self.check_tev();
-        if self.main.receive() {
+        if self.receive_main(ctx) {
             self.stream_to_tev();
             if let Some(failure) = self.main.frame().and_then(|f| f.progress.failure.clone()) {
                 self.error = Some(format!("The render stopped: {failure}"));

@@ -76,48 +76,8 @@ pub(crate) struct Hall {
     /// size can arrive after the frame drawn for it, which then stayed on screen (the
     /// toolbar gone, half the window black) until the next repaint.
     settle_until: Option<std::time::Instant>,
-    /// The strip's title, caption and controls, held while a new slide's image is on its
-    /// way.
-    words: StripWords,
-}
-
-/// What the strip says of a slide: its title, its caption, the controls its caption asks
-/// for.
-#[derive(Clone, Debug, Default)]
-struct Strip {
-    title: Option<String>,
-    caption: Option<String>,
-    controls: &'static [&'static str],
-}
-
-/// The strip as last drawn, and, once a slide's scene has arrived, the engine's
-/// generation then: until a frame of a newer one is shown, the old slide's picture is
-/// still on screen, and its strip stays with it. (Under llvmpipe that was one frame of
-/// 200 ms with the new slide's title over the old slide's picture.)
-#[derive(Debug, Default)]
-struct StripWords {
-    drawn: Strip,
-    held: Option<(u64, std::time::Instant)>,
-}
-
-/// How long the strip waits for a new slide's first frame at most (a paused engine sends
-/// none).
-const HOLD_WORDS: std::time::Duration = std::time::Duration::from_secs(1);
-
-impl StripWords {
-    /// The strip to draw, given that of the slide shown (`fresh`) and the generation of
-    /// the frame on screen.
-    fn words(&mut self, fresh: Strip, on_screen: Option<u64>) -> Strip {
-        if let Some((generation, since)) = self.held {
-            let waiting = on_screen.is_some_and(|g| g <= generation);
-            if waiting && since.elapsed() < HOLD_WORDS {
-                return self.drawn.clone();
-            }
-            self.held = None;
-        }
-        self.drawn = fresh;
-        self.drawn.clone()
-    }
+    /// The strip's height as last drawn: a change is laid out again at once.
+    strip_height: f32,
 }
 
 impl RaylabApp {
@@ -163,13 +123,6 @@ impl RaylabApp {
         }
     }
 
-    /// A slide's scene has arrived: the strip keeps the words it has until a frame newer
-    /// than the engine's present generation is shown.
-    pub(super) fn hold_strip_words(&mut self) {
-        let generation = self.main.engine().generation();
-        self.hall.words.held = Some((generation, std::time::Instant::now()));
-    }
-
     /// The slide `by` away from the one shown (the first, with none shown yet), within
     /// the lecture.
     pub(super) fn step_slide(&mut self, by: i32) {
@@ -211,20 +164,25 @@ impl RaylabApp {
             let i = LECTURE.iter().position(|s| std::ptr::eq(s, shown))?;
             Some(format!("{} / {}  {}", i + 1, LECTURE.len(), shown.title))
         });
-        let fresh = Strip {
-            title,
-            caption: self.caption(),
-            controls: self.lecture.shown().map_or(&[], |s| s.controls),
-        };
-        let on_screen = self.latest_frame().map(|f| f.generation);
-        let strip = self.hall.words.words(fresh, on_screen);
+        let caption = self.caption();
+        let controls = self.lecture.shown().map_or(&[][..], |s| s.controls);
         let progress = self.progress_text();
-        egui::Panel::bottom("caption")
-            .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(16.0))
-            .show_separator_line(false)
+        // Exactly as tall as its words were in the last pass: a panel keeps its height
+        // until told, and grows down off the screen (a new slide's longer caption ran off
+        // its bottom for a frame, a shorter one left a black band).
+        const MARGIN: f32 = 16.0;
+        let mut strip = egui::Panel::bottom("caption")
+            .frame(egui::Frame::new().fill(Color32::BLACK).inner_margin(MARGIN))
+            .resizable(false)
+            .show_separator_line(false);
+        if self.hall.strip_height > 0.0 {
+            strip = strip.exact_size(self.hall.strip_height);
+        }
+        let words = strip
             .show(ui, |ui| {
+                let top = ui.cursor().top();
                 ui.horizontal(|ui| {
-                    if let Some(title) = strip.title {
+                    if let Some(title) = title {
                         ui.label(
                             RichText::new(title)
                                 .size(size)
@@ -237,23 +195,30 @@ impl RaylabApp {
                     });
                 });
                 self.progress_bar_ui(ui, size);
-                if !strip.controls.is_empty() {
+                if !controls.is_empty() {
                     // Each control's parts in a row (its slider, presets, readout), the
                     // controls side by side: the image keeps the height.
                     self.with_controls(&[], |c| {
                         ui.horizontal_wrapped(|ui| {
-                            for name in strip.controls {
+                            for name in controls {
                                 param_ui(ui, c, name);
                                 ui.add_space(size);
                             }
                         });
                     });
                 }
-                let text = strip
-                    .caption
-                    .unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
-                ui.label(RichText::new(text).size(size).color(Color32::WHITE));
-            });
+                let text =
+                    caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
+                let last = ui.label(RichText::new(text).size(size).color(Color32::WHITE));
+                last.rect.bottom() - top
+            })
+            .inner;
+        // Words of another height are laid out again at once, in a strip of theirs.
+        let height = words + 2.0 * MARGIN;
+        if (height - self.hall.strip_height).abs() > 0.5 {
+            self.hall.strip_height = height;
+            ui.ctx().request_discard("the strip's height changed");
+        }
         // The instruments above the strip, beside the image: the caption keeps the
         // screen's whole width.
         self.instruments_dock_ui(ui);

@@ -28,6 +28,8 @@ pub(crate) struct Side {
     // What the engine was last told, so that each frame sends only what changed.
     told: Told,
     frame: Option<Frame>,
+    // A frame taken aside while a scene arrives, to be shown with it (`hold_from`).
+    held: Option<Frame>,
     texture: Option<egui::TextureHandle>,
     // The texture's name, and what it shows: the exposure, or the cost map's scale, and
     // whether pixels are sharp squares; `None` after a new frame arrived.
@@ -39,7 +41,13 @@ pub(crate) struct Side {
     cost_range: Option<(f32, f32)>,
     paused: bool,
     cache: FilmCache,
+    // What the engine's newest generations render, newest last: the scene and
+    // parameters it was told at each (for `rendered`).
+    generations: std::collections::VecDeque<(u64, Arc<Scene>, Params)>,
 }
+
+/// How many generations a side remembers what they render.
+const GENERATIONS: usize = 16;
 
 impl Side {
     /// Starts an engine on `told` with `params`; frames ask `ctx` to repaint.
@@ -63,10 +71,12 @@ impl Side {
         if told.unlimited {
             engine.set_unlimited(true);
         }
-        Ok(Side {
+        let mut side = Side {
+            generations: Default::default(),
             engine,
             told,
             frame: None,
+            held: None,
             texture: None,
             name,
             shown: None,
@@ -74,7 +84,31 @@ impl Side {
             cost_range: None,
             paused: false,
             cache,
-        })
+        };
+        side.note_generation();
+        Ok(side)
+    }
+
+    /// Notes what the engine's generation renders, if it is new.
+    fn note_generation(&mut self) {
+        let generation = self.engine.generation();
+        if self.generations.back().is_some_and(|g| g.0 == generation) {
+            return;
+        }
+        let params = self.engine.params().clone();
+        let scene = Arc::clone(&self.told.scene);
+        self.generations.push_back((generation, scene, params));
+        if self.generations.len() > GENERATIONS {
+            self.generations.pop_front();
+        }
+    }
+
+    /// What the newest frame was rendered from: its scene and parameters (none before the
+    /// first frame, or for a generation older than the side remembers).
+    pub(crate) fn rendered(&self) -> Option<(&Scene, &Params)> {
+        let generation = self.frame.as_ref()?.generation;
+        let (_, scene, params) = self.generations.iter().find(|g| g.0 == generation)?;
+        Some((scene, params))
     }
 
     /// The images rendered ahead, which every side of the window shares.
@@ -86,39 +120,56 @@ impl Side {
     /// engine's camera to the scene's, so the camera is compared after it. Parameters out
     /// of range are not sent (the controls never make them; a sidecar could).
     pub(crate) fn sync(&mut self, to: &Told, params: &Params) {
-        let engine = &mut self.engine;
+        // Each step is a generation of its own, noted as it is told.
         if !Arc::ptr_eq(&self.told.scene, &to.scene) {
-            engine.set_scene(Arc::clone(&to.scene));
+            self.engine.set_scene(Arc::clone(&to.scene));
             self.told.scene = Arc::clone(&to.scene);
             self.told.camera = to.scene.camera.clone();
+            self.note_generation();
         }
-        if params != engine.params() && params.validate().is_ok() {
-            engine.set_params(params.clone());
+        if params != self.engine.params() && params.validate().is_ok() {
+            self.engine.set_params(params.clone());
+            self.note_generation();
         }
         if to.camera != self.told.camera {
-            engine.set_camera(to.camera.clone());
+            self.engine.set_camera(to.camera.clone());
             self.told.camera = to.camera.clone();
+            self.note_generation();
         }
         if to.size != self.told.size {
-            engine.resize(to.size.0, to.size.1);
+            self.engine.resize(to.size.0, to.size.1);
             self.told.size = to.size;
+            self.note_generation();
         }
         if to.unlimited != self.told.unlimited {
-            engine.set_unlimited(to.unlimited);
+            self.engine.set_unlimited(to.unlimited);
             self.told.unlimited = to.unlimited;
         }
     }
 
-    /// Takes the newest frame the engine sent, dropping older ones; whether there was one.
+    /// Takes the newest frame the engine sent (or the one held aside), dropping older
+    /// ones; whether there was one.
     pub(crate) fn receive(&mut self) -> bool {
-        let Some(frame) = self.engine.frames().try_iter().last() else {
+        let newest = self.engine.frames().try_iter().last();
+        let Some(frame) = newest.or_else(|| self.held.take()) else {
             return false;
         };
+        self.held = None;
         self.paused = frame.progress.paused;
         self.cost_range = (!frame.cost.is_empty()).then(|| cost_range(&frame.cost));
         self.frame = Some(frame);
         self.shown = None;
         true
+    }
+
+    /// Holds the newest frame of generation `first` or later aside, not shown until the
+    /// next `receive` (older ones are dropped); whether one is held.
+    pub(crate) fn hold_from(&mut self, first: u64) -> bool {
+        let newest = self.engine.frames().try_iter().last();
+        if let Some(frame) = newest.filter(|f| f.generation >= first) {
+            self.held = Some(frame);
+        }
+        self.held.is_some()
     }
 
     /// Brings the texture up to date with the newest frame, shown at `exposure`, or as the
@@ -180,6 +231,7 @@ impl Side {
     /// Starts refining again from the first sample.
     pub(crate) fn restart(&mut self) {
         self.engine.restart_now();
+        self.note_generation();
     }
 
     /// Whether the engine is paused (as far as the window knows).

@@ -52,6 +52,12 @@ impl RaylabApp {
         self.main.frame()
     }
 
+    /// What the main view's picture on screen was rendered from: its scene and parameters
+    /// (none before the first frame).
+    pub fn picture(&self) -> Option<(&Scene, &Params)> {
+        self.main.rendered()
+    }
+
     /// The main view's image as it is shown: sRGB RGBA rows of the newest frame's grid
     /// (the cost heat map's colours while it is on).
     pub fn shown_pixels(&self) -> &[u8] {
@@ -131,6 +137,12 @@ impl RaylabApp {
             .collect()
     }
 
+    /// What the picture of each side after A shows was rendered from (as
+    /// [`RaylabApp::picture`]), while the A/B view is on.
+    pub fn compare_pictures(&self) -> Vec<Option<(&Scene, &Params)>> {
+        self.compare_engines().map(Side::rendered).collect()
+    }
+
     /// Whether the A/B view is on and each side after A has its newest frame finished and
     /// of its engine's newest generation.
     pub fn compare_settled(&self) -> bool {
@@ -169,10 +181,5 @@ impl RaylabApp {
             camera: &self.settings.camera,
             inspected,
         })
-    }
-
-    /// Whether a scene is loading.
-    pub fn is_loading(&self) -> bool {
-        self.loader.is_loading()
     }
 }

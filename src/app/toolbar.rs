@@ -15,7 +15,7 @@ impl RaylabApp {
     pub(super) fn toolbar_ui(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             self.scene_picker_ui(ui);
-            if self.loader.is_loading() {
+            if self.is_loading() {
                 ui.spinner();
             }
             ui.separator();

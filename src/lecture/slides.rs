@@ -89,7 +89,7 @@ pub const LECTURE: &[Slide] = &[
             },
         ])
         .says(
-            "Gold reflects 97% of red and 32% of blue head-on, more as the angle grows. Glass (metal: none) reflects 4%, rising to 100% only at grazing: on the workbench its reflected ray is as wide as R; drag the angle towards 90°.",
+            "Gold reflects 97% of red and 32% of blue head-on, more as the angle grows. Glass (the white curve) reflects 4%, rising to 100% only at grazing: on the workbench its reflected ray is as wide as R; drag the angle towards 90°.",
         ),
     slide("Fresnel reflection on the black glazed sphere", "glazed")
         .set(&[("spp", "32"), ("constant_reflectance", "0.1")])

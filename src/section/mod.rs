@@ -256,6 +256,9 @@ pub struct Label {
     pub anchor: Anchor,
     /// The ray-tree node whose interface it labels, if any (an SVG groups them).
     pub node: Option<usize>,
+    /// Another place for it (offset and anchor), tried where the first would overlap a
+    /// label already drawn: the other end of an angle's arc.
+    pub instead: Option<(Vec2, Anchor)>,
 }
 
 /// A drawing in a plane: marks, labels and lines of notes.
@@ -329,20 +332,25 @@ fn angle_marks(
         to: a0 + delta,
         ink: Ink::Guide,
     };
-    let at = a0 + delta + 0.22f32.copysign(delta);
-    let dir = Vec2::new(at.cos(), -at.sin());
-    let anchor = match dir.x {
-        x if x > 0.3 => Anchor::Start,
-        x if x < -0.3 => Anchor::End,
-        _ => Anchor::Middle,
+    // Past the arc's end (the ray), or else past its start (the normal).
+    let place = |at: f32| {
+        let dir = Vec2::new(at.cos(), -at.sin());
+        let anchor = match dir.x {
+            x if x > 0.3 => Anchor::Start,
+            x if x < -0.3 => Anchor::End,
+            _ => Anchor::Middle,
+        };
+        ((ARC_RADIUS + 12.0) * dir, anchor)
     };
+    let (offset, anchor) = place(a0 + delta + 0.22f32.copysign(delta));
     let label = Label {
         at: vertex,
-        offset: (ARC_RADIUS + 12.0) * dir,
+        offset,
         text,
         ink: Ink::Text,
         anchor,
         node,
+        instead: Some(place(a0 - 0.22f32.copysign(delta))),
     };
     (arc, label)
 }

@@ -1,7 +1,9 @@
 //! Drawing a [`Diagram`] onto a canvas: the one routine the window, the SVG and the PNG
 //! share, so that they show the same marks at the same sizes.
 
-use super::{ARC_RADIUS, Anchor, Dash, Diagram, Ink, Item, RayLine, Symbol, Theme, clip_segment};
+use super::{
+    ARC_RADIUS, Anchor, Dash, Diagram, Ink, Item, Label, RayLine, Symbol, Theme, clip_segment,
+};
 use crate::tracer::End;
 use glam::Vec2;
 
@@ -120,6 +122,44 @@ impl Fit {
     }
 }
 
+/// Where `label` lands on the canvas with `offset` and `anchor`: its rectangle (kept
+/// inside the canvas: a label near its edge is moved in, not cut), and the point and
+/// anchor to draw its text at.
+fn label_rect(
+    fit: &Fit,
+    label: &Label,
+    offset: Vec2,
+    anchor: Anchor,
+) -> ((Vec2, Vec2), (Vec2, Anchor)) {
+    let (top_left, size) = fit.canvas;
+    let at = fit.to_canvas(label.at) + offset * fit.unit();
+    let width = TEXT_WIDTH * fit.text * label.text.chars().count() as f32;
+    let left = match anchor {
+        Anchor::Start => at.x,
+        Anchor::Middle => at.x - 0.5 * width,
+        Anchor::End => at.x - width,
+    };
+    let inside = |lo: f32, extent: f32, from: f32, to: f32| {
+        (from - lo).max(0.0) - (lo + extent - to).max(0.0)
+    };
+    let half = 0.6 * fit.text;
+    let shift = Vec2::new(
+        inside(left, width, top_left.x, top_left.x + size.x),
+        inside(at.y - half, 2.0 * half, top_left.y, top_left.y + size.y),
+    );
+    let (left, at) = (left + shift.x, at + shift);
+    let rect = (
+        Vec2::new(left, at.y - half),
+        Vec2::new(left + width, at.y + half),
+    );
+    (rect, (at, anchor))
+}
+
+/// Whether two rectangles (corners) overlap.
+fn overlap(a: &(Vec2, Vec2), b: &(Vec2, Vec2)) -> bool {
+    a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
+}
+
 /// Draws `diagram` on `canvas` as `fit` places it, in `theme`'s colours; the ray of tree
 /// node `highlight` (what the pointer hovers, here or in the tree list) stands out.
 pub fn paint(
@@ -218,42 +258,17 @@ pub fn paint(
     // room for it (zoomed in, there is). The diagram lists the most important first.
     let mut taken: Vec<(Vec2, Vec2)> = Vec::new();
     for label in &diagram.labels {
-        let at = fit.to_canvas(label.at) + label.offset * u;
-        let width = TEXT_WIDTH * fit.text * label.text.chars().count() as f32;
-        let left = match label.anchor {
-            Anchor::Start => at.x,
-            Anchor::Middle => at.x - 0.5 * width,
-            Anchor::End => at.x - width,
-        };
-        // Kept inside the canvas: a label near its edge is moved in, not cut.
-        let inside = |lo: f32, extent: f32, from: f32, to: f32| {
-            (from - lo).max(0.0) - (lo + extent - to).max(0.0)
-        };
-        let half = 0.6 * fit.text;
-        let shift = Vec2::new(
-            inside(left, width, top_left.x, top_left.x + size.x),
-            inside(at.y - half, 2.0 * half, top_left.y, top_left.y + size.y),
-        );
-        let (left, at) = (left + shift.x, at + shift);
-        let rect = (
-            Vec2::new(left, at.y - 0.6 * fit.text),
-            Vec2::new(left + width, at.y + 0.6 * fit.text),
-        );
-        let overlaps = |r: &(Vec2, Vec2)| {
-            rect.0.x < r.1.x && r.0.x < rect.1.x && rect.0.y < r.1.y && r.0.y < rect.1.y
-        };
-        if taken.iter().any(overlaps) {
+        // Where it is placed first, else where `instead` says.
+        let places = std::iter::once((label.offset, label.anchor)).chain(label.instead);
+        let free = places
+            .map(|(offset, anchor)| label_rect(fit, label, offset, anchor))
+            .find(|(rect, _)| !taken.iter().any(|r| overlap(rect, r)));
+        let Some((rect, (at, anchor))) = free else {
             continue;
-        }
+        };
         taken.push(rect);
         canvas.group(label.node);
-        canvas.text(
-            at,
-            &label.text,
-            fit.text,
-            label.ink.rgba(theme),
-            label.anchor,
-        );
+        canvas.text(at, &label.text, fit.text, label.ink.rgba(theme), anchor);
     }
     canvas.group(None);
     let line = 1.35 * fit.text;

@@ -95,6 +95,10 @@ pub struct Room {
 /// The deepest zoom into a section.
 pub const MAX_ZOOM: f32 = 50.0;
 
+/// The zoom that frames the first object the camera ray meets, its way through it and
+/// no more (see `zoomed`).
+pub const FRAME_ZOOM: f32 = 3.0;
+
 /// Interfaces are labelled where the ray meeting them carries at least this much of its
 /// sample (the camera ray carries 1): the faint internal bounces would bury the rest.
 pub const LABEL_WEIGHT: f32 = 0.1;
@@ -156,23 +160,35 @@ pub fn section(
             hi + Vec2::splat(0.2 * extent),
         ]);
     }
-    let notes = match on.titled {
-        true => vec![
+    // A hall's large text has no room for the indices at each interface: one line under
+    // the drawing gives the first interface's.
+    let notes = match (on.titled, root.hit.and_then(|h| h.n1_n2)) {
+        (true, _) => vec![
             "Width: the ray's weight. Dashed: shadow rays. Dotted: rays that leave this plane, drawn projected onto it.".to_string(),
         ],
-        false => Vec::new(),
+        (false, Some((n1, n2))) => vec![format!("η1 = {}, η2 = {}", index(n1), index(n2))],
+        (false, None) => Vec::new(),
     };
     let (room, _) = super::paint::room(on.size, on.text, on.titled, &notes);
-    let view = view_of(shown.into_iter(), room.x / room.y);
-    // Zoomed about a point that moves from the view's centre to the first hit.
-    let zoom = on.zoom.clamp(1.0, MAX_ZOOM);
+    let aspect = room.x / room.y;
+    let whole = view_of(shown.into_iter(), aspect);
     let first = plane.to_plane(root.hit.map_or(eye, |h| h.point));
-    let centre = 0.5 * (view.0 + view.1);
-    let about = centre + (1.0 - 1.0 / zoom) * (first - centre);
-    let view = (
-        about + (view.0 - centre) / zoom,
-        about + (view.1 - centre) / zoom,
+    // The first object's frame: the camera ray's way through it, from where it enters
+    // to where the refracted ray meets the next surface, with 0.3 of that around; for
+    // a surface it does not enter, 0.4 of the camera ray's length about the hit.
+    let refracted = tree.children(0).find(|(_, n)| n.kind == RayKind::Refract);
+    let through_id = refracted.map(|(i, _)| i);
+    let through = refracted
+        .and_then(|(_, n)| n.hit)
+        .map(|h| plane.to_plane(h.point));
+    let chord = through.map_or(0.4 * reach, |b| b.distance(first).max(1e-3 * reach));
+    let pad = Vec2::splat(0.3 * chord);
+    let far = through.unwrap_or(first);
+    let near = view_of(
+        [first - pad, first + pad, far - pad, far + pad].into_iter(),
+        aspect,
     );
+    let view = zoomed(whole, near, first, on.zoom);
     let mut d = Diagram {
         title: match on.titled {
             true => format!("Section through pixel ({}, {}), sample 0", pixel.0, pixel.1),
@@ -210,6 +226,8 @@ pub fn section(
             text,
         );
     }
+    // The interfaces' labels, ranked by what they say (below).
+    let mut marks = Vec::new();
     for (i, (n, &(a, b))) in tree.nodes.iter().zip(&ends).enumerate() {
         let projected = plane.distance(a).abs() > off_plane || plane.distance(b).abs() > off_plane;
         let (a2, b2) = (plane.to_plane(a), plane.to_plane(b));
@@ -228,11 +246,29 @@ pub fn section(
         }));
         end_label(&mut d, tree, i, (a2, b2), &plane);
         if !projected && weight >= LABEL_WEIGHT {
-            interface(&mut d, tree, i, &plane);
+            let labels = interface(&mut d, tree, i, &plane);
+            marks.extend(
+                labels
+                    .into_iter()
+                    .filter(|(m, _)| on.titled || *m != Mark::Index),
+            );
         }
     }
-    // The rays' labels first: where labels would overlap, the first drawn stays.
-    d.labels.sort_by_key(|l| l.node.is_none());
+    // Where labels would overlap, the first drawn stays: first the bends at the way into
+    // the first object and out of it (what the Snell slide writes), then the reflections
+    // and indices there, then the other rays' labels, then the rest (camera, lights).
+    let way = |l: &Label| l.node.is_some() && (l.node == Some(0) || l.node == through_id);
+    let rank = |l: &Label, mark: Option<Mark>| match (way(l), mark, l.node) {
+        (true, Some(Mark::Bend), _) => 0,
+        (true, Some(Mark::Mirror), _) => 1,
+        (true, Some(Mark::Index), _) => 2,
+        (_, _, Some(_)) => 3,
+        (_, _, None) => 4,
+    };
+    let mut ranked: Vec<(u8, Label)> = d.labels.drain(..).map(|l| (rank(&l, None), l)).collect();
+    ranked.extend(marks.into_iter().map(|(m, l)| (rank(&l, Some(m)), l)));
+    ranked.sort_by_key(|(r, _)| *r);
+    d.labels = ranked.into_iter().map(|(_, l)| l).collect();
     Some(d)
 }
 
@@ -262,6 +298,32 @@ fn bounds(points: impl Iterator<Item = Vec2>) -> (Vec2, Vec2) {
 
 /// The rectangle around `points`, padded, widened or heightened to `aspect` (width over
 /// height).
+/// The view at `zoom`: `whole` at 1; narrowing geometrically to `near` (the first
+/// object's frame) at [`FRAME_ZOOM`], so that a slide's framing keeps the first hit and
+/// its labels the same size whatever the rest of the tree reaches (a refracted ray sent
+/// far across the floor by a higher IOR zoomed the sphere out to a few pixels); past it,
+/// further in about the first hit, `first`.
+fn zoomed(whole: (Vec2, Vec2), near: (Vec2, Vec2), first: Vec2, zoom: f32) -> (Vec2, Vec2) {
+    let zoom = zoom.clamp(1.0, MAX_ZOOM);
+    let t = (zoom.ln() / FRAME_ZOOM.ln()).min(1.0);
+    let size = |v: (Vec2, Vec2)| (v.1 - v.0).max(Vec2::splat(1e-6));
+    let centre = |v: (Vec2, Vec2)| 0.5 * (v.0 + v.1);
+    let (w, n) = (size(whole), size(near));
+    // w^(1 − t) n^t, each axis.
+    let mut half = 0.5
+        * Vec2::new(
+            w.x.powf(1.0 - t) * n.x.powf(t),
+            w.y.powf(1.0 - t) * n.y.powf(t),
+        );
+    let mut about = centre(whole).lerp(centre(near), t);
+    let past = zoom / FRAME_ZOOM;
+    if past > 1.0 {
+        half /= past;
+        about += (1.0 - 1.0 / past) * (first - about);
+    }
+    (about - half, about + half)
+}
+
 fn view_of(points: impl Iterator<Item = Vec2>, aspect: f32) -> (Vec2, Vec2) {
     let (lo, hi) = bounds(points);
     let size = (hi - lo).max(Vec2::splat(1e-3));
@@ -288,6 +350,7 @@ fn label(at: Vec2, offset: Vec2, text: &str, anchor: Anchor, node: Option<usize>
         ink: Ink::Text,
         anchor,
         node,
+        instead: None,
     }
 }
 
@@ -431,16 +494,35 @@ fn end_label(
     });
 }
 
+/// What an interface's label says: how the ray bends (θi, θt), how it reflects (θr), or
+/// an index (η1, η2). Where labels would overlap, the first kept on the way through the
+/// first object is the bend: the Snell slide's subject.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mark {
+    Bend,
+    Mirror,
+    Index,
+}
+
 /// The lecture's marks at node `i`'s hit, if it meets an interface between two indices:
-/// the normal, the angles θi, θr and θt as arcs with their values, and η1, η2 on their
-/// sides.
-fn interface(d: &mut Diagram, tree: &RayTree, i: usize, plane: &SectionPlane) {
-    let Some(n) = tree.nodes.get(i) else { return };
-    let Some(h) = n.hit else { return };
+/// the normal and the arcs of the angles θi, θr and θt; returned, their labels with
+/// theirs values, and η1, η2 on their sides.
+fn interface(
+    d: &mut Diagram,
+    tree: &RayTree,
+    i: usize,
+    plane: &SectionPlane,
+) -> Vec<(Mark, Label)> {
+    let Some(n) = tree.nodes.get(i) else {
+        return Vec::new();
+    };
+    let Some(h) = n.hit else {
+        return Vec::new();
+    };
     // An interface between two indices, or a mirror (a reflected child and no indices).
     let mirror = tree.children(i).any(|(_, c)| c.kind == RayKind::Reflect);
     if h.n1_n2.is_none() && !mirror {
-        return;
+        return Vec::new();
     }
     let in_plane = |v: Vec3| Vec2::new(v.dot(plane.x), v.dot(plane.y));
     let p = plane.to_plane(h.point);
@@ -454,20 +536,31 @@ fn interface(d: &mut Diagram, tree: &RayTree, i: usize, plane: &SectionPlane) {
         dash: Dash::Dashed,
     });
     let toward_eye = in_plane(-n.ray.dir).normalize_or_zero();
-    let mut angle = |from: Vec2, to: Vec2, text: String| {
+    let mut labels = Vec::new();
+    let mut angle = |from: Vec2, to: Vec2, text: String, mark: Mark| {
         let (arc, label) = angle_marks(p, from, to, text, Some(i));
         d.items.push(arc);
-        d.labels.push(label);
+        labels.push((mark, label));
     };
-    angle(normal, toward_eye, format!("θi = {}", degrees(h.theta_i)));
+    angle(
+        normal,
+        toward_eye,
+        format!("θi = {}", degrees(h.theta_i)),
+        Mark::Bend,
+    );
     for (_, child) in tree.children(i) {
         let dir = in_plane(child.ray.dir).normalize_or_zero();
         match (child.kind, child.end) {
             (_, End::TotalInternalReflection) | (RayKind::Shadow | RayKind::Camera, _) => {}
-            (RayKind::Reflect, _) => angle(normal, dir, format!("θr = {}", degrees(h.theta_i))),
+            (RayKind::Reflect, _) => angle(
+                normal,
+                dir,
+                format!("θr = {}", degrees(h.theta_i)),
+                Mark::Mirror,
+            ),
             (RayKind::Refract, _) => {
                 if let Some(t) = h.theta_t {
-                    angle(-normal, dir, format!("θt = {}", degrees(t)));
+                    angle(-normal, dir, format!("θt = {}", degrees(t)), Mark::Bend);
                 }
             }
         }
@@ -475,18 +568,19 @@ fn interface(d: &mut Diagram, tree: &RayTree, i: usize, plane: &SectionPlane) {
     // The indices on their sides of the interface, beside the normal's ends.
     let along = Vec2::new(normal.x, -normal.y);
     let side = Vec2::new(-along.y, along.x) * 10.0;
-    let Some((n1, n2)) = h.n1_n2 else { return };
-    for (sign, text) in [
+    let Some((n1, n2)) = h.n1_n2 else {
+        return labels;
+    };
+    let indices = [
         (1.0, format!("η1 = {}", index(n1))),
         (-1.0, format!("η2 = {}", index(n2))),
-    ] {
+    ]
+    .into_iter()
+    .map(|(sign, text)| {
         let at = p + sign * length * normal;
-        d.labels.push(label(
-            at,
-            side + sign * along * 4.0,
-            &text,
-            Anchor::Start,
-            Some(i),
-        ));
-    }
+        let label = label(at, side + sign * along * 4.0, &text, Anchor::Start, Some(i));
+        (Mark::Index, label)
+    });
+    labels.extend(indices);
+    labels
 }

@@ -188,6 +188,12 @@ impl Workbench {
         d
     }
 
+    /// The line a hall has room for: R and Schlick's approximation of it at the angle.
+    pub fn hall_note(&self) -> String {
+        let row = self.row();
+        format!("R = {:.3}, Schlick {:.3}", row.r_exact, row.r_schlick)
+    }
+
     /// The numbers, a line each.
     fn notes(&self, row: &FresnelRow) -> Vec<String> {
         let t = row
@@ -227,6 +233,7 @@ fn plain(at: Vec2, offset: Vec2, text: String, anchor: Anchor) -> Label {
         ink: Ink::Text,
         anchor,
         node: None,
+        instead: None,
     }
 }
 

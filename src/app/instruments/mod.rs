@@ -210,13 +210,14 @@ impl RaylabApp {
     }
 
     /// The instruments open, in the dock's order. In a hall the section view shows the
-    /// inspected tree: the inspector's list, too long for a hall, goes.
+    /// inspected tree: the inspector's list, too long for a hall, goes; and the Fresnel
+    /// plot shares its tab with the section view (`together`).
     fn open_tabs(&self) -> Vec<Tab> {
         let i = &self.instruments;
         let listed = !(self.hall.presenting && i.show_section);
         [
             (i.show_fresnel, Tab::Fresnel),
-            (i.show_section, Tab::Section),
+            (i.show_section && !self.together(), Tab::Section),
             (
                 listed && (i.inspect_mode || i.inspection.is_some()),
                 Tab::Inspector,
@@ -229,11 +230,29 @@ impl RaylabApp {
         .collect()
     }
 
+    /// Whether the Fresnel plot and the section view (the workbench, on the slides that
+    /// open both and whose captions speak of both) are shown one above the other in a
+    /// hall, where the dock otherwise shows one instrument.
+    fn together(&self) -> bool {
+        let i = &self.instruments;
+        self.hall.presenting && i.show_fresnel && i.show_section
+    }
+
     /// Each open instrument under its heading, with a button that closes it; in a hall,
-    /// where there is room for one, the one its tab picks.
+    /// where there is room for one, the one its tab picks (the plot with the section view
+    /// under it, `together`).
     fn instruments_ui(&mut self, ui: &mut egui::Ui) {
         let tabs = self.open_tabs();
         let hall = self.hall.presenting;
+        let together = self.together();
+        // Where the dock's view ends: the plot ends above it, or 60 % of the way down
+        // when the section view is under it (the workbench's drawing is wider than tall).
+        let view = ui.clip_rect();
+        let plot_bottom = if together {
+            view.top() + 0.6 * view.height()
+        } else {
+            view.bottom()
+        };
         // The tab shown, where the dock shows one instrument.
         let mut current = (hall && tabs.len() > 1).then(|| {
             let chosen = self.instruments.hall_tab.filter(|t| tabs.contains(t));
@@ -253,7 +272,10 @@ impl RaylabApp {
             ui.separator();
         }
         // Whether to draw `tab`, and under a heading (false once closed).
-        let shows = |tab: Tab| current.is_none_or(|c| c == tab);
+        let shows = |tab: Tab| {
+            current
+                .is_none_or(|c| c == tab || (together && c == Tab::Fresnel && tab == Tab::Section))
+        };
         let head = |ui: &mut egui::Ui, tab: Tab| match current {
             Some(_) => close != Some(tab),
             None => heading(ui, tab.title()),
@@ -278,11 +300,13 @@ impl RaylabApp {
             if !head(ui, Tab::Fresnel) {
                 i.show_fresnel = false;
             }
-            fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal, hall);
+            let room = hall.then_some(plot_bottom);
+            fresnel::fresnel_plot_ui(ui, ior.unwrap_or(1.5), marker, &mut i.fresnel_metal, room);
             ui.separator();
         }
         if i.show_section && shows(Tab::Section) {
-            if !head(ui, Tab::Section) {
+            // Under the plot it shares the plot's heading.
+            if !together && !head(ui, Tab::Section) {
                 i.show_section = false;
             }
             let hovered = section::section_ui(
@@ -291,7 +315,7 @@ impl RaylabApp {
                 i.inspection.as_ref(),
                 (&self.scene, ior.unwrap_or(1.5)),
                 i.hover,
-                hall,
+                (hall, together),
             );
             i.hovered(hovered);
             ui.separator();

@@ -163,14 +163,15 @@ impl SectionState {
 /// The section view: a toggle between the pixel's section and the workbench, then the
 /// diagram. Returns the tree node whose ray the pointer hovers in it.
 /// In a `hall` the diagrams go without their title, notes and hints: the tab names them,
-/// and every line of text is large.
+/// and every line of text is large. Under the Fresnel plot in a hall (`shared`) the
+/// workbench is its drawing alone: dragging on it sets the angle, which it writes.
 pub(crate) fn section_ui(
     ui: &mut egui::Ui,
     state: &mut SectionState,
     inspection: Option<&Inspection>,
     (scene, ior): (&Scene, f32),
     highlight: Option<usize>,
-    hall: bool,
+    (hall, shared): (bool, bool),
 ) -> Option<usize> {
     // A slide picks the mode in a hall, where every row is dear.
     if !hall {
@@ -192,7 +193,7 @@ pub(crate) fn section_ui(
             }
         },
         SectionMode::Workbench => {
-            workbench_ui(ui, state, (scene.medium_ior, ior), hall);
+            workbench_ui(ui, state, (scene.medium_ior, ior), (hall, shared));
             None
         }
     }
@@ -203,15 +204,20 @@ fn text_height(ui: &egui::Ui) -> f32 {
     egui::TextStyle::Body.resolve(ui.style()).size
 }
 
-/// A canvas as wide as the dock and a little less tall, labelled `name` for assistive
-/// tools.
-fn canvas(ui: &mut egui::Ui, name: &str, sense: Sense) -> (egui::Response, egui::Painter) {
+/// A canvas as wide as the dock and a little less tall (at least `least`), labelled
+/// `name` for assistive tools.
+fn canvas(
+    ui: &mut egui::Ui,
+    name: &str,
+    sense: Sense,
+    least: f32,
+) -> (egui::Response, egui::Painter) {
     // As wide as the dock shows (a hall's wide rows widen what scrolls), square or as
     // tall as the dock still shows.
     let shown = ui.clip_rect().right() - ui.cursor().left();
     let width = ui.available_width().min(shown).max(200.0);
     let visible = ui.clip_rect().bottom() - ui.cursor().top();
-    let height = width.min(visible.max(200.0));
+    let height = width.min(visible.max(least));
     let (response, painter) = ui.allocate_painter(egui::vec2(width, height), sense);
     let name = name.to_string();
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, &name));
@@ -231,7 +237,7 @@ fn pixel_ui(
     if !hall {
         ui.label("Wheel: zoom in on the first hit. Double click: the whole tree.");
     }
-    let (response, painter) = canvas(ui, "Section diagram", Sense::click());
+    let (response, painter) = canvas(ui, "Section diagram", Sense::click(), 200.0);
     if response.hovered() {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
         *zoom = (*zoom * (scroll * 0.004).exp()).clamp(1.0, MAX_ZOOM);
@@ -265,13 +271,56 @@ fn workbench_ui(
     ui: &mut egui::Ui,
     state: &mut SectionState,
     (medium, ior): (f32, f32),
-    hall: bool,
+    (hall, shared): (bool, bool),
 ) {
     let (n1, n2) = if state.out {
         (ior, medium)
     } else {
         (medium, ior)
     };
+    if !shared {
+        workbench_controls_ui(ui, state, (n1, n2));
+    }
+    // Under the plot, what is left of the dock's view, however little.
+    let least = if shared { 100.0 } else { 200.0 };
+    let bench = Workbench {
+        n1,
+        n2,
+        theta_i: state.angle,
+    };
+    let (response, painter) = canvas(ui, "Workbench diagram", Sense::click_and_drag(), least);
+    let rect = response.rect;
+    let size = Vec2::new(rect.width(), rect.height());
+    let text = text_height(ui);
+    // In a hall the drawing, at the caption's size, and one line of notes (R, and
+    // Schlick's): its angles, the rays' widths and the guides say what the rest would.
+    let diagram = |theta_i| {
+        let bench = Workbench { theta_i, ..bench };
+        let mut d = bench.diagram();
+        if hall {
+            d.title.clear();
+            d.notes = vec![bench.hall_note()];
+        }
+        d
+    };
+    let fit = Fit::new(
+        &diagram(state.angle),
+        Vec2::new(rect.min.x, rect.min.y),
+        size,
+        text,
+    );
+    if let Some(p) = response
+        .interact_pointer_pos()
+        .filter(|_| response.is_pointer_button_down_on() || response.clicked())
+    {
+        state.angle = Workbench::angle_at(fit.to_plane(Vec2::new(p.x, p.y)));
+    }
+    paint_on(&painter, &diagram(state.angle), &fit, None);
+}
+
+/// The workbench's indices with a button that swaps its sides, its angle's slider, and
+/// the outline of that angle in the image.
+fn workbench_controls_ui(ui: &mut egui::Ui, state: &mut SectionState, (n1, n2): (f32, f32)) {
     ui.horizontal(|ui| {
         ui.label(format!("η1 = {}, η2 = {}", crate::section::index(n1), crate::section::index(n2)));
         if ui
@@ -293,38 +342,6 @@ fn workbench_ui(
             "Pixels whose camera ray first meets a dielectric at this angle of incidence, ±{}°, outlined in magenta on the image.",
             crate::render::INCIDENCE_BAND
         ));
-    let bench = Workbench {
-        n1,
-        n2,
-        theta_i: state.angle,
-    };
-    let (response, painter) = canvas(ui, "Workbench diagram", Sense::click_and_drag());
-    let rect = response.rect;
-    let size = Vec2::new(rect.width(), rect.height());
-    let text = text_height(ui);
-    // In a hall the drawing alone, at the caption's size: its angles, the rays' widths
-    // and the guides say what the notes would.
-    let diagram = |theta_i| {
-        let mut d = Workbench { theta_i, ..bench }.diagram();
-        if hall {
-            d.title.clear();
-            d.notes.clear();
-        }
-        d
-    };
-    let fit = Fit::new(
-        &diagram(state.angle),
-        Vec2::new(rect.min.x, rect.min.y),
-        size,
-        text,
-    );
-    if let Some(p) = response
-        .interact_pointer_pos()
-        .filter(|_| response.is_pointer_button_down_on() || response.clicked())
-    {
-        state.angle = Workbench::angle_at(fit.to_plane(Vec2::new(p.x, p.y)));
-    }
-    paint_on(&painter, &diagram(state.angle), &fit, None);
 }
 
 /// Paints `diagram` as `fit` places it, in the window's dark colours.
