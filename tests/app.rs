@@ -199,8 +199,11 @@ fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\n[[sphere]]\ncenter = [0, 1, 0]\nradius = -2\n").unwrap();
-    let mut h = app("default", dir.path());
+    // A 720p laptop's window, an instrument open beside the image.
+    let mut h = window::app_sized("default", dir.path(), (1280.0, 720.0));
     h.step();
+    window::choose_from_menu(&mut h, "Instruments", "Fresnel plot");
+    h.key_press(egui::Key::Escape);
     h.state_mut().open_scene(bad.to_str().unwrap());
     step_until(&mut h, "the load to finish", |a| !a.is_loading());
     let error = h.state().error().expect("an error").to_string();
@@ -208,8 +211,13 @@ fn a_bad_scene_shows_its_error_and_keeps_the_old_scene() {
         error.ends_with("bad.toml:6:10: must be greater than 0 and at most 1e6, got -2"),
         "{error}"
     );
-    // Shown in the window, and the old scene still there.
-    h.get_by_label(&error);
+    // Shown in the window, whole and with its button, left of the dock (it ran under
+    // it); and the old scene still there.
+    let dock = h.get_by_label("Fresnel plot").rect().left();
+    for node in [h.get_by_label(&error), h.get_by_label("Dismiss")] {
+        let r = node.rect();
+        assert!(r.right() <= dock, "{r:?} under the dock at {dock}");
+    }
     assert_eq!(h.state().scene().name, "default");
     // Fixing the file opens it (the failed file is watched).
     std::thread::sleep(Duration::from_millis(1100));

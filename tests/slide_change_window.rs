@@ -121,8 +121,17 @@ fn shows(h: &Window, k: usize) -> Result<(), String> {
                 return Err(format!("{} shown: {shown}", spec.label));
             }
         }
-        // The whole caption on the screen.
+        // Everything in the strip on the screen: every control's parts, the caption.
         let screen = h.ctx.content_rect();
+        let strip_top = image_area(h).bottom();
+        // (Every node with a place on the screen: the tree's root has none.)
+        let placed = egui_kittest::kittest::by().predicate(|n| n.bounding_box().is_some());
+        for node in h.query_all(placed) {
+            let r = node.rect();
+            if r.top() >= strip_top && r.right() > screen.right() + 0.5 {
+                return Err(format!("{node:?} at {r:?}, off the screen"));
+            }
+        }
         let bottom = h.get_by_label(&caption).rect().max.y;
         if bottom > screen.max.y + 0.5 {
             return Err(format!(
@@ -204,7 +213,8 @@ fn from_menu(i: usize) -> impl FnOnce(&mut Window, &mut Check) {
 #[test]
 fn a_slide_changes_whole_in_one_frame_forwards_and_backwards() {
     let dir = tempfile::tempdir().unwrap();
-    for size in [(1280.0, 720.0), (1920.0, 1080.0)] {
+    // A 720p laptop, a 1366x768 one, a 1080p projector.
+    for size in [(1280.0, 720.0), (1366.0, 768.0), (1920.0, 1080.0)] {
         let mut h = app_sized("default", dir.path(), size);
         h.step();
         h.key_press(egui::Key::F5);

@@ -155,13 +155,16 @@ impl RaylabApp {
                 .fill(Color32::from_rgb(110, 24, 24))
                 .inner_margin(6.0)
                 .show(ui, |ui| {
+                    // The button first and the message wrapped under it: a long message on
+                    // one row ran under the instruments' dock, and its button with it.
                     ui.horizontal(|ui| {
                         ui.label(RichText::new("Error:").color(Color32::WHITE).strong());
-                        ui.label(RichText::new(&e).color(Color32::WHITE).monospace());
                         if ui.small_button("Dismiss").clicked() {
                             self.error = None;
                         }
                     });
+                    let message = RichText::new(&e).color(Color32::WHITE).monospace();
+                    ui.add(egui::Label::new(message).wrap_mode(egui::TextWrapMode::Wrap));
                 });
         }
         let size = self
