@@ -123,8 +123,7 @@ impl Fit {
 }
 
 /// Where `label` lands on the canvas with `offset` and `anchor`: its rectangle (kept
-/// inside the canvas: a label near its edge is moved in, not cut), and the point and
-/// anchor to draw its text at.
+/// inside the canvas, above its notes' band: a label near its edge is moved in, not cut), and the point and anchor to draw its text at.
 fn label_rect(
     fit: &Fit,
     label: &Label,
@@ -143,9 +142,12 @@ fn label_rect(
         (from - lo).max(0.0) - (lo + extent - to).max(0.0)
     };
     let half = 0.6 * fit.text;
+    // Above the notes' band: a label moved in over the notes was written over them (the
+    // title is short, at the left: the band's right stays free).
+    let bottom = top_left.y + size.y - fit.bands.1;
     let shift = Vec2::new(
         inside(left, width, top_left.x, top_left.x + size.x),
-        inside(at.y - half, 2.0 * half, top_left.y, top_left.y + size.y),
+        inside(at.y - half, 2.0 * half, top_left.y, bottom),
     );
     let (left, at) = (left + shift.x, at + shift);
     let rect = (
@@ -257,16 +259,21 @@ pub fn paint(
     // A label that would overlap one already drawn is left out: at this size there is no
     // room for it (zoomed in, there is). The diagram lists the most important first.
     let mut taken: Vec<(Vec2, Vec2)> = Vec::new();
+    let mut placed = Vec::new();
     for label in &diagram.labels {
         // Where it is placed first, else where `instead` says.
         let places = std::iter::once((label.offset, label.anchor)).chain(label.instead);
         let free = places
             .map(|(offset, anchor)| label_rect(fit, label, offset, anchor))
             .find(|(rect, _)| !taken.iter().any(|r| overlap(rect, r)));
-        let Some((rect, (at, anchor))) = free else {
-            continue;
-        };
-        taken.push(rect);
+        if let Some((rect, at)) = free {
+            taken.push(rect);
+            placed.push((label, at));
+        }
+    }
+    // Written interface by interface (an SVG groups each one's labels), the others last.
+    placed.sort_by_key(|(label, _)| label.node.unwrap_or(usize::MAX));
+    for (label, (at, anchor)) in placed {
         canvas.group(label.node);
         canvas.text(at, &label.text, fit.text, label.ink.rgba(theme), anchor);
     }

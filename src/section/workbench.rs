@@ -109,14 +109,15 @@ impl Workbench {
             Dash::Dashed,
         ));
         // The guides, in the incoming ray's quarter, of two lengths so that their labels
-        // stay apart when the angles are close.
+        // stay apart when the angles are close. Their labels go after the angles': where
+        // they would overlap (a hall's large text), the angle dragged is written.
+        let mut guides = Vec::new();
         let mut guide = |angle: f32, length: f32, text: String| {
             let dir = length * Vec2::new(-angle.to_radians().sin(), angle.to_radians().cos());
             d.items
                 .push(line(Vec2::ZERO, dir, Ink::Guide, 1.5, Dash::Dotted));
             // Above its end and to the right, clear of the guide running down to the hit.
-            d.labels
-                .push(plain(dir, Vec2::new(4.0, -12.0), text, Anchor::Start));
+            guides.push(plain(dir, Vec2::new(4.0, -12.0), text, Anchor::Start));
         };
         if let Some(c) = self.critical_angle() {
             guide(c, 1.05, format!("critical angle {}", degrees(c)));
@@ -184,6 +185,7 @@ impl Workbench {
             format!("η2 = {}", index(self.n2)),
             Anchor::End,
         ));
+        d.labels.extend(guides);
         d.notes = self.notes(&row);
         d
     }
