@@ -252,3 +252,38 @@ fn from_every_slide_to_every_other_by_the_lecture_menu_no_frame_mixes_two() {
         }
     }
 }
+
+#[test]
+fn an_ab_view_kept_across_an_open_changes_scene_with_its_picture() {
+    // A/B on at the desk, another scene opened (not a slide): in every frame each side
+    // shows the scene the main view shows; the comparison stays.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app_sized("glazed", dir.path(), (1280.0, 720.0));
+    h.step();
+    h.get_by_label("Instruments").click();
+    h.run_steps(3);
+    h.get_by_label("A/B compare").click();
+    h.run_steps(3);
+    h.get_by_label("constant | Fresnel").click();
+    window::step_until(&mut h, "both sides' pictures", |a| {
+        a.picture().is_some() && a.compare_pictures().iter().all(Option::is_some)
+    });
+    h.state_mut().open_scene("default");
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let scene_of = |a: &RaylabApp| a.picture().map(|(s, _)| s.source.reference());
+    loop {
+        h.step();
+        let app = h.state();
+        let main = scene_of(app);
+        for side in app.compare_pictures() {
+            let side = side.map(|(s, _)| s.source.reference());
+            assert_eq!(side, main, "side B's picture of another scene than A's");
+        }
+        if main.as_deref() == Some("builtin:default") && !app.is_loading() {
+            break;
+        }
+        assert!(Instant::now() < deadline, "the scene never came");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    assert_eq!(h.state().compare_sides().len(), 1, "the comparison stays");
+}

@@ -22,7 +22,7 @@ pub(crate) struct Arriving {
     // The main engine's generation once told the scene and parameters: its frames from
     // there on are the new scene's.
     generation: u64,
-    // The slide's A/B sides (B, and C), started with it.
+    // Its A/B view's other sides (B, and C), started with it.
     compare: Option<Compare>,
     since: Instant,
 }
@@ -33,7 +33,8 @@ const WAIT: Duration = Duration::from_secs(2);
 
 impl RaylabApp {
     /// A scene opened has loaded (answering Open number `opens`): the main engine, and the
-    /// engines of its slide's A/B sides, start on it while the window shows the last scene.
+    /// engines of its A/B view's other sides, start on it while the window shows the last
+    /// scene.
     pub(super) fn stage(&mut self, ctx: &egui::Context, scene: Arc<Scene>, opens: u64) {
         let slide = self.lecture.pending_for(&scene);
         let mut params = scene.params.clone();
@@ -43,14 +44,18 @@ impl RaylabApp {
                 Err(e) => self.toasts.error(format!("Slide `{}`: {e}", slide.title)),
             }
         }
-        // Side A keeps its side of the comparison: the slide's, or (a scene opened outside
-        // the lecture) the one on.
+        // The comparison it opens with, and where its dividers start: the slide's, or (a
+        // scene opened outside the lecture) the one on, as it is.
         let kind = match slide {
-            Some(s) => s.compare.map(CompareKind::Lecture),
-            None if self.lecture.shown().is_none() => self.compare.as_ref().map(|c| c.kind.clone()),
+            Some(s) => s.compare.map(|c| (CompareKind::Lecture(c), s.dividers())),
+            None if self.lecture.shown().is_none() => self
+                .compare
+                .as_ref()
+                .map(|c| (c.kind.clone(), c.dividers.clone())),
             None => None,
         };
-        if let Some(kind) = &kind {
+        // Side A keeps its side of it.
+        if let Some((kind, _)) = &kind {
             params = kind.side_a(&params);
         }
         let told = Told {
@@ -60,12 +65,9 @@ impl RaylabApp {
             unlimited: self.settings.unlimited,
         };
         self.main.sync(&told, &params);
-        let compare = match (slide, kind) {
-            (Some(slide), Some(kind)) => {
-                self.new_compare(ctx, &told, kind, slide.dividers(), &params)
-            }
-            _ => None,
-        };
+        // Its other sides start on it too, in engines of their own.
+        let compare =
+            kind.and_then(|(kind, dividers)| self.new_compare(ctx, &told, kind, dividers, &params));
         self.arriving = Some(Arriving {
             scene,
             opens,
@@ -127,8 +129,11 @@ impl RaylabApp {
         // A slide in presentation mode says what it is in its own title.
         let quiet = self.hall.presenting && slide.is_some();
         self.replace_scene(a.scene, (!quiet).then_some("Opened"));
-        if let Some(slide) = slide {
+        // Its A/B view, if it has one (a slide's, or the one on, kept): none otherwise.
+        if a.compare.is_some() || slide.is_some() {
             self.compare = a.compare;
+        }
+        if let Some(slide) = slide {
             self.show_slide(slide, ctx);
         } else {
             // A slide zooms its section as it needs; any other scene starts whole.

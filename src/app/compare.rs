@@ -50,7 +50,7 @@ pub(crate) struct Compare {
     pub(crate) sides: Vec<Side>,
     // The dividers' positions across the image, left to right, 0 to 1: side A left of
     // the first, each other side right of its own.
-    dividers: Vec<f32>,
+    pub(super) dividers: Vec<f32>,
 }
 
 // The names of the sides' textures, B first.
