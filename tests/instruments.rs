@@ -74,12 +74,7 @@ fn a_b_compare_renders_both_sides() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app("glazed", dir.path());
     h.step();
-    h.get_by_label("Instruments").click();
-    h.run_steps(3);
-    h.get_by_label("A/B compare").click();
-    h.run_steps(3);
-    h.get_by_label("constant | Fresnel").click();
-    h.run_steps(3);
+    window::compare_with(&mut h, "constant | Fresnel");
     assert_eq!(
         h.state().params().fresnel,
         Some(FresnelMode::Constant),

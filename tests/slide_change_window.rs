@@ -260,11 +260,7 @@ fn an_ab_view_kept_across_an_open_changes_scene_with_its_picture() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = app_sized("glazed", dir.path(), (1280.0, 720.0));
     h.step();
-    h.get_by_label("Instruments").click();
-    h.run_steps(3);
-    h.get_by_label("A/B compare").click();
-    h.run_steps(3);
-    h.get_by_label("constant | Fresnel").click();
+    window::compare_with(&mut h, "constant | Fresnel");
     window::step_until(&mut h, "both sides' pictures", |a| {
         a.picture().is_some() && a.compare_pictures().iter().all(Option::is_some)
     });

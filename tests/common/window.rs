@@ -67,6 +67,14 @@ pub fn choose_from_menu(h: &mut Harness<'static, RaylabApp>, menu: &str, item: &
     panic!("the {menu} menu never showed `{item}`");
 }
 
+/// Turns the A/B view on from the Instruments menu, comparing `preset` (its menu entry).
+pub fn compare_with(h: &mut Harness<'static, RaylabApp>, preset: &str) {
+    for label in ["Instruments", "A/B compare", preset] {
+        h.get_by_label(label).click();
+        h.run_steps(3);
+    }
+}
+
 /// A click at `pos` as a user makes it: hover, press, release.
 pub fn click_at(h: &mut Harness<'static, RaylabApp>, pos: egui::Pos2) {
     h.hover_at(pos);
