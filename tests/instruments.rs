@@ -342,10 +342,8 @@ fn sample_patterns_say_when_the_camera_takes_no_point_on_the_lens_or_no_time() {
     let time = "Time in the shutter interval";
     let mut h = app("default", dir.path());
     h.step();
-    h.get_by_label("Instruments").click();
-    h.run_steps(3);
-    h.get_by_label("Sample patterns").click();
-    h.run_steps(3);
+    window::choose_from_menu(&mut h, "Instruments", "Sample patterns");
+    h.step();
     // A pinhole with a shutter of 0: neither panel has marks, and each says why.
     h.get_by_label(lens);
     h.get_by_label(pinhole);

@@ -32,6 +32,37 @@ fn body_text(h: &Harness<'static, RaylabApp>) -> f32 {
     egui::TextStyle::Body.resolve(&h.ctx.global_style()).size
 }
 
+/// The section of `tree` as the window draws it (its inspected pixel, its camera, at
+/// `zoom`, `titled` or not as at a desk or in a hall), and where it is fitted on the
+/// window's "Section diagram" canvas at the window's body text.
+fn window_section(
+    h: &Harness<'static, RaylabApp>,
+    tree: &raylab::tracer::RayTree,
+    zoom: f32,
+    titled: bool,
+) -> (raylab::section::Diagram, Fit) {
+    let canvas = h.get_by_label("Section diagram").rect();
+    let app = h.state();
+    let scene = app.scene();
+    let frame = app.latest_frame().expect("a frame");
+    let camera = &scene.camera;
+    let aspect = frame.width as f32 / frame.height as f32;
+    let view = camera.frame(aspect, camera.exposure(app.params()));
+    let room = Room {
+        size: Vec2::new(canvas.width(), canvas.height()),
+        text: body_text(h),
+        zoom,
+        titled,
+    };
+    let pixel = app
+        .inspected_pixel()
+        .expect("the inspector keeps its pixel");
+    let diagram = section(scene, &view, tree, pixel, room).expect("a tree with a hit");
+    let top_left = Vec2::new(canvas.min.x, canvas.min.y);
+    let fit = Fit::new(&diagram, top_left, room.size, room.text);
+    (diagram, fit)
+}
+
 /// A press, moves and release at `points`, as a user drags.
 fn drag(h: &mut Harness<'static, RaylabApp>, points: &[egui::Pos2]) {
     let button = |pos, pressed| egui::Event::PointerButton {
@@ -67,36 +98,7 @@ fn a_picked_pixels_section_links_its_rays_to_the_tree_list() {
     let tree = h.state().inspected_tree().expect("a tree").clone();
     assert!(tree.nodes[0].hit.unwrap().n1_n2.is_some(), "the glass");
     // The section draws that tree: hovering its refracted child's line hovers that ray.
-    let canvas = h.get_by_label("Section diagram").rect();
-    let scene = h.state().scene();
-    let frame_size = h
-        .state()
-        .latest_frame()
-        .map(|f| (f.width, f.height))
-        .unwrap();
-    let camera = &scene.camera;
-    let params = h.state().params().clone();
-    let frame = camera.frame(
-        frame_size.0 as f32 / frame_size.1 as f32,
-        camera.exposure(&params),
-    );
-    let room = Room {
-        size: Vec2::new(canvas.width(), canvas.height()),
-        text: body_text(&h),
-        zoom: 1.0,
-        titled: true,
-    };
-    let inspected = h
-        .state()
-        .inspected_pixel()
-        .expect("the inspector keeps its pixel");
-    let diagram = section(scene, &frame, &tree, inspected, room).unwrap();
-    let fit = Fit::new(
-        &diagram,
-        Vec2::new(canvas.min.x, canvas.min.y),
-        room.size,
-        room.text,
-    );
+    let (diagram, fit) = window_section(&h, &tree, 1.0, true);
     let (id, _) = tree
         .children(0)
         .find(|(_, n)| n.kind == raylab::tracer::RayKind::Refract)
@@ -298,22 +300,9 @@ fn snells_section_keeps_its_hit_and_labels_legible_over_the_iors_range() {
                 Some((1.0, ior as f32)),
                 "{what}: the tree follows"
             );
+            let zoom = h.state().section_zoom();
+            let (diagram, fit) = window_section(&h, &tree, zoom, false);
             let canvas = h.get_by_label("Section diagram").rect();
-            let scene = h.state().scene();
-            let frame = h.state().latest_frame().unwrap();
-            let (w, hgt) = (frame.width, frame.height);
-            let camera = &scene.camera;
-            let view = camera.frame(w as f32 / hgt as f32, camera.exposure(h.state().params()));
-            let room = Room {
-                size: Vec2::new(canvas.width(), canvas.height()),
-                text,
-                zoom: h.state().section_zoom(),
-                titled: false,
-            };
-            let pixel = h.state().inspected_pixel().unwrap();
-            let diagram = section(scene, &view, &tree, pixel, room).unwrap();
-            let top_left = Vec2::new(canvas.min.x, canvas.min.y);
-            let fit = Fit::new(&diagram, top_left, room.size, text);
             let mut drawn = Drawn::default();
             paint(&diagram, &mut drawn, &fit, Theme::Dark, None);
             // The hit, and the way through the glass, in view and large.

@@ -7,6 +7,7 @@
 //! colours. This module knows no egui.
 
 mod cut;
+mod framing;
 mod paint;
 mod raster;
 mod svg;

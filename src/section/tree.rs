@@ -3,6 +3,7 @@
 //! scale, and the lecture's angles and indices at each interface.
 
 use super::cut::{Piece, cut, cut_polygon};
+use super::framing::{first_frame, shown_points, view_of, within, zoomed};
 use super::{
     Anchor, Dash, Diagram, Ink, Item, Label, RayLine, Symbol, angle_marks, clip_segment, degrees,
     index,
@@ -95,10 +96,6 @@ pub struct Room {
 /// The deepest zoom into a section.
 pub const MAX_ZOOM: f32 = 50.0;
 
-/// The zoom that frames the first object the camera ray meets, its way through it and
-/// no more (see `zoomed`).
-pub const FRAME_ZOOM: f32 = 3.0;
-
 /// Interfaces are labelled where the ray meeting them carries at least this much of its
 /// sample (the camera ray carries 1): the faint internal bounces would bury the rest.
 pub const LABEL_WEIGHT: f32 = 0.1;
@@ -130,36 +127,9 @@ pub fn section(
     let off_plane = 1e-3 * reach;
     let ends: Vec<(Vec3, Vec3)> = tree.nodes.iter().map(|n| ray_ends(n, reach)).collect();
 
-    // The view: where the tree's rays meet things, and the camera and lights where they
-    // are near enough to show without shrinking that; the others are marked at its edge.
-    let mut core = Vec::new();
-    for (n, &(a, b)) in tree.nodes.iter().zip(&ends) {
-        if n.kind != RayKind::Camera {
-            core.push(plane.to_plane(a));
-        }
-        if !matches!(n.end, End::Miss | End::Lit | End::Occluded) {
-            core.push(plane.to_plane(b));
-        }
-    }
-    let (lo, hi) = bounds(core.iter().copied());
-    let extent = ((hi - lo).max_element()).max(0.4 * reach);
-    let near = |p: Vec2| p.distance(0.5 * (lo + hi)) < 1.5 * extent;
     let at_eye = plane.to_plane(eye);
     let lights: Vec<Vec3> = scene.lights.iter().map(|l| l.center()).collect();
-    let mut shown = core.clone();
-    shown.extend(
-        [at_eye]
-            .into_iter()
-            .chain(lights.iter().map(|c| plane.to_plane(*c)))
-            .filter(|p| near(*p)),
-    );
-    // Room around a lone hit: at least 0.4 of the camera ray's length, and a margin.
-    if shown.len() < 3 {
-        shown.extend([
-            lo - Vec2::splat(0.2 * extent),
-            hi + Vec2::splat(0.2 * extent),
-        ]);
-    }
+    let shown = shown_points(tree, &ends, &plane, at_eye, &lights, reach);
     // A hall's large text has no room for the indices at each interface: one line under
     // the drawing gives the first interface's.
     let notes = match (on.titled, root.hit.and_then(|h| h.n1_n2)) {
@@ -173,21 +143,7 @@ pub fn section(
     let aspect = room.x / room.y;
     let whole = view_of(shown.into_iter(), aspect);
     let first = plane.to_plane(root.hit.map_or(eye, |h| h.point));
-    // The first object's frame: the camera ray's way through it, from where it enters
-    // to where the refracted ray meets the next surface, with 0.3 of that around; for
-    // a surface it does not enter, 0.4 of the camera ray's length about the hit.
-    let refracted = tree.children(0).find(|(_, n)| n.kind == RayKind::Refract);
-    let through_id = refracted.map(|(i, _)| i);
-    let through = refracted
-        .and_then(|(_, n)| n.hit)
-        .map(|h| plane.to_plane(h.point));
-    let chord = through.map_or(0.4 * reach, |b| b.distance(first).max(1e-3 * reach));
-    let pad = Vec2::splat(0.3 * chord);
-    let far = through.unwrap_or(first);
-    let near = view_of(
-        [first - pad, first + pad, far - pad, far + pad].into_iter(),
-        aspect,
-    );
+    let (near, through_id) = first_frame(tree, &plane, first, reach, aspect);
     let view = zoomed(whole, near, first, on.zoom);
     let mut d = Diagram {
         title: match on.titled {
@@ -226,9 +182,25 @@ pub fn section(
             text,
         );
     }
-    // The interfaces' labels, ranked by what they say (below).
+    let marks = rays(&mut d, tree, &ends, (&plane, off_plane), on.titled);
+    rank_labels(&mut d, marks, through_id);
+    Some(d)
+}
+
+/// Each of `tree`'s rays (drawn from and to `ends`; projected where an end is more than
+/// `off_plane` from the plane), its end's label, and the marks at the interfaces it meets
+/// (not of rays that leave the plane, nor too faint to label);
+/// returned, the interfaces' labels, without their indices where the diagram is not
+/// `titled` (a hall: one line of notes gives them).
+fn rays(
+    d: &mut Diagram,
+    tree: &RayTree,
+    ends: &[(Vec3, Vec3)],
+    (plane, off_plane): (&SectionPlane, f32),
+    titled: bool,
+) -> Vec<(Mark, Label)> {
     let mut marks = Vec::new();
-    for (i, (n, &(a, b))) in tree.nodes.iter().zip(&ends).enumerate() {
+    for (i, (n, &(a, b))) in tree.nodes.iter().zip(ends).enumerate() {
         let projected = plane.distance(a).abs() > off_plane || plane.distance(b).abs() > off_plane;
         let (a2, b2) = (plane.to_plane(a), plane.to_plane(b));
         let weight = match n.kind {
@@ -244,32 +216,39 @@ pub fn section(
             projected,
             end: n.end,
         }));
-        end_label(&mut d, tree, i, (a2, b2), &plane);
+        end_label(d, tree, i, (a2, b2), plane);
         if !projected && weight >= LABEL_WEIGHT {
-            let labels = interface(&mut d, tree, i, &plane);
+            let labels = interface(d, tree, i, plane);
             marks.extend(
                 labels
                     .into_iter()
-                    .filter(|(m, _)| on.titled || *m != Mark::Index),
+                    .filter(|(m, _)| titled || *m != Mark::Index),
             );
         }
     }
-    // Where labels would overlap, the first drawn stays: first the bends at the way into
-    // the first object and out of it (what the Snell slide writes), then the reflections
-    // and indices there, then the other rays' labels, then the rest (camera, lights).
-    let way = |l: &Label| l.node.is_some() && (l.node == Some(0) || l.node == through_id);
-    let rank = |l: &Label, mark: Option<Mark>| match (way(l), mark, l.node) {
-        (true, Some(Mark::Bend), _) => 0,
-        (true, Some(Mark::Mirror), _) => 1,
-        (true, Some(Mark::Index), _) => 2,
-        (_, _, Some(_)) => 3,
-        (_, _, None) => 4,
+    marks
+}
+
+/// Orders `d`'s labels, with the interfaces' `marks`, by rank: where labels would
+/// overlap, the first drawn stays. First the bends at the way into the first object and
+/// out of it (node 0 and the refracted ray `through`: what the Snell slide writes), then
+/// the reflections and indices there, then the other rays' labels, then the rest (camera,
+/// lights).
+fn rank_labels(d: &mut Diagram, marks: Vec<(Mark, Label)>, through: Option<usize>) {
+    let rank = |l: &Label, mark: Option<Mark>| {
+        let way = matches!(l.node, Some(n) if n == 0 || Some(n) == through);
+        match (way, mark, l.node) {
+            (true, Some(Mark::Bend), _) => 0,
+            (true, Some(Mark::Mirror), _) => 1,
+            (true, Some(Mark::Index), _) => 2,
+            (_, _, Some(_)) => 3,
+            (_, _, None) => 4,
+        }
     };
     let mut ranked: Vec<(u8, Label)> = d.labels.drain(..).map(|l| (rank(&l, None), l)).collect();
     ranked.extend(marks.into_iter().map(|(m, l)| (rank(&l, Some(m)), l)));
     ranked.sort_by_key(|(r, _)| *r);
     d.labels = ranked.into_iter().map(|(_, l)| l).collect();
-    Some(d)
 }
 
 /// Where node `n`'s ray is drawn from and to: its hit or end, or for a branch pruned
@@ -280,66 +259,6 @@ fn ray_ends(n: &TreeNode, reach: f32) -> (Vec3, Vec3) {
         End::DepthLimit | End::WeightLimit | End::BudgetLimit => (a, a + 0.1 * reach * n.ray.dir),
         _ => (a, n.end_point),
     }
-}
-
-/// The smallest rectangle holding the finite `points` (a unit square about the origin
-/// if there are none).
-fn bounds(points: impl Iterator<Item = Vec2>) -> (Vec2, Vec2) {
-    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
-    for p in points.filter(|p| p.is_finite()) {
-        lo = lo.min(p);
-        hi = hi.max(p);
-    }
-    match lo.is_finite() && hi.is_finite() {
-        true => (lo, hi),
-        false => (Vec2::splat(-1.0), Vec2::splat(1.0)),
-    }
-}
-
-/// The rectangle around `points`, padded, widened or heightened to `aspect` (width over
-/// height).
-/// The view at `zoom`: `whole` at 1; narrowing geometrically to `near` (the first
-/// object's frame) at [`FRAME_ZOOM`], so that a slide's framing keeps the first hit and
-/// its labels the same size whatever the rest of the tree reaches (a refracted ray sent
-/// far across the floor by a higher IOR zoomed the sphere out to a few pixels); past it,
-/// further in about the first hit, `first`.
-fn zoomed(whole: (Vec2, Vec2), near: (Vec2, Vec2), first: Vec2, zoom: f32) -> (Vec2, Vec2) {
-    let zoom = zoom.clamp(1.0, MAX_ZOOM);
-    let t = (zoom.ln() / FRAME_ZOOM.ln()).min(1.0);
-    let size = |v: (Vec2, Vec2)| (v.1 - v.0).max(Vec2::splat(1e-6));
-    let centre = |v: (Vec2, Vec2)| 0.5 * (v.0 + v.1);
-    let (w, n) = (size(whole), size(near));
-    // w^(1 − t) n^t, each axis.
-    let mut half = 0.5
-        * Vec2::new(
-            w.x.powf(1.0 - t) * n.x.powf(t),
-            w.y.powf(1.0 - t) * n.y.powf(t),
-        );
-    let mut about = centre(whole).lerp(centre(near), t);
-    let past = zoom / FRAME_ZOOM;
-    if past > 1.0 {
-        half /= past;
-        about += (1.0 - 1.0 / past) * (first - about);
-    }
-    (about - half, about + half)
-}
-
-fn view_of(points: impl Iterator<Item = Vec2>, aspect: f32) -> (Vec2, Vec2) {
-    let (lo, hi) = bounds(points);
-    let size = (hi - lo).max(Vec2::splat(1e-3));
-    let size = size + Vec2::splat(0.16 * size.max_element());
-    let aspect = if aspect.is_finite() && aspect > 0.0 {
-        aspect
-    } else {
-        1.0
-    };
-    let size = size.max(Vec2::new(size.y * aspect, size.x / aspect));
-    let centre = 0.5 * (lo + hi);
-    (centre - 0.5 * size, centre + 0.5 * size)
-}
-
-fn within(p: Vec2, view: (Vec2, Vec2)) -> bool {
-    p.cmpge(view.0).all() && p.cmple(view.1).all()
 }
 
 fn label(at: Vec2, offset: Vec2, text: &str, anchor: Anchor, node: Option<usize>) -> Label {
