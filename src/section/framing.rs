@@ -1,11 +1,12 @@
 //! How a section is framed: the view that holds the whole tree, the first object's frame,
 //! and the zoom between them.
 
-use super::SectionPlane;
-use super::tree::MAX_ZOOM;
 use crate::math::Vec3;
 use crate::tracer::{End, RayKind, RayTree};
 use glam::Vec2;
+
+/// The deepest zoom into a section.
+pub const MAX_ZOOM: f32 = 50.0;
 
 /// The zoom that frames the first object the camera ray meets, its way through it and
 /// no more (see `zoomed`).
@@ -18,7 +19,7 @@ const FRAME_ZOOM: f32 = 3.0;
 pub(super) fn shown_points(
     tree: &RayTree,
     ends: &[(Vec3, Vec3)],
-    plane: &SectionPlane,
+    to_plane: impl Fn(Vec3) -> Vec2,
     at_eye: Vec2,
     lights: &[Vec3],
     reach: f32,
@@ -26,10 +27,10 @@ pub(super) fn shown_points(
     let mut core = Vec::new();
     for (n, &(a, b)) in tree.nodes.iter().zip(ends) {
         if n.kind != RayKind::Camera {
-            core.push(plane.to_plane(a));
+            core.push(to_plane(a));
         }
         if !matches!(n.end, End::Miss | End::Lit | End::Occluded) {
-            core.push(plane.to_plane(b));
+            core.push(to_plane(b));
         }
     }
     let (lo, hi) = bounds(core.iter().copied());
@@ -39,7 +40,7 @@ pub(super) fn shown_points(
     shown.extend(
         [at_eye]
             .into_iter()
-            .chain(lights.iter().map(|c| plane.to_plane(*c)))
+            .chain(lights.iter().map(|c| to_plane(*c)))
             .filter(|p| near(*p)),
     );
     if shown.len() < 3 {
@@ -57,7 +58,7 @@ pub(super) fn shown_points(
 /// (`reach`) about the hit. And the refracted ray's node, if any.
 pub(super) fn first_frame(
     tree: &RayTree,
-    plane: &SectionPlane,
+    to_plane: impl Fn(Vec3) -> Vec2,
     first: Vec2,
     reach: f32,
     aspect: f32,
@@ -65,7 +66,7 @@ pub(super) fn first_frame(
     let refracted = tree.children(0).find(|(_, n)| n.kind == RayKind::Refract);
     let through = refracted
         .and_then(|(_, n)| n.hit)
-        .map(|h| plane.to_plane(h.point));
+        .map(|h| to_plane(h.point));
     let chord = through.map_or(0.4 * reach, |b| b.distance(first).max(1e-3 * reach));
     let pad = Vec2::splat(0.3 * chord);
     let far = through.unwrap_or(first);

@@ -14,10 +14,11 @@ mod svg;
 mod tree;
 mod workbench;
 
+pub use framing::MAX_ZOOM;
 pub use paint::{Canvas, Fit, Stroke, paint, room};
 pub use raster::to_png;
 pub use svg::{text_size, to_svg};
-pub use tree::{MAX_ZOOM, Room, SectionPlane, section};
+pub use tree::{Room, SectionPlane, section};
 pub use workbench::{MAX_ANGLE, Workbench};
 
 use crate::tracer::{End, RayKind};

@@ -87,14 +87,11 @@ pub struct Room {
     pub size: Vec2,
     /// Its text height, in points.
     pub text: f32,
-    /// 1 shows the whole tree; more zooms in on the first hit, up to [`MAX_ZOOM`].
+    /// 1 shows the whole tree; more zooms in on the first hit, up to [`MAX_ZOOM`](super::MAX_ZOOM).
     pub zoom: f32,
     /// With its title and legend (a hall's dock has no room for them: its tab names it).
     pub titled: bool,
 }
-
-/// The deepest zoom into a section.
-pub const MAX_ZOOM: f32 = 50.0;
 
 /// Interfaces are labelled where the ray meeting them carries at least this much of its
 /// sample (the camera ray carries 1): the faint internal bounces would bury the rest.
@@ -129,7 +126,7 @@ pub fn section(
 
     let at_eye = plane.to_plane(eye);
     let lights: Vec<Vec3> = scene.lights.iter().map(|l| l.center()).collect();
-    let shown = shown_points(tree, &ends, &plane, at_eye, &lights, reach);
+    let shown = shown_points(tree, &ends, |p| plane.to_plane(p), at_eye, &lights, reach);
     // A hall's large text has no room for the indices at each interface: one line under
     // the drawing gives the first interface's.
     let notes = match (on.titled, root.hit.and_then(|h| h.n1_n2)) {
@@ -143,7 +140,7 @@ pub fn section(
     let aspect = room.x / room.y;
     let whole = view_of(shown.into_iter(), aspect);
     let first = plane.to_plane(root.hit.map_or(eye, |h| h.point));
-    let (near, through_id) = first_frame(tree, &plane, first, reach, aspect);
+    let (near, through_id) = first_frame(tree, |p| plane.to_plane(p), first, reach, aspect);
     let view = zoomed(whole, near, first, on.zoom);
     let mut d = Diagram {
         title: match on.titled {
