@@ -256,9 +256,10 @@ fn the_cost_heat_map_shows_rays_per_sample() {
     h.get_by_label("Cost heat map").click();
     h.run_steps(3);
     let frame = h.state().latest_frame().unwrap();
+    // (The picture the window shows: calmed while the image is on its way.)
     assert_eq!(
         h.state().shown_pixels(),
-        to_srgba8(&frame.pixels, h.state().params().exposure)
+        to_srgba8(frame.shown().0, h.state().params().exposure)
     );
 }
 
@@ -357,4 +358,42 @@ fn sample_patterns_say_when_the_camera_takes_no_point_on_the_lens_or_no_time() {
     h.get_by_label(lens);
     assert!(h.query_by_label(pinhole).is_none());
     assert!(h.query_by_label(time).is_none());
+}
+
+#[test]
+fn a_noisy_image_on_its_way_is_shown_calmed_and_the_view_menu_shows_it_raw() {
+    // The soft-shadow scene on its way to 256 spp is noisy: the window shows the calmed
+    // picture (its 2 × 2 cells), says so in the status bar, and keeps the film's own
+    // pixels for the readouts; View > Calm noise while refining off shows the film itself.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("soft-shadows", dir.path());
+    step_until(&mut h, "a calmed frame", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.calm.is_some() && !f.is_preview())
+    });
+    let frame = h.state().latest_frame().unwrap();
+    let exposure = h.state().params().exposure;
+    let calm = frame.calm.as_ref().unwrap();
+    assert_eq!(h.state().shown_pixels(), to_srgba8(&calm.pixels, exposure));
+    let cells = frame.width.div_ceil(calm.block) * frame.height.div_ceil(calm.block);
+    assert_eq!(
+        (calm.block, calm.pixels.len()),
+        (raylab::render::CALM_BLOCK, cells as usize)
+    );
+    assert!(
+        h.query_by_label("calmed").is_some(),
+        "the status bar says so"
+    );
+    window::choose_from_menu(&mut h, "View", "Calm noise while refining");
+    step_until(&mut h, "a raw frame", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.calm.is_none() && !f.is_preview())
+    });
+    let frame = h.state().latest_frame().unwrap();
+    assert!(
+        !frame.progress.done(),
+        "still on its way: raw because calm is off"
+    );
+    assert_eq!(h.state().shown_pixels(), to_srgba8(&frame.pixels, exposure));
+    assert!(h.query_by_label("calmed").is_none());
 }

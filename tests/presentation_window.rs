@@ -262,3 +262,37 @@ fn no_tooltip_covers_a_slide_in_presentation_mode() {
     h.run_steps(3);
     assert!(rest_on_the_ior_slider(&mut h), "no tooltip at the desk");
 }
+
+#[test]
+fn the_strip_keeps_every_control_and_the_caption_on_the_screen_whatever_they_read() {
+    // A control's readout widens with its value ("16.971", "100"): stepped through its
+    // range with ] and [, every slide's controls and caption stay on the screen (slide
+    // 15's Aperture ran off its right edge at 1080p, the caption widened with it).
+    present_every_slide(|h, slide, size| {
+        if slide.controls.is_empty() {
+            return;
+        }
+        for (key, presses) in [
+            (egui::Key::CloseBracket, 1),
+            (egui::Key::CloseBracket, 3),
+            (egui::Key::CloseBracket, 40),
+            (egui::Key::OpenBracket, 80),
+        ] {
+            for _ in 0..presses {
+                h.key_press(key);
+            }
+            h.run_steps(3);
+            let screen = h.ctx.content_rect();
+            let strip_top = h.get_by_label("Image").rect().bottom();
+            let placed = egui_kittest::kittest::by().predicate(|n| n.bounding_box().is_some());
+            for node in h.query_all(placed) {
+                let r = node.rect();
+                assert!(
+                    r.top() < strip_top || r.right() <= screen.right() + 0.5,
+                    "{} at {size:?}, {presses} x {key:?}: {node:?} at {r:?}, off the screen",
+                    slide.title
+                );
+            }
+        }
+    });
+}

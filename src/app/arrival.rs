@@ -63,6 +63,7 @@ impl RaylabApp {
             camera: scene.camera.clone(),
             size: super::render_size(&scene, self.settings.resolution),
             unlimited: self.settings.unlimited,
+            calm: self.settings.calm,
         };
         self.main.sync(&told, &params);
         // Its other sides start on it too, in engines of their own.

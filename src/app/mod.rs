@@ -113,6 +113,8 @@ struct Settings {
     resolution: f32,
     // Refine on past the target.
     unlimited: bool,
+    // Show frames on their way calmed.
+    calm: bool,
 }
 
 /// The previewer application.
@@ -222,6 +224,7 @@ impl RaylabApp {
                     camera: r.camera.unwrap_or_else(|| scene.camera.clone()),
                     resolution: r.resolution.clamp(0.1, 4.0),
                     unlimited: r.unlimited,
+                    calm: r.calm,
                 }
             }
             _ => Settings {
@@ -229,6 +232,7 @@ impl RaylabApp {
                 camera: scene.camera.clone(),
                 resolution: 1.0,
                 unlimited: false,
+                calm: true,
             },
         };
         let config = options
@@ -242,6 +246,7 @@ impl RaylabApp {
             camera: settings.camera.clone(),
             size: render_size(&scene, settings.resolution),
             unlimited: settings.unlimited,
+            calm: settings.calm,
         };
         let main = Side::new(
             &cc.egui_ctx,
@@ -336,6 +341,7 @@ impl RaylabApp {
             camera: self.settings.camera.clone(),
             size: render_size(&self.scene, self.settings.resolution),
             unlimited: self.settings.unlimited,
+            calm: self.settings.calm,
         }
     }
 

@@ -16,6 +16,7 @@ pub(super) struct Persisted {
     pub(super) camera: Option<Camera>,
     pub(super) resolution: f32,
     pub(super) unlimited: bool,
+    pub(super) calm: bool,
     pub(super) ui_scale: f32,
     /// The folder of the last Save as…, where snapshots go from then on.
     pub(super) snapshot_dir: Option<std::path::PathBuf>,
@@ -29,6 +30,7 @@ impl Default for Persisted {
             camera: None,
             resolution: 1.0,
             unlimited: false,
+            calm: true,
             ui_scale: 1.0,
             snapshot_dir: None,
         }
@@ -56,6 +58,7 @@ pub(super) fn save(
         camera: Some(settings.camera.clone()),
         resolution: settings.resolution,
         unlimited: settings.unlimited,
+        calm: settings.calm,
         ui_scale,
         snapshot_dir: Some(snapshot_dir.to_path_buf()),
     };
@@ -74,8 +77,8 @@ mod tests {
         assert_eq!(old.scene, "builtin:glass");
         assert_eq!(old.params.ior, Some(1.33));
         assert_eq!(
-            (old.resolution, old.unlimited, old.camera),
-            (1.0, false, None)
+            (old.resolution, old.unlimited, old.calm, old.camera),
+            (1.0, false, true, None)
         );
     }
 }

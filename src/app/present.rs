@@ -80,6 +80,43 @@ pub(crate) struct Hall {
     strip_height: f32,
 }
 
+/// The slide's controls side by side, `gap` apart, each with its parts (slider, readout,
+/// name, presets) kept in one row: a control that would not fit in what is left of a row
+/// starts the next. egui places a row's parts as they come and cannot know a group's width
+/// before laying it out ("Aperture" ran off the screen's edge, and the caption under it
+/// widened with it), so each is first laid out unseen to measure it. One wider than the
+/// whole strip lets its parts wrap.
+fn controls_row_ui(ui: &mut egui::Ui, c: &mut Controls, controls: &[&'static str], gap: f32) {
+    ui.horizontal_wrapped(|ui| {
+        let row = ui.available_width();
+        for (i, &name) in controls.iter().enumerate() {
+            let unseen = egui::UiBuilder::new()
+                .id_salt(("measured", name))
+                .sizing_pass()
+                .invisible();
+            let width = ui
+                .new_child(unseen)
+                .horizontal(|ui| param_ui(ui, c, name))
+                .response
+                .rect
+                .width();
+            if width > row {
+                if i > 0 {
+                    ui.end_row();
+                }
+                param_ui(ui, c, name);
+                ui.end_row();
+                continue;
+            }
+            if i > 0 && width > ui.available_size_before_wrap().x {
+                ui.end_row();
+            }
+            ui.horizontal(|ui| param_ui(ui, c, name));
+            ui.add_space(gap);
+        }
+    });
+}
+
 impl RaylabApp {
     /// Enters or leaves presentation mode (fullscreen, panels hidden, image fitted).
     pub(super) fn set_presenting(&mut self, ctx: &egui::Context, on: bool) {
@@ -198,14 +235,7 @@ impl RaylabApp {
                 if !controls.is_empty() {
                     // Each control's parts in a row (its slider, presets, readout), the
                     // controls side by side: the image keeps the height.
-                    self.with_controls(&[], |c| {
-                        ui.horizontal_wrapped(|ui| {
-                            for name in controls {
-                                param_ui(ui, c, name);
-                                ui.add_space(size);
-                            }
-                        });
-                    });
+                    self.with_controls(&[], |c| controls_row_ui(ui, c, controls, size));
                 }
                 let text =
                     caption.unwrap_or_else(|| "Page Down: the first slide. Esc: leave.".into());
@@ -295,11 +325,17 @@ impl RaylabApp {
         self.hall.help &= open;
     }
 
-    /// The View menu: presentation mode, the UI scale, streaming to tev, help.
+    /// The View menu: presentation mode, calm noise, the UI scale, streaming to tev, help.
     pub(super) fn view_menu_ui(&mut self, ui: &mut egui::Ui) {
         for command in [Command::Present, Command::Fit, Command::OneToOne] {
             self.command_item(ui, command);
         }
+        ui.checkbox(&mut self.settings.calm, "Calm noise while refining")
+            .on_hover_text(
+                "Until the image is clean, show it with its noise smoothed along each surface \
+                 (edges kept): drags on soft shadows, depth of field and dispersion look \
+                 calm. Off: the raw samples. Snapshots, tev and the readouts are raw either way.",
+            );
         ui.separator();
         ui.label("UI scale");
         let zoom = ui.ctx().zoom_factor();

@@ -8,14 +8,16 @@ use crate::render::{Engine, EngineConfig, EngineError, FilmCache, Frame, to_srgb
 use crate::scene::Scene;
 use std::sync::Arc;
 
-/// What a side's engine renders: the scene, camera, image size and whether it refines
-/// without end. The parameters are compared with the engine's own.
+/// What a side's engine renders: the scene, camera, image size, whether it refines
+/// without end and calms its frames. The parameters are compared with the engine's own.
 #[derive(Clone)]
 pub(crate) struct Told {
     pub(crate) scene: Arc<Scene>,
     pub(crate) camera: Camera,
     pub(crate) size: (u32, u32),
     pub(crate) unlimited: bool,
+    /// Frames on their way calmed for the screen ([`Engine::set_calm`]).
+    pub(crate) calm: bool,
 }
 
 /// What a texture shows: the exposure, the cost heat map's scale (if shown), and whether
@@ -70,6 +72,9 @@ impl Side {
         }
         if told.unlimited {
             engine.set_unlimited(true);
+        }
+        if !told.calm {
+            engine.set_calm(false);
         }
         let mut side = Side {
             generations: Default::default(),
@@ -145,6 +150,10 @@ impl Side {
             self.engine.set_unlimited(to.unlimited);
             self.told.unlimited = to.unlimited;
         }
+        if to.calm != self.told.calm {
+            self.engine.set_calm(to.calm);
+            self.told.calm = to.calm;
+        }
     }
 
     /// Takes the newest frame the engine sent (or the one held aside), dropping older
@@ -187,15 +196,21 @@ impl Side {
         if self.shown == Some((exposure, cost, sharp)) {
             return;
         }
+        // The calmed picture where there is one (not under the cost map: the film's).
+        let (pixels, block) = match cost {
+            Some(_) => (&frame.pixels[..], frame.block),
+            None => frame.shown(),
+        };
         let rgba = match cost {
             Some((lo, hi)) => heat_map_rgba(&frame.cost, lo, hi),
-            None => to_srgba8(&frame.pixels, exposure),
+            None => to_srgba8(pixels, exposure),
         };
-        let (w, h) = frame.grid_size();
+        let (w, h) = (frame.width.div_ceil(block), frame.height.div_ceil(block));
         let image = egui::ColorImage::from_rgba_unmultiplied([w as usize, h as usize], &rgba);
-        // A preview's blocks are stretched smoothly (bilinear); a pass's pixels too, unless
-        // the view shows them as squares (a whole zoom of 2 or more, `ViewState::sharp`).
-        let magnification = if sharp && !frame.is_preview() {
+        // Blocks (a preview's, a calmed picture's) are stretched smoothly (bilinear); a
+        // pass's pixels too, unless the view shows them as squares (a whole zoom of 2 or
+        // more, `ViewState::sharp`).
+        let magnification = if sharp && block == 1 {
             egui::TextureFilter::Nearest
         } else {
             egui::TextureFilter::Linear

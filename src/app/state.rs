@@ -58,8 +58,9 @@ impl RaylabApp {
         self.main.rendered()
     }
 
-    /// The main view's image as it is shown: sRGB RGBA rows of the newest frame's grid
-    /// (the cost heat map's colours while it is on).
+    /// The main view's image as it is shown: sRGB RGBA rows of the newest frame's picture
+    /// as shown ([`Frame::shown`](crate::render::Frame::shown): calmed while the image is
+    /// on its way), or the cost heat map's colours while it is on.
     pub fn shown_pixels(&self) -> &[u8] {
         self.main.pixels()
     }

@@ -125,6 +125,12 @@ impl RaylabApp {
                 ui.label(format!("noise {:.2}%{clean}", noise * 100.0))
                     .on_hover_text("Estimated standard error of the pixels, relative to the image's brightness, from the difference of two halves of the samples (alternate octaves of sample numbers). Under 2 % the image reads as clean.");
             }
+            if f.calm.is_some() {
+                ui.separator();
+                ui.label("calmed").on_hover_text(
+                    "Shown with its noise smoothed along each surface until it is clean (View > Calm noise while refining). Snapshots and readouts are the raw samples.",
+                );
+            }
             if let Some(done) = p.pixels_done {
                 ui.separator();
                 ui.label(format!("{:.0}% of pixels done", done * 100.0))

@@ -20,6 +20,13 @@ pub struct BenchArgs {
     /// Worker threads [default: every core, below normal priority, as with the window].
     #[arg(long, value_name = "T", value_parser = clap::value_parser!(u32).range(1..=1024))]
     threads: Option<u32>,
+    /// The parameter the simulated drag moves, over the middle half of its slider (light
+    /// size on the soft-shadow scene, aperture on depth of field).
+    #[arg(long, value_name = "NAME", default_value = "ior")]
+    drag: String,
+    /// Frames shown raw, not calmed (View > Calm noise while refining off).
+    #[arg(long)]
+    no_calm: bool,
     /// Instead: the time each lecture slide takes to reach its target (all its sides),
     /// every pixel sampled against adaptive sampling (the scene argument is not used).
     #[arg(long)]
@@ -69,6 +76,7 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
         config,
         || {},
     )?;
+    engine.set_calm(!args.no_calm);
     let wait_for = |engine: &Engine, generation: u64| -> Result<()> {
         loop {
             let frame = engine.frames().recv_timeout(Duration::from_secs(60))?;
@@ -90,15 +98,31 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
         wait_for(&engine, engine.generation())?;
         latencies.push(start.elapsed().as_secs_f64() * 1e3);
     }
-    // A drag: a change every 16 ms for 2 s, as a slider moved at 60 Hz.
+    // A drag: a change every 16 ms for 2 s, as a slider moved at 60 Hz, to and fro over
+    // the middle half of the slider in 40 steps.
+    let slider = raylab::params::spec(&args.drag)
+        .and_then(|s| s.slider)
+        .ok_or_else(|| anyhow::anyhow!("--drag {}: no parameter with a slider", args.drag))?;
+    let dragged = |i: u32| -> Result<Params> {
+        let along = 0.25 + 0.5 * (i % 40) as f64 / 40.0;
+        let value = slider.min + (slider.max - slider.min) * along;
+        let mut p = params.clone();
+        p.set(&args.drag, &value.to_string())?;
+        Ok(p)
+    };
+    // A drag starts from an image refined a while (its noise what calms the drag's frames).
+    engine.set_params(dragged(0)?);
+    loop {
+        let frame = engine.frames().recv_timeout(Duration::from_secs(60))?;
+        if frame.generation == engine.generation() && frame.progress.spp >= 16 {
+            break;
+        }
+    }
     let drag = raylab::render::simulate_drag(
         &mut engine,
         Duration::from_millis(16),
         Duration::from_secs(2),
-        |i| Params {
-            ior: Some(1.2 + 0.02 * (i % 40) as f32),
-            ..params.clone()
-        },
+        |i| dragged(i).unwrap_or_else(|_| params.clone()),
     );
     // Shutdown in the middle of a pass: the workers stop at their next pixel.
     let start = Instant::now();
@@ -132,6 +156,7 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
     }
     times.sort_by(f64::total_cmp);
     let pass = times[times.len() / 2];
+    let calm_ms = calm_cost(&pool, &scene, &params, (width, height))?;
     say!(
         "1-spp pass: {:.1} ms (median of 5), {:.2} M samples/s, {:.2} M rays, {:.2} M rays/s",
         pass * 1e3,
@@ -139,5 +164,41 @@ pub fn bench_command(args: &BenchArgs) -> Result<()> {
         rays as f64 / 1e6,
         rays as f64 / pass / 1e6
     );
+    let (guides_ms, calm_ms) = calm_ms;
+    say!(
+        "calm a 1-spp frame for the window: {calm_ms:.1} ms (median of 5), {:.2}x the pass; \
+         the guides, once per view: {guides_ms:.1} ms",
+        calm_ms / (pass * 1e3)
+    );
     Ok(())
+}
+
+/// What calming costs at `size` on `pool`: the guides (once per scene, camera and size),
+/// and a 1-spp film calmed with the spread of a 16-spp one (as a drag's first frames are),
+/// median of 5; in milliseconds.
+fn calm_cost(
+    pool: &rayon::ThreadPool,
+    scene: &Scene,
+    params: &Params,
+    (width, height): (u32, u32),
+) -> Result<(f64, f64)> {
+    use raylab::render::{CALM_BLOCK, Film, Guides, calm_film, render_pass, spread};
+    let start = Instant::now();
+    let (gw, gh) = (width.div_ceil(CALM_BLOCK), height.div_ceil(CALM_BLOCK));
+    let guides = pool.install(|| Guides::of(scene, &scene.camera, gw, gh));
+    let guides_ms = start.elapsed().as_secs_f64() * 1e3;
+    let mut before = Film::new(width, height);
+    pool.install(|| render_pass(scene, &scene.camera, params, &mut before, 16, &()))?;
+    let spread = pool.install(|| spread(&before));
+    let mut film = Film::new(width, height);
+    pool.install(|| render_pass(scene, &scene.camera, params, &mut film, 1, &()))?;
+    let mut times: Vec<f64> = (0..5)
+        .map(|_| {
+            let start = Instant::now();
+            pool.install(|| calm_film(&film, &guides, spread.as_deref(), &()));
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    Ok((guides_ms, times[times.len() / 2]))
 }

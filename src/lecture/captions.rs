@@ -4,29 +4,31 @@
 use super::Shown;
 use crate::geometry::Shape;
 
-/// The name of the material of the sphere nearest the plane of focus ("blue"), and the
-/// focus distance: what a thin lens shows sharp.
-pub(super) fn sharp_sphere(s: &Shown) -> Option<(String, f32)> {
+/// The focus distance, and the name of the material of the sphere nearest the plane of
+/// focus ("blue") if the plane cuts it: what a thin lens shows sharp. `None` in a scene
+/// without spheres.
+pub(super) fn sharp_sphere(s: &Shown) -> Option<(Option<String>, f32)> {
     let focus = s
         .params
         .focus_distance
         .unwrap_or_else(|| s.camera.look_distance());
     let forward = s.camera.pinhole(1.0).forward();
     let scene = s.scene;
-    let (object, _) = scene
+    let (object, gap) = scene
         .shapes
         .iter()
         .enumerate()
         .filter_map(|(o, shape)| match shape {
             Shape::Sphere(sphere) => {
                 let depth = (sphere.center - s.camera.position).dot(forward);
-                Some((o, (depth - focus).abs()))
+                Some((o, (depth - focus).abs() - sphere.radius))
             }
             _ => None,
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
     let material = scene.object_materials[object] as usize;
-    Some((scene.material_names.get(material)?.clone(), focus))
+    let cut = (gap <= 0.0).then(|| scene.material_names.get(material).cloned());
+    Some((cut.flatten(), focus))
 }
 
 /// The name of the object the inspected pixel's ray meets first ("front sphere"), `None`

@@ -507,6 +507,16 @@ mod tests {
             caption(&near)
         );
         assert!(caption(&near).contains(&format!("{depth:.1} units")));
+        // Focused far behind every sphere: none is named sharp.
+        let far = Params {
+            focus_distance: Some(100.0),
+            ..setup.params.clone()
+        };
+        assert!(
+            caption(&far).contains("no sphere lies there"),
+            "{}",
+            caption(&far)
+        );
         let pinhole = Params {
             aperture: 0.0,
             ..setup.params.clone()

@@ -165,8 +165,11 @@ pub const LECTURE: &[Slide] = &[
                 return "A pinhole (aperture 0): every eye ray starts at one point, and everything is sharp. Drag the Aperture to open the lens.".into();
             }
             match sharp_sphere(s) {
-                Some((colour, focus)) => format!(
+                Some((Some(colour), focus)) => format!(
                     "Eye rays from random points on the lens meet on the plane of focus, {focus:.1} units away: the {colour} sphere is sharp, the others blur by their circle of confusion. Try Click to focus, or drag the Aperture."
+                ),
+                Some((None, focus)) => format!(
+                    "Eye rays from random points on the lens meet on the plane of focus, {focus:.1} units away: no sphere lies there, so every sphere blurs by its circle of confusion. Try Click to focus on one."
                 ),
                 None => "Eye rays from random points on the lens meet on the plane of focus: what lies there is sharp, the rest blurs. Try Click to focus.".into(),
             }

@@ -17,6 +17,8 @@ pub struct DragReport {
     pub block_shown: Vec<u32>,
     /// How many generations behind the newest the frame shown was.
     pub generations_behind: Vec<u64>,
+    /// Whether the frame shown was calmed ([`Frame::calm`]).
+    pub calmed: Vec<bool>,
 }
 
 impl DragReport {
@@ -40,12 +42,14 @@ impl DragReport {
         format!(
             "drag ({} changes, one every {} ms): first frame median {median_ms:.2} ms, worst \
              {:.2} ms, {} without one; level shown median {median_block}x{median_block}, \
-             coarsest {b}x{b}; at most {} generation(s) behind",
+             coarsest {b}x{b}; at most {} generation(s) behind; {:.0}% of them calmed",
             self.first_frame.len(),
             self.tick.as_millis(),
             ms.last().copied().unwrap_or_default(),
             self.first_frame.len() - ms.len(),
             self.generations_behind.iter().max().copied().unwrap_or(0),
+            100.0 * self.calmed.iter().filter(|&&c| c).count() as f64
+                / self.calmed.len().max(1) as f64,
             b = blocks.last().copied().unwrap_or(0),
         )
     }
@@ -90,6 +94,7 @@ pub fn simulate_drag(
         if let Some(f) = &shown {
             report.block_shown.push(f.block);
             report.generations_behind.push(generation - f.generation);
+            report.calmed.push(f.calm.is_some());
         }
         i += 1;
     }

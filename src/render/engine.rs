@@ -228,6 +228,14 @@ impl Engine {
         self.send(Command::Unlimited(unlimited));
     }
 
+    /// Whether frames of an image on its way to its target (and not yet clean, see
+    /// [`super::CLEAN_NOISE`]) carry a calmed picture for the screen ([`Frame::calm`]): its
+    /// noise smoothed where the scene's geometry says the light is one surface's. On by
+    /// default; the film is the same either way.
+    pub fn set_calm(&mut self, calm: bool) {
+        self.send(Command::Calm(calm));
+    }
+
     /// Shares `cache` with the engine: a new image found there is taken from it, and an
     /// image finished when something changes is put there. Once the current image is
     /// finished, the idle workers render `jobs` into it (a change to the current image

@@ -78,12 +78,35 @@ pub struct Frame {
     pub block: u32,
     /// Progress at this frame.
     pub progress: Progress,
+    /// `pixels` calmed for the screen while the image is on its way and noisy (see
+    /// [`crate::render::Engine::set_calm`]): what the window shows. Snapshots, tev and the
+    /// inspector read `pixels`.
+    pub calm: Option<Calm>,
+}
+
+/// A frame's picture calmed for the screen: one value per `block` × `block` cell of the
+/// image, row-major from the top left, to be stretched over it with bilinear filtering.
+#[derive(Clone, Debug)]
+pub struct Calm {
+    /// Linear radiance, one value per cell.
+    pub pixels: Arc<Vec<Color>>,
+    /// The cells' side in pixels.
+    pub block: u32,
 }
 
 impl Frame {
     /// Whether this is a preview (one sample per block), not the film after a pass.
     pub fn is_preview(&self) -> bool {
         self.block > 1
+    }
+
+    /// What the window shows: the calmed picture if there is one, else `pixels`; and its
+    /// cells' side (1: every pixel).
+    pub fn shown(&self) -> (&[Color], u32) {
+        match &self.calm {
+            Some(calm) => (&calm.pixels, calm.block),
+            None => (&self.pixels, self.block),
+        }
     }
 
     /// The size of `pixels`: the image's for a pass, its blocks' for a preview.

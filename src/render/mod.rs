@@ -2,6 +2,7 @@
 //! sidecars, and images compared.
 
 pub mod adaptive;
+mod calm;
 pub mod compare;
 mod controller;
 mod drag;
@@ -23,10 +24,11 @@ mod snapshot;
 pub mod tev;
 pub(crate) mod text;
 
+pub use calm::{CALM_BLOCK, Guides, calm_film, spread};
 pub use drag::{DragReport, simulate_drag};
 pub use engine::{Engine, EngineConfig, EngineError};
 pub use film::{Accum, CLEAN_NOISE, Film, FilmError, to_srgba8, write_image, write_png};
-pub use frame::{Frame, Progress};
+pub use frame::{Calm, Frame, Progress};
 pub use generation::{MAX_PASS_SPP, PREVIEW_LEVELS};
 pub use incidence::{INCIDENCE_BAND, incidence_band, incidence_map};
 pub use kernel::{

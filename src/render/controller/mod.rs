@@ -1,10 +1,13 @@
 //! The engine's controller: the thread that owns the film and the state, takes commands,
 //! runs previews and passes on the worker pool, renders ahead when idle, and sends frames.
 
+use super::calm::{self, Guides};
+
+mod calming;
 use super::generation::{MAX_PASS_SPP, PASS_BUDGET, PREVIEW_LEVELS};
 use super::pace::Pace;
 use super::prerender::{Ahead, FilmCache, Key, Prerender};
-use super::{Film, Frame, PassObserver, Progress, render_pass, render_preview};
+use super::{Calm, Film, Frame, PassObserver, Progress, render_pass, render_preview};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::params::Params;
@@ -24,6 +27,7 @@ pub(super) enum Command {
     Camera(Camera),
     Resize(u32, u32),
     Unlimited(bool),
+    Calm(bool),
     Pause(bool),
     Prerender(FilmCache, Vec<Prerender>),
     Shutdown,
@@ -101,6 +105,17 @@ pub(super) struct Controller {
     // Images rendered ahead, and those still to render once idle.
     cache: Option<FilmCache>,
     ahead: Ahead,
+    // Whether frames on their way carry a calmed picture; what calms them: the guides of
+    // the image's geometry, the last image's spread and its noise at one sample per pixel
+    // (kept across changes of parameters, dropped with the scene, camera or size).
+    calm: bool,
+    guides: Vec<Arc<Guides>>,
+    spread: Option<Arc<Vec<f32>>>,
+    // The spread at each preview level's blocks, made as they are needed.
+    coarse_spread: Vec<(u32, Arc<Vec<f32>>)>,
+    one_sample_noise: f32,
+    // The workers, while `run` runs: frames are calmed on them.
+    pool: Option<Arc<rayon::ThreadPool>>,
 }
 
 impl Controller {
@@ -140,6 +155,12 @@ impl Controller {
             failure: None,
             cache,
             ahead: Ahead::default(),
+            calm: true,
+            guides: Vec::new(),
+            spread: None,
+            coarse_spread: Vec::new(),
+            one_sample_noise: 0.0,
+            pool: None,
         }
     }
 
@@ -149,6 +170,8 @@ impl Controller {
         pool: rayon::ThreadPool,
         workers: Arc<Mutex<Vec<JoinHandle<()>>>>,
     ) {
+        let pool = Arc::new(pool);
+        self.pool = Some(Arc::clone(&pool));
         'outer: loop {
             // Take every command that waits; wait for one when there is nothing to do.
             loop {
@@ -201,6 +224,7 @@ impl Controller {
                 self.ahead.step(cache, &pool, &watch);
             }
         }
+        self.pool = None;
         drop(pool);
         if let Ok(mut workers) = workers.lock() {
             for handle in workers.drain(..) {
@@ -270,15 +294,23 @@ impl Controller {
             Command::Scene(scene) => {
                 self.camera = scene.camera.clone();
                 self.scene = scene;
+                self.forget_geometry();
                 true
             }
             Command::Camera(camera) => {
                 self.camera = camera;
+                self.forget_geometry();
                 true
             }
             Command::Resize(w, h) => {
                 self.film.resize(w, h);
+                self.forget_geometry();
                 true
+            }
+            Command::Calm(calm) => {
+                self.calm = calm;
+                self.send_frame();
+                false
             }
             Command::Unlimited(u) => {
                 self.unlimited = u;
@@ -299,6 +331,14 @@ impl Controller {
             }
         };
         if restart {
+            if let Some(spread) = calm::spread(&self.film) {
+                self.spread = Some(Arc::new(spread));
+                self.coarse_spread.clear();
+                // Noise falls as one over the square root of the samples (or faster, with
+                // Sobol's: this errs towards not calming).
+                let noise = self.film.noise(self.params.exposure).unwrap_or(0.0);
+                self.one_sample_noise = noise * (self.film.spp() as f32).sqrt();
+            }
             self.generation = self.generation.max(generation);
             self.film.clear();
             self.preview_level = 0;
@@ -354,7 +394,11 @@ impl Controller {
         if let Ok((pixels, stats)) = result {
             self.preview_level += 1;
             self.stats += stats;
-            self.emit(Arc::new(pixels), Arc::new(Vec::new()), block);
+            let calm = self.calm_preview(&pixels, block);
+            if self.superseded() {
+                return;
+            }
+            self.emit(Arc::new(pixels), Arc::new(Vec::new()), block, calm);
         }
     }
 
@@ -457,7 +501,7 @@ impl Controller {
             Color::ZERO;
             self.film.width() as usize * self.film.height() as usize
         ]);
-        self.emit(pixels, Arc::new(Vec::new()), 1);
+        self.emit(pixels, Arc::new(Vec::new()), 1, None);
     }
 
     fn send_frame(&mut self) {
@@ -466,10 +510,20 @@ impl Controller {
         }
         let pixels = Arc::new(self.film.pixels().collect());
         let cost = Arc::new(self.film.cost());
-        self.emit(pixels, cost, 1);
+        let calm = self.calm_film();
+        if self.superseded() {
+            return;
+        }
+        self.emit(pixels, cost, 1, calm);
     }
 
-    fn emit(&mut self, pixels: Arc<Vec<Color>>, cost: Arc<Vec<f32>>, block: u32) {
+    fn emit(
+        &mut self,
+        pixels: Arc<Vec<Color>>,
+        cost: Arc<Vec<f32>>,
+        block: u32,
+        calm: Option<Calm>,
+    ) {
         let frame = Frame {
             generation: self.generation,
             width: self.film.width(),
@@ -478,6 +532,7 @@ impl Controller {
             cost,
             block,
             progress: self.progress(),
+            calm,
         };
         self.outbox.send(frame);
         (self.wake)();
