@@ -16,9 +16,9 @@
 //!   what one eye ray through each pixel's centre meets ([`Guides`]);
 //! - and by luminance, exp(−|l_p − l_q| / (4·σ_p)), σ_p the standard error of p's mean
 //!   (blurred 3 × 3), so a noiseless edge (a hard shadow, a texture seen in focus) stays
-//!   sharp and noise goes. A pixel's samples tell its spread from two on; the first frames
-//!   of an image (one sample, a preview's blocks) take it from the last image's, which a
-//!   drag's small steps keep close;
+//!   sharp and noise goes. A pixel's samples tell its spread from 4 on; before, it is the
+//!   last image's (kept across a drag), raised where the frame's own values vary more
+//!   than it says (a penumbra grown since), read so that an edge does not count;
 //! - each pass carries the variance through: σ'² = Σ w²σ_q² / (Σ w)².
 //!
 //! Pixels whose neighbourhood has no spread are left exactly as they are: an image without
@@ -171,6 +171,11 @@ pub fn calm_film(
         };
         (a.mean(), one / a.count.max(1) as f32)
     });
+    let variance = if film.spp() < SPREAD_FROM {
+        at_least_spatial(&means, variance, guides)
+    } else {
+        variance
+    };
     calm(means, variance, guides, passes_at(CALM_BLOCK), observer)
 }
 
@@ -215,7 +220,49 @@ pub(crate) fn calm_preview(
     // A pass fewer than a film's at these cells: a preview lasts a frame of a drag, and
     // the drag's next level must not wait for it.
     let passes = passes_at(block).saturating_sub(1).max(1);
-    calm(grid, spread.to_vec(), guides, passes, observer)
+    let variance = at_least_spatial(&grid, spread.to_vec(), guides);
+    calm(grid, variance, guides, passes, observer)
+}
+
+/// `variance`, raised where the values themselves vary more: the last image's spread
+/// misses what a drag has moved since (a penumbra grown into a region that was lit, its
+/// new speckle left as it was). A cell's spatial variance is the least over the four 3 × 3
+/// windows that hold it in a corner, of the cells on its object there: a texture's or a
+/// shadow's edge leaves one window flat, so it reads as no noise; noise fills all four.
+fn at_least_spatial(values: &[Color], variance: Vec<f32>, guides: &Guides) -> Vec<f32> {
+    let (w, h) = (guides.width as i64, guides.height as i64);
+    let luma: Vec<f32> = values.iter().map(|c| super::film::luminance(*c)).collect();
+    variance
+        .into_par_iter()
+        .enumerate()
+        .map(|(p, v)| {
+            let (x, y) = (p as i64 % w, p as i64 / w);
+            let object = guides.object[p];
+            let mut least = f32::INFINITY;
+            for (sx, sy) in [(-1, -1), (1, -1), (-1, 1), (1, 1)] {
+                let (mut sum, mut sum_sq, mut k) = (0.0f32, 0.0f32, 0.0f32);
+                for dy in 0..3 {
+                    for dx in 0..3 {
+                        let (qx, qy) = (x + sx * dx, y + sy * dy);
+                        if qx < 0 || qy < 0 || qx >= w || qy >= h {
+                            continue;
+                        }
+                        let q = (qy * w + qx) as usize;
+                        if guides.object[q] == object && luma[q].is_finite() {
+                            sum += luma[q];
+                            sum_sq += luma[q] * luma[q];
+                            k += 1.0;
+                        }
+                    }
+                }
+                if k >= 4.0 {
+                    let mean = sum / k;
+                    least = least.min((sum_sq / k - mean * mean).max(0.0) * k / (k - 1.0));
+                }
+            }
+            if least.is_finite() { v.max(least) } else { v }
+        })
+        .collect()
 }
 
 /// Each `block` × `block` cell of an image of `size` (a `grid` of them): the mean of its
