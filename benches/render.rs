@@ -6,7 +6,9 @@
 //! (elements/s = samples/s) and once in rays (every ray the pass traces, of every kind,
 //! counted up front: the count is deterministic). The `*_by_traversal` groups time one
 //! thread's 1-spp pass of (a) and (b) walked each way this processor runs: recursively, and
-//! in waves at every lane width it has (the same image each way).
+//! in waves at every lane width it has (the same image each way). (e) times one thread
+//! bringing a 16-spp image of the glass scene back to 16 samples after a change of the
+//! index of refraction, afresh and with the pixels the change cannot alter kept.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raylab::camera::Camera;
@@ -16,7 +18,7 @@ use raylab::material::{Diffuse, Material, Texture};
 use raylab::math::lanes::Width;
 use raylab::math::{Color, Vec3};
 use raylab::params::Params;
-use raylab::render::{Film, render, render_pass_by};
+use raylab::render::{Film, render, render_pass, render_pass_by};
 use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
 use raylab::tracer::Traversal;
 use std::f32::consts::PI;
@@ -181,6 +183,49 @@ fn traversals(c: &mut Criterion, name: &str, scene: &Scene) {
     group.finish();
 }
 
+/// After a change of the index of refraction, a 16-spp image of the glass scene brought
+/// back to 16 samples with the pixels the change cannot alter kept, against rendering it
+/// afresh, on one thread.
+fn reuse(c: &mut Criterion) {
+    let scene = Scene::load("glass").expect("built-in scene");
+    let old = Params {
+        spp: 16,
+        ..scene.params.clone()
+    };
+    let new = Params {
+        ior: Some(1.6),
+        ..old.clone()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a thread pool");
+    let before = pool.install(|| {
+        render(&scene, &old, WIDTH, HEIGHT, &())
+            .expect("no cancel")
+            .0
+    });
+    let reach = raylab::tracer::reach(&scene, &old, &new).expect("a change of materials");
+    let mut group = c.benchmark_group("e_change_of_ior");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+    group.bench_function("glass_16spp_afresh", |b| {
+        b.iter(|| pool.install(|| black_box(render(&scene, &new, WIDTH, HEIGHT, &()))))
+    });
+    group.bench_function("glass_16spp_kept_where_unreached", |b| {
+        b.iter(|| {
+            pool.install(|| {
+                let mut film = before.clone();
+                film.restart_reached(&reach);
+                let stats = render_pass(&scene, &scene.camera, &new, &mut film, 16, &());
+                black_box((film, stats.expect("no cancel")))
+            })
+        })
+    });
+    group.finish();
+}
+
 /// A benchmark scene of benches/.
 fn bench_scene(file: &str) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -196,6 +241,7 @@ fn benches(c: &mut Criterion) {
     throughput(c, "c_thin_lens", &bench_scene("thin-lens.toml"));
     traversals(c, "a_default_scene", &default);
     traversals(c, "b_specular", &bench_scene("specular.toml"));
+    reuse(c);
 
     let mesh = bumpy_sphere(1000, 500);
     assert!(mesh.triangle_count() >= 1_000_000);

@@ -75,9 +75,12 @@ fn every_frame_of_a_new_generation_shows_the_new_parameters() {
     );
     assert!(first.iter().all(|f| f.generation == 1));
 
+    // (A new seed reaches every sample: the whole image starts again. A change that
+    // reaches part of it keeps the rest: tests/reuse.rs.)
     let b = Params {
         ior: Some(1.33),
         max_depth: 3,
+        seed: 3,
         ..a.clone()
     };
     e.set_params(b.clone());
@@ -268,6 +271,10 @@ fn the_windows_workers_run_on_every_core_below_its_priority_and_headless_ones_do
         vec![own],
         "the controller only waits"
     );
+    // (Its workers too may start a moment after it.)
+    while nice_of(&headless, 'w').len() < cores && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(5));
+    }
     assert_eq!(
         nice_of(&headless, 'w'),
         vec![own; cores],

@@ -131,6 +131,12 @@ impl RaylabApp {
                     "Shown with its noise smoothed along each surface until it is clean (View > Calm noise while refining). Snapshots and readouts are the raw samples.",
                 );
             }
+            if p.reached < 1.0 && !p.done() {
+                ui.separator();
+                ui.label(format!("re-rendering {:.0}%", p.reached * 100.0)).on_hover_text(
+                    "The share of the pixels the last change could alter (their samples met what it changed): they start again; the rest keep their samples, bit for bit.",
+                );
+            }
             if let Some(done) = p.pixels_done {
                 ui.separator();
                 ui.label(format!("{:.0}% of pixels done", done * 100.0))

@@ -13,12 +13,16 @@ pub struct DragReport {
     /// Time from each change to the first frame of its generation; `None` where none came
     /// before the next change.
     pub first_frame: Vec<Option<Duration>>,
-    /// The block side of the frame shown at each display frame (1: a full pass).
+    /// The block side of the frame shown at each display frame (1: a full pass), as shown
+    /// (a calmed picture's cells).
     pub block_shown: Vec<u32>,
     /// How many generations behind the newest the frame shown was.
     pub generations_behind: Vec<u64>,
     /// Whether the frame shown was calmed ([`Frame::calm`]).
     pub calmed: Vec<bool>,
+    /// The share of the image's pixels each change started again, from the change's
+    /// first frame ([`super::Progress::reached`]); `None` where none came.
+    pub reached: Vec<Option<f32>>,
 }
 
 impl DragReport {
@@ -32,6 +36,8 @@ impl DragReport {
             .map(|d| d.as_secs_f64() * 1e3)
             .collect();
         ms.sort_by(f64::total_cmp);
+        let mut reached: Vec<f32> = self.reached.iter().flatten().copied().collect();
+        reached.sort_by(f32::total_cmp);
         let mut blocks = self.block_shown.clone();
         blocks.sort_unstable();
         let (Some(median_ms), Some(median_block)) =
@@ -42,7 +48,8 @@ impl DragReport {
         format!(
             "drag ({} changes, one every {} ms): first frame median {median_ms:.2} ms, worst \
              {:.2} ms, {} without one; level shown median {median_block}x{median_block}, \
-             coarsest {b}x{b}; at most {} generation(s) behind; {:.0}% of them calmed",
+             coarsest {b}x{b}; at most {} generation(s) behind; {:.0}% of them calmed; \
+             {reached} of the pixels re-rendered per change (median)",
             self.first_frame.len(),
             self.tick.as_millis(),
             ms.last().copied().unwrap_or_default(),
@@ -51,6 +58,10 @@ impl DragReport {
             100.0 * self.calmed.iter().filter(|&&c| c).count() as f64
                 / self.calmed.len().max(1) as f64,
             b = blocks.last().copied().unwrap_or(0),
+            reached = match reached.get(reached.len() / 2) {
+                Some(r) => format!("{:.1}%", 100.0 * r),
+                None => "none".into(),
+            },
         )
     }
 }
@@ -75,7 +86,7 @@ pub fn simulate_drag(
         let changed = Instant::now();
         engine.set_params(change(i));
         let generation = engine.generation();
-        let mut first = None;
+        let (mut first, mut reached) = (None, None);
         let end = changed + tick;
         loop {
             let left = end.saturating_duration_since(Instant::now());
@@ -83,6 +94,7 @@ pub fn simulate_drag(
                 Ok(f) => {
                     if f.generation == generation && first.is_none() {
                         first = Some(changed.elapsed());
+                        reached = Some(f.progress.reached);
                     }
                     shown = Some(f);
                 }
@@ -91,8 +103,9 @@ pub fn simulate_drag(
             }
         }
         report.first_frame.push(first);
+        report.reached.push(reached);
         if let Some(f) = &shown {
-            report.block_shown.push(f.block);
+            report.block_shown.push(f.shown().1);
             report.generations_behind.push(generation - f.generation);
             report.calmed.push(f.calm.is_some());
         }

@@ -3,6 +3,7 @@
 use crate::math::Color;
 use crate::math::srgb::{srgb_encode_table, srgb8, srgb8_exact};
 use crate::render::output::{image_format, write_file, write_pair};
+use crate::tracer::{Met, Reach};
 use std::path::Path;
 
 /// The noise (as [`Film::noise`] estimates it) under which an image reads as clean: the
@@ -114,15 +115,28 @@ pub(crate) fn luminance(c: Color) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
+/// What a pixel's samples were: how many it has taken (sample numbers 0 to `count` − 1,
+/// non-finite ones included) and what they met that a parameter governs.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Taken {
+    pub(crate) count: u32,
+    pub(crate) met: Met,
+}
+
 /// Accumulated radiance per pixel, row-major from the top left.
 ///
 /// Sums are f64, added in sample order, so a pixel's value does not depend on how its
-/// samples were split into passes.
+/// samples were split into passes. Each pixel also keeps how many samples it has taken
+/// and what they met (`Taken`): after a change of parameters only the pixels the change
+/// reaches start again ([`Film::restart_reached`]), and a pass stopped half-way leaves
+/// each pixel whole, with the samples it has.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Film {
     width: u32,
     height: u32,
     pub(crate) pixels: Vec<Accum>,
+    pub(crate) taken: Vec<Taken>,
+    // The samples every pixel has (some may have more).
     spp: u32,
     // Adaptive sampling: the pixels that receive no more samples (see `adaptive`).
     pub(crate) done: Vec<bool>,
@@ -233,6 +247,7 @@ impl Film {
             width,
             height,
             pixels: vec![Accum::default(); width as usize * height as usize],
+            taken: vec![Taken::default(); width as usize * height as usize],
             spp: 0,
             done: vec![false; width as usize * height as usize],
         }
@@ -248,7 +263,9 @@ impl Film {
         self.height
     }
 
-    /// Samples per pixel rendered so far (including any dropped as non-finite).
+    /// Samples per pixel rendered so far (including any dropped as non-finite): the
+    /// samples every pixel has; after [`Film::restart_reached`] or a pass stopped half-way,
+    /// some have more.
     pub fn spp(&self) -> u32 {
         self.spp
     }
@@ -258,10 +275,29 @@ impl Film {
     }
 
     /// Empties the film, keeping its memory: it reads black, and the next pass starts each
-    /// pixel afresh as it reaches it, so emptying costs nothing (a drag empties it at
-    /// every change).
+    /// pixel afresh as it reaches it, so emptying costs only the pixels' counts (a drag
+    /// empties it at every change).
     pub fn clear(&mut self) {
         self.spp = 0;
+        self.taken.fill(Taken::default());
+    }
+
+    /// Starts again the pixels whose samples met what a change of parameters reaches
+    /// (`reach`, see [`crate::tracer::reach`]): the next passes bring them back to the
+    /// others' samples (and on), which keep their sums exactly. The film reads as before
+    /// until each such pixel's first new sample. How many pixels start again.
+    pub fn restart_reached(&mut self, reach: &Reach) -> usize {
+        let mut n = 0;
+        for t in &mut self.taken {
+            if t.met.meets(reach) {
+                *t = Taken::default();
+                n += 1;
+            }
+        }
+        if n > 0 {
+            self.spp = 0;
+        }
+        n
     }
 
     /// Empties the film and gives it a new size.
@@ -273,7 +309,17 @@ impl Film {
             .resize(width as usize * height as usize, Accum::default());
         self.done.clear();
         self.done.resize(self.pixels.len(), false);
+        self.taken.clear();
+        self.taken.resize(self.pixels.len(), Taken::default());
         self.spp = 0;
+    }
+
+    /// Whether adaptive sampling may have decided on this film: some pixel is past its
+    /// first decision's count, or stopped. Its decisions read the whole film, so a film
+    /// decided on cannot keep part of itself through a change of parameters.
+    pub fn decided(&self) -> bool {
+        let first = super::adaptive::FIRST_CHECK;
+        self.taken.iter().any(|t| t.count > first) || self.done.iter().any(|&d| d)
     }
 
     /// Whether adaptive sampling has stopped every pixel: more passes would trace nothing.
@@ -306,6 +352,9 @@ impl Film {
         for (row, theirs) in self.pixels.chunks_mut(w).zip(other.pixels.chunks(w)) {
             row[x0..x1].copy_from_slice(&theirs[x0..x1]);
         }
+        for (row, theirs) in self.taken.chunks_mut(w).zip(other.taken.chunks(w)) {
+            row[x0..x1].copy_from_slice(&theirs[x0..x1]);
+        }
     }
 
     /// The mean radiance of pixel (x, y); black before any sample.
@@ -317,10 +366,13 @@ impl Film {
 
     /// Rays traced per sample in every pixel, row-major: the cost of each pixel's tree.
     pub fn cost(&self) -> Vec<f32> {
-        let spp = self.spp.max(1) as f32;
         match self.accums() {
             [] => vec![0.0; self.pixels.len()],
-            a => a.iter().map(|p| p.rays as f32 / spp).collect(),
+            a => a
+                .iter()
+                .zip(&self.taken)
+                .map(|(p, t)| p.rays as f32 / t.count.max(1) as f32)
+                .collect(),
         }
     }
 

@@ -1,14 +1,16 @@
 //! The one render kernel: a pass of samples over the whole film, in bands of rows run in
 //! parallel. The CLI, the tests and the progressive engine all call [`render_pass`].
 
+use super::film::Taken;
 use super::{Accum, Film, adaptive};
 use crate::camera::Camera;
 use crate::math::Color;
 use crate::math::lanes::Width;
 use crate::params::Params;
 use crate::scene::Scene;
-use crate::tracer::{Stats, Traced, Tracer, Traversal, Waves};
+use crate::tracer::{Met, Stats, Traced, Tracer, Traversal, Waves};
 use rayon::prelude::*;
+use std::cell::Cell;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Rows per band: the unit of parallel work, progress and cancellation.
@@ -203,25 +205,40 @@ fn pass(
     skip: bool,
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
-    let width = film.width();
-    over_bands(film, first, samples, observer, |y0, pixels, done, stats| {
+    let width = film.width() as usize;
+    let end = first + samples;
+    over_bands(film, first, samples, observer, |y0, band| {
+        let Band {
+            pixels,
+            taken,
+            done,
+            stats,
+        } = band;
         // Row by row: the pixel's coordinates without a division per pixel.
         let rows = pixels
-            .chunks_mut(width as usize)
-            .zip(done.chunks(width as usize));
-        for (row, (pixels, done)) in rows.enumerate() {
+            .chunks_mut(width)
+            .zip(taken.chunks_mut(width))
+            .zip(done.chunks(width));
+        for (row, ((pixels, taken), done)) in rows.enumerate() {
             let y = y0 + row as u32;
-            for ((x, pixel), &done) in (0..width).zip(pixels).zip(done) {
+            for (x, ((pixel, taken), &done)) in pixels.iter_mut().zip(taken).zip(done).enumerate() {
                 if !observer.keep_going() {
                     return None;
                 }
                 if skip && done {
                     continue;
                 }
-                for s in first..first + samples {
+                // (A pixel a change left as it was may be ahead of the pass.)
+                for s in taken.count.max(first)..end {
                     let before = stats.total_rays();
-                    let c = tracer.sample(ox + x, oy + y, s, stats);
-                    add(pixel, s, c, (stats.total_rays() - before) as u32, stats);
+                    let (c, met) = tracer.sample_met(ox + x as u32, oy + y, s, stats);
+                    let rays = (stats.total_rays() - before) as u32;
+                    let traced = Traced {
+                        radiance: c,
+                        rays,
+                        met,
+                    };
+                    add((pixel, taken), s, &traced, stats);
                 }
             }
         }
@@ -245,14 +262,24 @@ fn pass_in_waves(
     observer: &dyn PassObserver,
 ) -> Result<Stats, Cancelled> {
     let width = film.width();
-    over_bands(film, first, samples, observer, |y0, pixels, done, stats| {
-        // Pixel by pixel (but those stopped, where `skip`), each pixel's samples in order.
-        // (The image's coordinates: the film's, moved to where it lies in the image.)
+    let end = first + samples;
+    over_bands(film, first, samples, observer, |y0, band| {
+        let Band {
+            pixels,
+            taken,
+            done,
+            stats,
+        } = band;
+        // Pixel by pixel (but those stopped, where `skip`), each pixel's samples in order,
+        // from those it has. (The image's coordinates: the film's, moved to where it lies
+        // in the image.) A pixel's count is read as its first sample is queued and written
+        // as its samples are summed: cells, for the queue and the sums to share.
+        let taken = Cell::from_mut(taken).as_slice_of_cells();
         let all = (0..pixels.len() as u32)
             .filter(|&i| !(skip && done[i as usize]))
             .flat_map(|i| {
                 let (x, y) = (ox + i % width, oy + y0 + i / width);
-                (first..first + samples).map(move |s| (x, y, s))
+                (taken[i as usize].get().count.max(first)..end).map(move |s| (x, y, s))
             });
         in_waves(
             tracer,
@@ -266,15 +293,16 @@ fn pass_in_waves(
                 // store (docs/performance.md, "Shaped by measurement").
                 let mut samples = wave.iter().zip(traced).peekable();
                 while let Some((&(x, y, s), t)) = samples.next() {
-                    let pixel = &mut pixels[((y - oy - y0) * width + x - ox) as usize];
-                    let mut sums = *pixel;
-                    add(&mut sums, s, t.radiance, t.rays, stats);
+                    let i = ((y - oy - y0) * width + x - ox) as usize;
+                    let (mut sums, mut count) = (pixels[i], taken[i].get());
+                    add((&mut sums, &mut count), s, t, stats);
                     while let Some((&(_, _, s), t)) =
                         samples.next_if(|((px, py, _), _)| (*px, *py) == (x, y))
                     {
-                        add(&mut sums, s, t.radiance, t.rays, stats);
+                        add((&mut sums, &mut count), s, t, stats);
                     }
-                    *pixel = sums;
+                    pixels[i] = sums;
+                    taken[i].set(count);
                 }
             },
         )
@@ -307,43 +335,63 @@ fn in_waves(
     Some(())
 }
 
-/// Adds sample `s` of radiance `c`, which traced `rays` rays, to `pixel`; a sample that is
-/// not finite is counted and dropped. Each pixel's samples must come in sample order.
+/// Adds sample `s`, as it was `traced`, to a pixel (its sums and what its samples were);
+/// a sample that is not finite is counted and dropped. Each pixel's samples must come in
+/// sample order.
 #[inline]
-fn add(pixel: &mut Accum, s: u32, c: Color, rays: u32, stats: &mut Stats) {
+fn add((pixel, taken): (&mut Accum, &mut Taken), s: u32, traced: &Traced, stats: &mut Stats) {
     if s == 0 {
         // An empty film keeps its old sums until each pixel starts afresh here.
         *pixel = Accum::default();
+        taken.met = Met::default();
     }
-    pixel.rays = pixel.rays.saturating_add(rays);
-    if c.is_finite() {
-        pixel.add(s, c);
+    taken.count = s + 1;
+    taken.met.merge(traced.met);
+    pixel.rays = pixel.rays.saturating_add(traced.rays);
+    if traced.radiance.is_finite() {
+        pixel.add(s, traced.radiance);
     } else {
         stats.non_finite += 1;
     }
 }
 
-/// Runs `band` (its first row, its pixels, which of them are done, its counters) on every band of rows of `film`
-/// in parallel, telling `observer` of each; `None` from a band cancels the pass. The film
-/// then holds samples `..first + samples`.
+/// A band of rows of a film: its pixels' sums, what their samples were, which are done,
+/// and the band's counters.
+struct Band<'b> {
+    pixels: &'b mut [Accum],
+    taken: &'b mut [Taken],
+    done: &'b [bool],
+    stats: &'b mut Stats,
+}
+
+/// Runs `band` (its first row, and the band) on every band of rows of `film` in parallel,
+/// telling `observer` of each; `None` from a band cancels the pass. The film then holds
+/// samples `..first + samples`.
 fn over_bands(
     film: &mut Film,
     first: u32,
     samples: u32,
     observer: &dyn PassObserver,
-    band: impl Fn(u32, &mut [Accum], &[bool], &mut Stats) -> Option<()> + Sync,
+    band: impl Fn(u32, Band) -> Option<()> + Sync,
 ) -> Result<Stats, Cancelled> {
     let (width, height) = (film.width(), film.height());
     let band_len = (width * BAND_ROWS) as usize;
     let results: Vec<Option<Stats>> = film
         .pixels
         .par_chunks_mut(band_len)
+        .zip(film.taken.par_chunks_mut(band_len))
         .zip(film.done.par_chunks(band_len))
         .enumerate()
-        .map(|(i, (pixels, done))| {
+        .map(|(i, ((pixels, taken), done))| {
             let mut stats = Stats::default();
             let y0 = i as u32 * BAND_ROWS;
-            band(y0, pixels, done, &mut stats)?;
+            let b = Band {
+                pixels,
+                taken,
+                done,
+                stats: &mut stats,
+            };
+            band(y0, b)?;
             observer.band_done(BAND_ROWS.min(height - y0));
             Some(stats)
         })

@@ -81,7 +81,8 @@ pub struct FilmCache(Arc<Mutex<Films>>);
 
 /// The memory a film takes.
 fn bytes(film: &Film) -> usize {
-    film.pixels.len() * (std::mem::size_of::<super::Accum>() + 1)
+    let pixel = std::mem::size_of::<super::Accum>() + std::mem::size_of::<super::film::Taken>();
+    film.pixels.len() * (pixel + 1)
 }
 
 impl FilmCache {
@@ -101,6 +102,13 @@ impl FilmCache {
             .iter()
             .find(|(k, _)| k == key)
             .map(|(_, film)| film.clone())
+    }
+
+    /// Whether it holds a film of `key`.
+    pub(crate) fn holds(&self, key: &Key) -> bool {
+        self.0
+            .lock()
+            .is_ok_and(|f| f.films.iter().any(|(k, _)| k == key))
     }
 
     /// Samples per pixel of `job`'s image so far (0 when there is none).

@@ -8,6 +8,7 @@
 
 mod emitters;
 mod media;
+mod met;
 mod path;
 mod photons;
 mod polarized;
@@ -20,6 +21,7 @@ mod wave;
 
 use media::{Arrival, Segment};
 pub use media::{MAX_NESTING, Media};
+pub use met::{MATERIAL_BITS, Met, Reach, reach};
 pub use record::{End, NoRecorder, NodeHit, RayKind, RayTree, Recorder, STOKES_ROW, TreeNode};
 pub use stats::Stats;
 pub use wave::{MAX_WAVE_LIGHTS, Traced, Traversal, Waves};
@@ -75,6 +77,8 @@ struct Walk<'w, R: Recorder> {
     stats: &'w mut Stats,
     rec: &'w mut R,
     tree_rays: u32,
+    // What the sample met that a parameter governs.
+    met: Met,
 }
 
 /// Where a ray sits in the tree.
@@ -217,6 +221,11 @@ impl<'a> Tracer<'a> {
     /// Radiance of sample number `sample` of pixel (x, y). Its random numbers depend only
     /// on (seed, pixel, sample), so the result does too.
     pub fn sample(&self, x: u32, y: u32, sample: u32, stats: &mut Stats) -> Color {
+        self.sample_recorded(x, y, sample, stats, &mut NoRecorder).0
+    }
+
+    /// [`Tracer::sample`], and what the sample met that a parameter governs.
+    pub fn sample_met(&self, x: u32, y: u32, sample: u32, stats: &mut Stats) -> (Color, Met) {
         self.sample_recorded(x, y, sample, stats, &mut NoRecorder)
     }
 
@@ -245,7 +254,7 @@ impl<'a> Tracer<'a> {
     /// exactly what [`Tracer::sample`] computes, recorded.
     pub fn inspect(&self, x: u32, y: u32, sample: u32) -> (RayTree, Color) {
         let mut tree = RayTree::default();
-        let c = self.sample_recorded(x, y, sample, &mut Stats::default(), &mut tree);
+        let (c, _) = self.sample_recorded(x, y, sample, &mut Stats::default(), &mut tree);
         (tree, c)
     }
 
@@ -256,14 +265,14 @@ impl<'a> Tracer<'a> {
         sample: u32,
         stats: &mut Stats,
         rec: &mut R,
-    ) -> Color {
+    ) -> (Color, Met) {
         let p = self.params;
         let (mut rng, ray) = self.camera_sample(x, y, sample);
         stats.samples += 1;
         if !(ray.origin.is_finite() && ray.dir.is_finite()) {
             // Not traced: the kernel counts and drops the sample, where the background
             // would have turned a NaN direction into a colour.
-            return Color::NAN;
+            return (Color::NAN, Met::default());
         }
         stats.camera_rays += 1;
         let mut walk = Walk {
@@ -271,26 +280,24 @@ impl<'a> Tracer<'a> {
             stats,
             rec,
             tree_rays: 0,
+            met: Met::default(),
         };
         let root = Branch::CAMERA;
-        if p.transport.traces_paths() {
-            return match p.polarizer {
-                None => self.path(&ray, &mut walk, None::<Unpolarized>),
-                Some(angle) => {
-                    let axis = self.frame.polarizer_axis(angle, ray.dir);
-                    self.path(&ray, &mut walk, Some(Analyzer::linear_polarizer(axis)))
-                }
-            };
-        }
         let media = Media::default();
-        match self.params.polarizer {
-            None => self.trace_in(&ray, root, &media, &mut walk, &Unpolarized),
-            Some(angle) => {
+        let c = match (p.transport.traces_paths(), p.polarizer) {
+            (true, None) => self.path(&ray, &mut walk, None::<Unpolarized>),
+            (true, Some(angle)) => {
+                let axis = self.frame.polarizer_axis(angle, ray.dir);
+                self.path(&ray, &mut walk, Some(Analyzer::linear_polarizer(axis)))
+            }
+            (false, None) => self.trace_in(&ray, root, &media, &mut walk, &Unpolarized),
+            (false, Some(angle)) => {
                 let axis = self.frame.polarizer_axis(angle, ray.dir);
                 let analyzer = Analyzer::linear_polarizer(axis);
                 self.trace_in(&ray, root, &media, &mut walk, &analyzer)
             }
-        }
+        };
+        (c, walk.met)
     }
 
     /// Sample `sample` of pixel (x, y): its camera ray, and its random numbers from the
@@ -422,6 +429,7 @@ impl<'a> Tracer<'a> {
                 stats,
                 rec: &mut NoRecorder,
                 tree_rays: 0,
+                met: Met::default(),
             },
             &Unpolarized,
         )
@@ -436,6 +444,7 @@ impl<'a> Tracer<'a> {
             stats,
             rec: &mut NoRecorder,
             tree_rays: 0,
+            met: Met::default(),
         };
         match self.params.transport {
             Transport::Path | Transport::Photons => self.path(ray, &mut walk, None::<Unpolarized>),

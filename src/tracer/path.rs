@@ -270,6 +270,7 @@ impl Tracer<'_> {
         };
         st.throughput *= transmittance(sigma, hit.surface.t);
         let material = &self.materials[hit.material as usize];
+        w.met.material(hit.material);
         let at = self.meet(
             &ray,
             &hit,
@@ -311,6 +312,7 @@ impl Tracer<'_> {
         // samples stand alone; before it, they are weighed against the BRDF's own
         // choice of their direction.
         let last = depth >= self.params.max_depth;
+        w.met.branch(depth + 1, f32::INFINITY);
         if !part.is_delta() {
             let v = Vertex {
                 ray: &ray,
@@ -324,6 +326,7 @@ impl Tracer<'_> {
             let mut lit = self.light_samples(&v, w);
             // The point lights' caustics, from this pass's photons.
             if let (Some(map), Part::Smooth(d)) = (&self.photons, part) {
+                w.met.photons();
                 lit += map.gather(p, &at, &d.brdf, d.scale);
             }
             let lit = match &s_frame {

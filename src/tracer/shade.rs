@@ -5,7 +5,7 @@
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface};
 use super::{
-    Branch, End, MAX_TREE_RAYS, Media, Meet, RayKind, Recorder, Stats, Tracer, TreeNode, Walk,
+    Branch, End, MAX_TREE_RAYS, Media, Meet, Met, RayKind, Recorder, Stats, Tracer, TreeNode, Walk,
 };
 use crate::material::{Lobe, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
@@ -37,6 +37,7 @@ impl Tracer<'_> {
         if let Some(radiance) = material.light_emission(at.uv) {
             return (pol.seen(radiance), End::LightHit);
         }
+        w.met.material(hit.material);
         let scatter = material.scatter(&at, w.rng);
         // The polariser's analyzer in this interface's s/p frame.
         let s_frame = pol.at_interface(ray.dir, at.n_shade);
@@ -169,7 +170,7 @@ impl Tracer<'_> {
         w: &mut Walk<R>,
         pol: &P,
     ) -> Color {
-        let why = self.pruned(&b, w.stats, &mut w.tree_rays);
+        let why = self.pruned(&b, w.stats, &mut w.tree_rays, &mut w.met);
         match why {
             Some(end) => {
                 w.rec.ray(|| b.node(ray, ray.origin, end));
@@ -180,8 +181,16 @@ impl Tracer<'_> {
     }
 
     /// Why the child `b` is not traced, counted, or `None`: it is, counted as a ray of its
-    /// kind and against its sample's budget (`tree_rays` so far).
-    pub(super) fn pruned(&self, b: &Branch, stats: &mut Stats, tree_rays: &mut u32) -> Option<End> {
+    /// kind and against its sample's budget (`tree_rays` so far). Its depth and weight,
+    /// tested against the limits, go into `met`.
+    pub(super) fn pruned(
+        &self,
+        b: &Branch,
+        stats: &mut Stats,
+        tree_rays: &mut u32,
+        met: &mut Met,
+    ) -> Option<End> {
+        met.branch(b.depth, b.weight);
         if b.depth > self.params.max_depth {
             stats.pruned_by_depth += 1;
             Some(End::DepthLimit)

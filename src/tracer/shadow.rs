@@ -5,7 +5,7 @@
 
 use super::media::transmittance;
 use super::record::shadow_node;
-use super::{Media, Meet, Recorder, Tracer, Walk};
+use super::{Media, Meet, Met, Recorder, Tracer, Walk};
 use crate::material::{Direct, Interaction};
 use crate::math::lanes::{Real, Vector};
 use crate::math::{Color, Ray, offset_ray_origin};
@@ -82,7 +82,8 @@ impl Tracer<'_> {
                     (blocked, c)
                 }
                 Transport::TransmissiveShadows => {
-                    let t = self.shadow_transmittance(&shadow, reach, media, at.wavelength);
+                    let t =
+                        self.shadow_transmittance(&shadow, reach, media, at.wavelength, &mut w.met);
                     let c = t * direct.brdf.eval(n, ls.dir, view) * ls.value * cos;
                     (t == Color::ZERO, c)
                 }
@@ -109,13 +110,15 @@ impl Tracer<'_> {
     /// The transmittance of `shadow` over `dist`, starting in `media` and carrying
     /// `wavelength`, passing straight through whatever lets it (each material says what it
     /// keeps: 1 − R for a dielectric) and exp(−σ d) inside; any other surface blocks it.
-    /// Straight, so wrong about where light lands: real glass bends it into caustics.
+    /// Straight, so wrong about where light lands: real glass bends it into caustics. The
+    /// materials it passes go into `met`.
     fn shadow_transmittance(
         &self,
         shadow: &Ray,
         dist: f32,
         media: &Media,
         wavelength: Option<f32>,
+        met: &mut Met,
     ) -> Color {
         let mut media = *media;
         let mut ray = *shadow;
@@ -128,6 +131,7 @@ impl Tracer<'_> {
             };
             let at = self.interaction(&ray, &hit, &media, wavelength);
             let material = &self.materials[hit.material as usize];
+            met.material(hit.material);
             let Some(through) = material.shadow_transmittance(&at) else {
                 return Color::ZERO;
             };

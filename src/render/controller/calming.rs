@@ -66,6 +66,14 @@ impl Controller {
                 &watch,
             )
         })?;
+        if self.reached < 1.0 {
+            // Only part of the image is new: the rest is shown as it is, sharp.
+            let pixels = self.on_pool(|c| calm::within_kept(&c.film, &pixels));
+            return Some(Calm {
+                pixels: Arc::new(pixels),
+                block: 1,
+            });
+        }
         Some(Calm {
             pixels: Arc::new(pixels),
             block,

@@ -4,6 +4,7 @@
 use super::calm::{self, Guides};
 
 mod calming;
+mod reuse;
 use super::generation::{MAX_PASS_SPP, PASS_BUDGET, PREVIEW_LEVELS};
 use super::pace::Pace;
 use super::prerender::{Ahead, FilmCache, Key, Prerender};
@@ -116,6 +117,8 @@ pub(super) struct Controller {
     one_sample_noise: f32,
     // The workers, while `run` runs: frames are calmed on them.
     pool: Option<Arc<rayon::ThreadPool>>,
+    // The share of the pixels this generation started again (1: the whole image).
+    reached: f32,
 }
 
 impl Controller {
@@ -161,6 +164,7 @@ impl Controller {
             coarse_spread: Vec::new(),
             one_sample_noise: 0.0,
             pool: None,
+            reached: 1.0,
         }
     }
 
@@ -266,28 +270,42 @@ impl Controller {
     }
 
     /// Before a change of image: a finished image goes to the cache (the lecturer may come
-    /// back to it).
-    fn stash(&mut self) {
+    /// back to it); a copy, where the film is to be `kept` in part.
+    fn stash(&mut self, kept: bool) {
         if !(self.film.spp() > 0 && self.target_reached()) {
             return;
         }
         if let (Some(cache), Some(key)) = (&self.cache, self.key()) {
-            let fresh = Film::new(self.film.width(), self.film.height());
-            cache.put(key, std::mem::replace(&mut self.film, fresh));
+            let film = match kept {
+                true => self.film.clone(),
+                false => {
+                    let fresh = Film::new(self.film.width(), self.film.height());
+                    std::mem::replace(&mut self.film, fresh)
+                }
+            };
+            cache.put(key, film);
         }
     }
 
     /// Applies a command; false to shut down.
     fn apply(&mut self, generation: u64, command: Command) -> bool {
+        // What a change of parameters reaches, where the film can keep the pixels it
+        // cannot alter (a finished image is then stashed as a copy).
+        let reach = match &command {
+            Command::Params(p) => self.reach(p),
+            _ => None,
+        };
         if matches!(
             command,
             Command::Params(_) | Command::Scene(_) | Command::Camera(_) | Command::Resize(..)
         ) {
-            self.stash();
+            self.stash(reach.is_some());
         }
+        let mut kept = false;
         let restart = match command {
             Command::Shutdown => return false,
             Command::Params(p) => {
+                kept = reach.is_some_and(|r| self.keep_unreached(&r));
                 self.params = p;
                 true
             }
@@ -340,8 +358,13 @@ impl Controller {
                 self.one_sample_noise = noise * (self.film.spp() as f32).sqrt();
             }
             self.generation = self.generation.max(generation);
-            self.film.clear();
-            self.preview_level = 0;
+            if kept {
+                self.preview_level = PREVIEW_LEVELS.len();
+            } else {
+                self.film.clear();
+                self.preview_level = 0;
+                self.reached = 1.0;
+            }
             self.started = Instant::now();
             self.finished = None;
             self.pass_time = Duration::ZERO;
@@ -350,6 +373,11 @@ impl Controller {
             self.pace = Pace::default();
             self.stats = Stats::default();
             self.failure = None;
+            if kept && self.film.spp() > 0 {
+                // Nothing to render again: the image as it is, at once.
+                self.finished = self.target_reached().then(|| self.started.elapsed());
+                self.send_frame();
+            }
         }
         true
     }
@@ -487,6 +515,7 @@ impl Controller {
                 .then(|| self.film.done_pixels() as f32 / self.film.pixels.len().max(1) as f32),
             stats: self.stats,
             paused: self.paused,
+            reached: self.reached,
             failure: self.failure.clone(),
         }
     }

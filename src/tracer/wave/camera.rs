@@ -5,7 +5,7 @@ use crate::camera::CameraSample;
 use crate::math::lanes::{LaneKernel, Lanes, Real, V3, is_finite};
 use crate::math::rng::SobolLanes;
 use crate::math::{Pattern, Ray, SampleStream};
-use crate::tracer::{Stats, Tracer};
+use crate::tracer::{Met, Stats, Tracer};
 
 /// The camera rays of a wave, with each sample's random numbers after the camera's, into
 /// its slots, roots and level 0: with the Sobol pattern, `N` at a time in lanes, the draws
@@ -40,6 +40,7 @@ impl CameraRays<'_, '_> {
             rng,
             tree_rays: 0,
             rays: root.is_some() as u32,
+            met: Met::default(),
         });
     }
 }
@@ -86,6 +87,7 @@ impl LaneKernel for CameraRays<'_, '_> {
                     rng: lanes.stream(i),
                     tree_rays: 0,
                     rays: 1,
+                    met: Met::default(),
                 }));
             } else {
                 for i in 0..N {

@@ -34,7 +34,7 @@ use crate::geometry::PrimRef;
 use crate::material::Split;
 use crate::math::Color;
 use crate::math::lanes::{Width, asked_lanes};
-use crate::tracer::{Media, Stats, Tracer};
+use crate::tracer::{Media, Met, Stats, Tracer};
 use camera::CameraRays;
 use hits::{Hits, Splits, Surfaces};
 use lights::{Asked, Lit, Seen, Shadows};
@@ -94,6 +94,8 @@ pub struct Traced {
     pub radiance: Color,
     /// Its rays, of every kind.
     pub rays: u32,
+    /// What it met that a parameter governs.
+    pub met: Met,
 }
 
 /// What waves work in, kept from one wave to the next so that a wave allocates nothing.
@@ -302,6 +304,7 @@ impl Tracer<'_> {
         traced.extend(roots.iter().zip(slots.iter()).map(|(root, slot)| Traced {
             radiance: root.map_or(Color::NAN, |r| below[r as usize]),
             rays: slot.rays,
+            met: slot.met,
         }));
         traced
     }

@@ -82,6 +82,7 @@ impl Tracer<'_> {
             let l = segment.along(f32::INFINITY, self.scene.background.radiance(dir));
             return value(l, Color::ONE, queue);
         };
+        slot.met.material(hit.material);
         let ray = &rays.get(index);
         let wavelength = if SPECTRAL { node.wavelength() } else { None };
         let at = AtNode {
@@ -100,9 +101,11 @@ impl Tracer<'_> {
                 stats,
                 rec: &mut NoRecorder,
                 tree_rays: slot.tree_rays,
+                met: slot.met,
             };
             let traced = self.split_children(at, split, &mut w, queue);
             slot.tree_rays = w.tree_rays;
+            slot.met = w.met;
             slot.rays += traced;
             return value(Color::ZERO, Color::ONE, queue);
         }
@@ -133,6 +136,7 @@ impl Tracer<'_> {
             stats,
             rec: &mut rec,
             tree_rays: slot.tree_rays,
+            met: slot.met,
         };
         let (local, tr) = if SPECTRAL && self.splits_into_wavelengths(hit.material, wavelength) {
             // The node splits into its wavelengths; their lights (if any) are traced
@@ -149,6 +153,7 @@ impl Tracer<'_> {
             (self.scatter_node(at, split, true, &mut w, queue), tr)
         };
         slot.tree_rays = w.tree_rays;
+        slot.met = w.met;
         slot.rays += (w.stats.total_rays() - before) as u32;
         value(local, tr, queue)
     }
@@ -333,7 +338,10 @@ impl Tracer<'_> {
             factor: f.factor,
             wavelength,
         };
-        if self.pruned(&branch, w.stats, &mut w.tree_rays).is_some() {
+        if self
+            .pruned(&branch, w.stats, &mut w.tree_rays, &mut w.met)
+            .is_some()
+        {
             return None;
         }
         let media = match f.lobe.side {

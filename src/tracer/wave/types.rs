@@ -8,7 +8,7 @@ use crate::material::Split;
 use crate::math::lanes::RayColumns;
 use crate::math::{Color, Ray, SampleStream};
 use crate::scene::Hit;
-use crate::tracer::Media;
+use crate::tracer::{Media, Met};
 use std::ops::Range;
 
 /// Where a ray of a wave sits: its sample, the media it travels through (in the wave's
@@ -74,6 +74,8 @@ pub(super) struct Slot {
     pub(super) rng: SampleStream,
     pub(super) tree_rays: u32,
     pub(super) rays: u32,
+    // What the sample met that a parameter governs.
+    pub(super) met: Met,
 }
 
 /// The rays of one level and where each sits.
