@@ -217,7 +217,7 @@ fn reuse(c: &mut Criterion) {
         b.iter(|| {
             pool.install(|| {
                 let mut film = before.clone();
-                film.restart_reached(&reach);
+                film.restart_reached(&reach, 16, &mut Vec::new());
                 let stats = render_pass(&scene, &scene.camera, &new, &mut film, 16, &());
                 black_box((film, stats.expect("no cancel")))
             })

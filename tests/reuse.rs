@@ -72,7 +72,7 @@ fn refined(
         pass(old, &mut film, old.spp, &()).unwrap();
     }
     let reach = reach(scene, old, new)?;
-    let started = film.restart_reached(&reach);
+    let started = film.restart_reached(&reach, film.spp(), &mut Vec::new());
     let mut passes = 0;
     while film.spp() < new.spp {
         let n = (1 << passes.max(1) >> 1).min(new.spp - film.spp());
@@ -238,6 +238,8 @@ fn the_engine_re_renders_part_of_the_image_and_ends_at_the_fresh_render() {
     };
     let config = EngineConfig::with_threads(2);
     let mut engine = Engine::new(Arc::clone(&scene), old.clone(), w, h, config, || {}).unwrap();
+    // (Calmed pictures are the screen's: the frames' pixels are the film's either way.)
+    engine.set_calm(false);
     to_target(&engine);
     // A change of the index of refraction, then one of the exponent (no glossy surface
     // here: nothing to render again), then one of the seed (everything).
@@ -265,7 +267,10 @@ fn the_engine_re_renders_part_of_the_image_and_ends_at_the_fresh_render() {
         // Every frame after a pass is the new image: each pixel kept (the new image at
         // the old samples) or re-rendered (at the frame's samples); the last one all of it.
         let kept = fresh_pixels(&scene, &params, (w, h), old.spp);
-        for f in frames.iter().filter(|f| !f.is_preview()) {
+        // (A preview of the pixels started again shows them coarser: its blocks.)
+        let previews = frames.iter().filter(|f| f.coarsest > 1).count();
+        assert!(previews <= 3, "{previews} previews");
+        for f in frames.iter().filter(|f| f.coarsest == 1) {
             let now = fresh_pixels(&scene, &params, (w, h), f.progress.spp);
             let mut re_rendered = 0;
             for ((p, k), n) in f.pixels.iter().zip(&kept).zip(&now) {

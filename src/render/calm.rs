@@ -179,38 +179,6 @@ pub fn calm_film(
     calm(means, variance, guides, passes_at(CALM_BLOCK), observer)
 }
 
-/// A film a change of parameters re-rendered in part, at full resolution: the pixels it
-/// kept (those ahead of the film's samples per pixel) as they are, the others from `cells`
-/// (its [`calm_film`]), stretched bilinearly as the window stretches cells.
-pub fn within_kept(film: &Film, cells: &[Color]) -> Vec<Color> {
-    let (w, h) = (film.width(), film.height());
-    let (gw, gh) = (w.div_ceil(CALM_BLOCK), h.div_ceil(CALM_BLOCK));
-    if cells.len() != (gw * gh) as usize {
-        return film.pixels().collect();
-    }
-    // A pixel's place among the cells' centres, and the two cells either side.
-    let place = |p: u32, n: u32| {
-        let u = ((p as f32 + 0.5) / CALM_BLOCK as f32 - 0.5).clamp(0.0, (n - 1) as f32);
-        let i = u as u32;
-        (i, (i + 1).min(n - 1), u - i as f32)
-    };
-    let spp = film.spp();
-    (0..w * h)
-        .into_par_iter()
-        .map(|p| {
-            let (a, t) = (&film.pixels[p as usize], &film.taken[p as usize]);
-            if t.count > spp {
-                return a.mean();
-            }
-            let ((x0, x1, fx), (y0, y1, fy)) = (place(p % w, gw), place(p / w, gh));
-            let at = |x: u32, y: u32| cells[(y * gw + x) as usize];
-            let top = at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx;
-            let bottom = at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx;
-            top * (1.0 - fy) + bottom * fy
-        })
-        .collect()
-}
-
 /// A spread of a `width`-wide image at `block` × `block` cells: the mean of each cell's
 /// pixels' (one sample's variance in a cell of one sample).
 pub(crate) fn coarse_spread(spread: &[f32], width: u32, block: u32) -> Vec<f32> {

@@ -105,7 +105,7 @@ pub fn simulate_drag(
         report.first_frame.push(first);
         report.reached.push(reached);
         if let Some(f) = &shown {
-            report.block_shown.push(f.shown().1);
+            report.block_shown.push(f.coarsest);
             report.generations_behind.push(generation - f.generation);
             report.calmed.push(f.calm.is_some());
         }

@@ -285,13 +285,18 @@ impl Film {
     /// Starts again the pixels whose samples met what a change of parameters reaches
     /// (`reach`, see [`crate::tracer::reach`]): the next passes bring them back to the
     /// others' samples (and on), which keep their sums exactly. The film reads as before
-    /// until each such pixel's first new sample. How many pixels start again.
-    pub fn restart_reached(&mut self, reach: &Reach) -> usize {
+    /// until each such pixel's first new sample. How many pixels start again; `behind`
+    /// gets every pixel then under `floor` samples.
+    pub fn restart_reached(&mut self, reach: &Reach, floor: u32, behind: &mut Vec<u32>) -> usize {
         let mut n = 0;
-        for t in &mut self.taken {
+        behind.clear();
+        for (p, t) in self.taken.iter_mut().enumerate() {
             if t.met.meets(reach) {
                 *t = Taken::default();
                 n += 1;
+            }
+            if t.count < floor {
+                behind.push(p as u32);
             }
         }
         if n > 0 {

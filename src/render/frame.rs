@@ -72,7 +72,8 @@ pub struct Frame {
     pub height: u32,
     /// Linear mean radiance, row-major from the top left: every pixel after a pass; for a
     /// preview, one value per block ([`Frame::grid_size`]), to be stretched over the image
-    /// with bilinear filtering. Every pixel changes from one frame to the next (a pass adds
+    /// with bilinear filtering (for a preview of the pixels a change started again, every
+    /// pixel: the kept ones as they are, the others stretched from its blocks). Every pixel changes from one frame to the next (a pass adds
     /// samples to all of them), so frames are whole.
     pub pixels: Arc<Vec<Color>>,
     /// Rays traced per sample in every pixel (the cost heat map); empty for a preview.
@@ -80,6 +81,10 @@ pub struct Frame {
     /// A preview's block side (one sample per block, upsampled): 8, 4 or 2; 1 for the
     /// film after a pass.
     pub block: u32,
+    /// The side of the coarsest blocks the window shows of it: `block`, or a calmed
+    /// picture's cells; where a change re-rendered part of the image, the blocks of the
+    /// preview (or cells) shown among its kept pixels, `block` being 1.
+    pub coarsest: u32,
     /// Progress at this frame.
     pub progress: Progress,
     /// `pixels` calmed for the screen while the image is on its way and noisy (see

@@ -418,6 +418,30 @@ pub fn render_preview(
     block: u32,
     observer: &dyn PassObserver,
 ) -> Result<(Vec<Color>, Stats), Cancelled> {
+    let size = (width, height);
+    preview_of((scene, camera, params), size, block, None, observer)
+}
+
+/// [`render_preview`] of the blocks `wanted` marks (one flag per block of the grid); the
+/// others are left black.
+pub(crate) fn render_preview_of(
+    (scene, camera, params): (&Scene, &Camera, &Params),
+    (width, height): (u32, u32),
+    block: u32,
+    wanted: &[bool],
+    observer: &dyn PassObserver,
+) -> Result<(Vec<Color>, Stats), Cancelled> {
+    let size = (width, height);
+    preview_of((scene, camera, params), size, block, Some(wanted), observer)
+}
+
+fn preview_of(
+    (scene, camera, params): (&Scene, &Camera, &Params),
+    (width, height): (u32, u32),
+    block: u32,
+    wanted: Option<&[bool]>,
+    observer: &dyn PassObserver,
+) -> Result<(Vec<Color>, Stats), Cancelled> {
     let mut tracer = Tracer::with_camera(scene, camera, params, width, height);
     tracer.prepare_photons(0);
     let block = block.max(1);
@@ -436,9 +460,12 @@ pub fn render_preview(
         .map(|(j, row)| {
             let mut stats = Stats::default();
             let cy = centre(j as u32, height);
+            // The row's blocks to trace.
+            let first = j * nx as usize;
+            let blocks = (0..row.len()).filter(|&i| wanted.is_none_or(|w| w[first + i]));
             if let Some(lanes) = lanes {
-                let centres = (0..row.len() as u32).map(|i| (centre(i, width), cy, 0));
-                let mut cells = row.iter_mut();
+                let centres = blocks.clone().map(|i| (centre(i as u32, width), cy, 0));
+                let mut cells = blocks;
                 in_waves(
                     &tracer,
                     lanes,
@@ -447,18 +474,18 @@ pub fn render_preview(
                     &mut stats,
                     |_, traced, _| {
                         // (The wave's results first: zip takes from its first side first.)
-                        for (t, cell) in traced.iter().zip(cells.by_ref()) {
-                            *cell = shown(t.radiance);
+                        for (t, i) in traced.iter().zip(cells.by_ref()) {
+                            row[i] = shown(t.radiance);
                         }
                     },
                 )?;
                 return Some(stats);
             }
-            for (i, cell) in row.iter_mut().enumerate() {
+            for i in blocks {
                 if !observer.keep_going() {
                     return None;
                 }
-                *cell = shown(tracer.sample(centre(i as u32, width), cy, 0, &mut stats));
+                row[i] = shown(tracer.sample(centre(i as u32, width), cy, 0, &mut stats));
             }
             Some(stats)
         })

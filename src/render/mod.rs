@@ -12,6 +12,7 @@ mod film;
 mod frame;
 mod generation;
 mod incidence;
+mod kept;
 mod kernel;
 pub mod output;
 mod pace;

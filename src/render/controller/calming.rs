@@ -27,9 +27,13 @@ impl Controller {
     /// estimate, or before it has one (one sample per pixel, or a preview's one per block)
     /// the last image's, over CLEAN_NOISE. An image without noise (a point light, a
     /// pinhole) is shown as rendered, at full resolution.
+    ///
+    /// An image a change re-rendered in part is not: its kept pixels are as clean as they
+    /// were, and calming the whole to smooth a part would cost a pass's time a frame.
     fn calms(&self) -> bool {
         let one_sample = self.one_sample_noise / (self.film.spp().max(1) as f32).sqrt();
         self.calm
+            && self.reached == 1.0
             && !self.target_reached()
             && self.film.noise(self.params.exposure).unwrap_or(one_sample) > CLEAN_NOISE
     }
@@ -66,14 +70,6 @@ impl Controller {
                 &watch,
             )
         })?;
-        if self.reached < 1.0 {
-            // Only part of the image is new: the rest is shown as it is, sharp.
-            let pixels = self.on_pool(|c| calm::within_kept(&c.film, &pixels));
-            return Some(Calm {
-                pixels: Arc::new(pixels),
-                block: 1,
-            });
-        }
         Some(Calm {
             pixels: Arc::new(pixels),
             block,
