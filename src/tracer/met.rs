@@ -22,24 +22,23 @@ use crate::light::{Light, LightShape};
 use crate::params::{Params, Pattern, Transport};
 use crate::scene::Scene;
 
-/// Materials share the record's bits modulo this: material m sets bit m % 31 (a scene of
+/// Materials share the record's bits modulo this: material m sets bit m % 32 (a scene of
 /// more materials re-renders a little more than it must, never less).
-pub const MATERIAL_BITS: u32 = 31;
-
-/// The bit of a sample that gathered photons.
-const PHOTONS: u32 = 1 << MATERIAL_BITS;
+pub const MATERIAL_BITS: u32 = 32;
 
 /// What one sample met (or all of a pixel's samples, [`Met::merge`]d) that the parameters
 /// govern. 8 bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Met {
-    // Bit m % MATERIAL_BITS: material m was hit; PHOTONS: photons were gathered.
+    // Bit m % MATERIAL_BITS: material m was hit.
     bits: u32,
     // The lightest path weight tested against `min_weight`, as the upper half of its f32
     // (rounded towards zero: never above the weight); +inf while none was tested.
     lightest: u16,
     // The deepest level tested against `max_depth` (saturating); 0 while none was.
     deepest: u8,
+    // Whether photons were gathered.
+    photons: bool,
 }
 
 /// +∞'s upper half.
@@ -51,6 +50,7 @@ impl Default for Met {
             bits: 0,
             lightest: NO_WEIGHT,
             deepest: 0,
+            photons: false,
         }
     }
 }
@@ -59,13 +59,14 @@ impl Met {
     /// A hit on material `m`.
     #[inline(always)]
     pub(crate) fn material(&mut self, m: u32) {
-        self.bits |= 1 << (m % MATERIAL_BITS);
+        // (MATERIAL_BITS is the width of `bits`: the shift takes m modulo it.)
+        self.bits |= 1u32.wrapping_shl(m);
     }
 
     /// Photons gathered.
     #[inline(always)]
     pub(crate) fn photons(&mut self) {
-        self.bits |= PHOTONS;
+        self.photons = true;
     }
 
     /// A branch at level `depth` with path weight `weight` tested against the limits.
@@ -82,6 +83,7 @@ impl Met {
     #[inline(always)]
     pub fn merge(&mut self, other: Met) {
         self.bits |= other.bits;
+        self.photons |= other.photons;
         self.lightest = self.lightest.min(other.lightest);
         self.deepest = self.deepest.max(other.deepest);
     }
@@ -91,6 +93,7 @@ impl Met {
     pub fn meets(&self, reach: &Reach) -> bool {
         let lightest = f32::from_bits((self.lightest as u32) << 16);
         self.bits & reach.bits != 0
+            || (self.photons && reach.photons)
             || reach.depth.is_some_and(|d| self.deepest as u32 > d)
             || reach.weight.is_some_and(|w| lightest < w)
     }
@@ -99,8 +102,9 @@ impl Met {
 /// What a change of parameters can alter, sample by sample: see [`reach`].
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Reach {
-    // The record's bits of the materials the change alters (and of photons).
+    // The record's bits of the materials the change alters, and whether the photons.
     bits: u32,
+    photons: bool,
     // A branch deeper than this is tested differently: the lower of the two `max_depth`s.
     depth: Option<u32>,
     // A branch lighter than this is tested differently: the higher of the two
@@ -158,7 +162,7 @@ pub fn reach(scene: &Scene, old: &Params, new: &Params) -> Option<Reach> {
     let mut reach = Reach::default();
     for (m, material) in scene.materials.iter().enumerate() {
         if material.with_params(old) != material.with_params(new) {
-            reach.bits |= 1 << (m as u32 % MATERIAL_BITS);
+            reach.bits |= 1u32.wrapping_shl(m as u32);
         }
     }
     if old.max_depth != new.max_depth {
@@ -169,7 +173,7 @@ pub fn reach(scene: &Scene, old: &Params, new: &Params) -> Option<Reach> {
     }
     // The photon map is every material's and both limits'.
     if new.transport == Transport::Photons && !reach.is_nothing() {
-        reach.bits |= PHOTONS;
+        reach.photons = true;
     }
     Some(reach)
 }
