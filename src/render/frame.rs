@@ -27,9 +27,10 @@ pub struct Progress {
     pub stats: Stats,
     /// Whether refinement is paused.
     pub paused: bool,
-    /// The share of the image's pixels this image started with none of (0 to 1): 1 for an
-    /// image rendered afresh, less after a change of parameters that could not alter the
-    /// rest (see [`crate::tracer::reach`]).
+    /// The share of the image's pixels this image started behind the others (0 to 1): 1
+    /// for an image rendered afresh; after a change of parameters that could not alter the
+    /// rest (see [`crate::tracer::reach`]), those it started again and any still catching
+    /// up from the change before.
     pub reached: f32,
     /// Why this generation stopped, if a pass failed inside raylab (a bug): the window
     /// shows it; a new generation tries again.

@@ -33,7 +33,7 @@ impl Controller {
     fn calms(&self) -> bool {
         let one_sample = self.one_sample_noise / (self.film.spp().max(1) as f32).sqrt();
         self.calm
-            && self.reached == 1.0
+            && self.kept.reached() == 1.0
             && !self.target_reached()
             && self.film.noise(self.params.exposure).unwrap_or(one_sample) > CLEAN_NOISE
     }

@@ -15,7 +15,7 @@ use crate::params::Params;
 use crate::scene::Scene;
 use crate::tracer::Stats;
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender, TryRecvError, TrySendError};
-use reuse::FEW_BEHIND;
+use reuse::Kept;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -118,19 +118,8 @@ pub(super) struct Controller {
     one_sample_noise: f32,
     // The workers, while `run` runs: frames are calmed on them.
     pool: Option<Arc<rayon::ThreadPool>>,
-    // The share of the pixels this generation started behind the others (1: the whole
-    // image), which they are, and the others' count of samples (see reuse.rs).
-    reached: f32,
-    behind: Vec<u32>,
-    kept_at: u32,
-    // The last full-resolution picture sent, while every pixel at `kept_at` still reads
-    // as it shows (frames then change the pixels behind alone).
-    picture: Option<Arc<Vec<Color>>>,
-    // Pixels behind in earlier generations, which the picture may show as they were.
-    outdated: Vec<u32>,
-    // The most samples any pixel of the film may have (a pass stopped half-way may have
-    // brought some to its end).
-    ceiling: u32,
+    // What is known of an image a change kept in part.
+    kept: Kept,
 }
 
 impl Controller {
@@ -176,12 +165,7 @@ impl Controller {
             coarse_spread: Vec::new(),
             one_sample_noise: 0.0,
             pool: None,
-            reached: 1.0,
-            behind: Vec::new(),
-            kept_at: 0,
-            picture: None,
-            outdated: Vec::new(),
-            ceiling: 0,
+            kept: Kept::default(),
         }
     }
 
@@ -279,7 +263,7 @@ impl Controller {
             self.scene.source.reference(),
             film.spp()
         );
-        self.ceiling = film.taken.iter().map(|t| t.count).max().unwrap_or(0);
+        self.kept.ceiling = film.taken.iter().map(|t| t.count).max().unwrap_or(0);
         self.film = film;
         self.preview_level = PREVIEW_LEVELS.len();
         self.finished = self.target_reached().then(|| self.started.elapsed());
@@ -376,19 +360,7 @@ impl Controller {
                 self.one_sample_noise = noise * (self.film.spp() as f32).sqrt();
             }
             self.generation = self.generation.max(generation);
-            if !kept {
-                self.film.clear();
-                self.reached = 1.0;
-                self.behind.clear();
-                self.picture = None;
-                self.ceiling = 0;
-            }
-            if self.picture.is_none() {
-                self.outdated.clear();
-            }
-            // No preview where nothing is to render again, nor where the pixels to are so
-            // few that their first pass costs what a preview of the whole image would.
-            let few = kept && (self.film.spp() > 0 || self.reached <= FEW_BEHIND);
+            let few = self.restart_kept(kept);
             self.preview_level = if few { PREVIEW_LEVELS.len() } else { 0 };
             self.started = Instant::now();
             self.finished = None;
@@ -424,7 +396,7 @@ impl Controller {
     fn preview(&mut self, pool: &rayon::ThreadPool) {
         let (w, h) = (self.film.width(), self.film.height());
         let block = PREVIEW_LEVELS[self.preview_level];
-        if self.reached < 1.0 {
+        if self.kept.reached() < 1.0 {
             return self.preview_reached(pool, block);
         }
         let result = crate::guard::caught(|| {
@@ -481,10 +453,7 @@ impl Controller {
 
     fn pass(&mut self, pool: &rayon::ThreadPool) {
         let n = self.next_pass_spp();
-        // Whether the pass only brings pixels behind up to the others (leaving those as
-        // the picture shows them, even if stopped half-way).
-        let catching_up = self.reached < 1.0 && self.film.spp() + n <= self.kept_at;
-        self.ceiling = self.ceiling.max(self.film.spp() + n);
+        let catching_up = self.pass_to(self.film.spp() + n);
         let start = Instant::now();
         let watch = Watch {
             requested: &self.requested,
@@ -507,7 +476,7 @@ impl Controller {
             Err(failure) => return self.fail(failure),
         };
         if result.is_err() && !catching_up {
-            self.picture = None;
+            self.stopped_ahead();
         }
         // Cancelled means a newer generation was requested: its command waits, and restarts.
         if let Ok(stats) = result {
@@ -550,7 +519,7 @@ impl Controller {
                 .then(|| self.film.done_pixels() as f32 / self.film.pixels.len().max(1) as f32),
             stats: self.stats,
             paused: self.paused,
-            reached: self.reached,
+            reached: self.kept.reached(),
             failure: self.failure.clone(),
         }
     }
@@ -572,12 +541,7 @@ impl Controller {
         if self.film.spp() == 0 {
             return;
         }
-        let pixels = match self.picture_behind() {
-            Some(pixels) => pixels,
-            None => Arc::new(self.film.pixels().collect()),
-        };
-        self.picture = Some(Arc::clone(&pixels));
-        self.outdated.clear();
+        let pixels = self.frame_pixels();
         let cost = Arc::new(self.film.cost());
         let calm = self.calm_film();
         if self.superseded() {
