@@ -397,3 +397,33 @@ fn a_noisy_image_on_its_way_is_shown_calmed_and_the_view_menu_shows_it_raw() {
     assert_eq!(h.state().shown_pixels(), to_srgba8(&frame.pixels, exposure));
     assert!(h.query_by_label("calmed").is_none());
 }
+
+#[test]
+fn a_change_that_keeps_part_of_the_image_says_in_the_status_bar_how_much_it_re_renders() {
+    // The glass scene at its target, then the index of refraction moved: only the pixels
+    // that met glass start again, and the status bar says what share while they catch up.
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("glass", dir.path());
+    step_until(&mut h, "the finished image", |a| {
+        a.latest_frame().is_some_and(|f| f.progress.done())
+    });
+    h.get_by_role_and_label(Role::Slider, "IOR")
+        .set_value_accesskit(1.8);
+    h.step();
+    let generation = h.state().engine().generation();
+    step_until(&mut h, "a frame of the change on its way", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.generation == generation && !f.progress.done())
+    });
+    h.step();
+    let reached = h.state().latest_frame().unwrap().progress.reached;
+    assert!(reached > 0.0 && reached < 0.5, "{reached} re-rendered");
+    let said = format!("re-rendering {:.0}%", reached * 100.0);
+    assert!(h.query_by_label(&said).is_some(), "the status bar says {said}");
+    step_until(&mut h, "the finished image", |a| {
+        a.latest_frame()
+            .is_some_and(|f| f.generation == generation && f.progress.done())
+    });
+    h.step();
+    assert!(h.query_by_label(&said).is_none(), "and stops saying it once done");
+}
