@@ -419,11 +419,17 @@ fn a_change_that_keeps_part_of_the_image_says_in_the_status_bar_how_much_it_re_r
     let reached = h.state().latest_frame().unwrap().progress.reached;
     assert!(reached > 0.0 && reached < 0.5, "{reached} re-rendered");
     let said = format!("re-rendering {:.0}%", reached * 100.0);
-    assert!(h.query_by_label(&said).is_some(), "the status bar says {said}");
+    assert!(
+        h.query_by_label(&said).is_some(),
+        "the status bar says {said}"
+    );
     step_until(&mut h, "the finished image", |a| {
         a.latest_frame()
             .is_some_and(|f| f.generation == generation && f.progress.done())
     });
     h.step();
-    assert!(h.query_by_label(&said).is_none(), "and stops saying it once done");
+    assert!(
+        h.query_by_label(&said).is_none(),
+        "and stops saying it once done"
+    );
 }
