@@ -291,3 +291,26 @@ fn a_checkers_scale_is_a_positive_number_or_two() {
         "expected cells per unit: a number, or [along u, along v]",
     );
 }
+
+/// The speed scenes the Mitsuba comparison renders (tests/mitsuba/speed.py) load without a
+/// warning, each with the objects its Mitsuba twin (peer.py) has: a scene that stopped
+/// loading would silently drop out of the comparison.
+#[test]
+fn the_speed_scenes_against_mitsuba_load() {
+    let objects = [
+        ("glass", 2),
+        ("dof", 3),
+        ("misses", 4),
+        ("over", 3),
+        ("mesh", 2),
+    ];
+    for (name, count) in objects {
+        let path = format!(
+            "{}/tests/mitsuba/speed-{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+        assert_eq!(scene.shapes.len(), count, "{name}");
+        assert!(scene.warnings.is_empty(), "{name}: {:?}", scene.warnings);
+    }
+}

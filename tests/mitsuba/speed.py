@@ -1,17 +1,20 @@
-"""raylab's speed against Mitsuba 3's on the same two scenes, at equal work: samples per
-second at 320 x 240, 64 spp, 2 threads, box filter, each renderer run in turn.
+"""raylab's speed against Mitsuba 3's at equal work: samples per second at 320 x 240,
+64 spp, 2 threads, box filter, each renderer run in turn.
 
-speed-glass.toml: a glass sphere (IOR 1.5) before an emitting checkerboard of square
-cells (one quad). speed-dof.toml: three emitting checkerboards at 3, 6 and 10 units seen
-through a thin lens of radius 0.2 focused at 6. raylab traces one branch per hit
-(tree = "stochastic"), as a path tracer does; Mitsuba runs its `path` integrator with
-max_depth 10 (raylab's max_depth 8 counts bounces; see path.py), `llvm_ad_rgb` (JIT,
-the CPU's widest vectors) after one warm-up render so that its compile is not timed.
+The scenes (speed-NAME.toml, and peer.py for Mitsuba's side) are pure emission and
+specular transport, so both trace one branch per hit (raylab's tree = "stochastic", as a
+path tracer does): `glass`, a glass sphere before an emitting checkerboard; `dof`, three
+emitting checkerboards through a thin lens; `misses`, small emitting boards through a thin
+lens with most rays missing everything; `over`, two glass spheres on an emitting floor seen
+from above; `mesh`, a glass Stanford bunny before an emitting checkerboard. Mitsuba runs
+its `path` integrator with max_depth 10 (raylab's max_depth 8 counts bounces; see
+path.py), `llvm_ad_rgb` (JIT, the CPU's widest vectors) after one warm-up render so that
+its compile is not timed.
 
     apt-get install libllvm19    # Dr.Jit's LLVM back end needs 19 on Debian 12
     pip install mitsuba==3.9.1 drjit==1.5.0 numpy
     cargo build --release
-    python tests/mitsuba/speed.py [target/release/raylab] [RUNS] [SAMPLER]
+    python tests/mitsuba/speed.py [target/release/raylab] [RUNS] [SAMPLER] [NAME,...]
 
 SAMPLER is Mitsuba's sampler, `independent` (the default) or `multijitter`.
 Printed: each scene's image mean in both (the same work: they agree within noise), each
@@ -31,65 +34,18 @@ import drjit as dr
 import mitsuba as mi
 import numpy as np
 
+import peer
+
 here = pathlib.Path(__file__).parent
 raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
 runs = int(sys.argv[2]) if len(sys.argv) > 2 else 5
 sampler = sys.argv[3] if len(sys.argv) > 3 else "independent"
-width, height, spp = 320, 240, 64
+spp = 64
 
 mi.set_variant("llvm_ad_rgb")
 dr.set_thread_count(2)
-T = mi.ScalarTransform4f
-
-
-def board(center, size, cells, color0, color1):
-    """An emitting rectangle of `size`, `cells` checks along each side (raylab's `scale`
-    on a quad): Mitsuba's checkerboard has 2 x 2 checks per unit of uv."""
-    return {
-        "type": "rectangle",
-        "to_world": T().translate(center) @ T().scale([size[0] / 2, size[1] / 2, 1]),
-        "emitter": {"type": "area", "radiance": {
-            "type": "checkerboard",
-            "color0": {"type": "rgb", "value": color0},
-            "color1": {"type": "rgb", "value": color1},
-            "to_uv": mi.ScalarTransform3f().scale([cells[0] / 2, cells[1] / 2]),
-        }},
-    }
-
-
-def sensor(lens):
-    s = {
-        "to_world": T().look_at(origin=[0, 0, 6], target=[0, 0, 0], up=[0, 1, 0]),
-        "fov": 40, "fov_axis": "y",
-        "film": {"type": "hdrfilm", "width": width, "height": height,
-                 "rfilter": {"type": "box"}},
-        "sampler": {"type": sampler, "sample_count": spp},
-    }
-    if lens:
-        s.update({"type": "thinlens", "aperture_radius": 0.2, "focus_distance": 6.0})
-    else:
-        s["type"] = "perspective"
-    return s
-
-
-scenes = {
-    "glass": {
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 10},
-        "sensor": sensor(lens=False),
-        "board": board([0, 0, -4], [16, 12], [16, 12], [1, 0.95, 0.9], [0.05, 0.1, 0.3]),
-        "glass": {"type": "sphere", "center": [0, 0, 0], "radius": 1.3,
-                  "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}},
-    },
-    "dof": {
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 10},
-        "sensor": sensor(lens=True),
-        "near": board([-1.4, -0.1, 3], [1.6, 1.6], [4, 4], [1, 0.3, 0.2], [0.1, 0.05, 0.02]),
-        "middle": board([0.4, 0, 0], [3.2, 3.2], [8, 8], [0.9, 0.9, 0.85], [0.05, 0.05, 0.1]),
-        "far": board([0, 0, -4], [16, 12], [16, 12], [0.2, 0.4, 1], [0.02, 0.04, 0.1]),
-    },
-}
+names = sys.argv[4].split(",") if len(sys.argv) > 4 else peer.NAMES
+models = here.parent.parent / "scenes" / "models"
 
 
 def mitsuba_seconds(scene, seed):
@@ -108,10 +64,10 @@ def raylab_seconds(name, out):
     return float(re.search(r"spp: ([0-9.]+) s", o.stderr).group(1))
 
 
-samples = width * height * spp
+samples = peer.WIDTH * peer.HEIGHT * spp
 with tempfile.TemporaryDirectory() as tmp:
-    for name, d in scenes.items():
-        scene = mi.load_dict(d)
+    for name in names:
+        scene = mi.load_dict(peer.scene(name, spp, sampler, models))
         mitsuba_seconds(scene, 0)  # the JIT compiles here
         ours, theirs = [], []
         out = os.path.join(tmp, f"{name}.exr")

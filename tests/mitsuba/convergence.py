@@ -1,0 +1,113 @@
+"""Time to an RMSE of 0.01: raylab (Sobol, Owen-scrambled) against Mitsuba 3 (`llvm_ad_rgb`,
+its `multijitter` sampler by default) on the speed scenes (see speed.py and peer.py), 320 x
+240, 2 threads, box filter.
+
+Each renderer's error is measured against its own reference (REF spp, another seed), so a
+difference of convention between them (a checker cell's edge, an emitter's side) cannot
+count as noise; the two references' means are printed to show they are the same image.
+Both render at 1, 2, 4, ... spp; the spp where RMSE (over pixels and channels, linear
+values) crosses 0.01 is interpolated in log-log, and its time in time against spp between
+the two renders around it. Each render is timed as speed.py times it (Mitsuba after a
+warm-up render at that spp, so its JIT compile is not counted), the median of RUNS.
+
+    python tests/mitsuba/convergence.py [target/release/raylab] [RUNS] [SAMPLER] [NAME,...] [REF]
+"""
+
+import math
+import os
+import pathlib
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import drjit as dr
+import mitsuba as mi
+import numpy as np
+
+import peer
+
+here = pathlib.Path(__file__).parent
+raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
+runs = int(sys.argv[2]) if len(sys.argv) > 2 else 3
+sampler = sys.argv[3] if len(sys.argv) > 3 else "multijitter"
+names = sys.argv[4].split(",") if len(sys.argv) > 4 else peer.NAMES
+reference_spp = int(sys.argv[5]) if len(sys.argv) > 5 else 4096
+models = here.parent.parent / "scenes" / "models"
+TARGET = 0.01
+
+mi.set_variant("llvm_ad_rgb")
+dr.set_thread_count(2)
+
+
+def mitsuba(scene, spp, seed, timed=True):
+    """(seconds, image) of one render; the first at an spp compiles its kernel."""
+    if timed:
+        mitsuba(scene, spp, seed + 1000, timed=False)
+    start = time.perf_counter()
+    image = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(image)
+    dr.sync_thread()
+    return time.perf_counter() - start, np.array(image)[:, :, :3]
+
+
+def raylab_render(name, spp, seed, out):
+    """(seconds, image) of one render, the time raylab's summary line gives."""
+    o = subprocess.run([raylab, "render", str(here / f"speed-{name}.toml"), "-o", out,
+                        "--threads", "2", "--spp", str(spp), "--set", f"seed={seed}"],
+                       check=True, capture_output=True, text=True)
+    seconds = float(re.search(r"spp: ([0-9.]+) s", o.stderr).group(1))
+    return seconds, np.array(mi.Bitmap(out))[:, :, :3]
+
+
+def rmse(image, reference):
+    return float(np.sqrt(np.mean((image - reference) ** 2)))
+
+
+def time_to_target(render, reference):
+    """(spp, seconds) where the error crosses TARGET, interpolated between the powers of
+    two around it, and the (spp, rmse, seconds) measured."""
+    rows, spp = [], 1
+    while True:
+        times, errors = [], []
+        for run in range(runs):
+            seconds, image = render(spp, run + 1)
+            times.append(seconds)
+            errors.append(rmse(image, reference))
+        rows.append((spp, statistics.median(errors), statistics.median(times)))
+        if rows[-1][1] <= TARGET or spp >= reference_spp // 4:
+            break
+        spp *= 2
+    if len(rows) < 2 or rows[-1][1] > TARGET:
+        return None, rows
+    (n0, e0, t0), (n1, e1, t1) = rows[-2], rows[-1]
+    # log e linear in log n between the two.
+    a = (math.log(TARGET) - math.log(e0)) / (math.log(e1) - math.log(e0))
+    n = math.exp(math.log(n0) + a * (math.log(n1) - math.log(n0)))
+    return (n, t0 + (n - n0) / (n1 - n0) * (t1 - t0)), rows
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "image.exr")
+    for name in names:
+        scene = mi.load_dict(peer.scene(name, 64, sampler, models))
+        _, ours_ref = raylab_render(name, reference_spp, 777, out)
+        _, theirs_ref = mitsuba(scene, reference_spp, 777, timed=False)
+        print(f"{name}: reference means raylab {ours_ref.mean():.4f}, "
+              f"Mitsuba {theirs_ref.mean():.4f} ({reference_spp} spp); "
+              f"between them RMSE {rmse(ours_ref, theirs_ref):.4f}")
+        ours, our_rows = time_to_target(
+            lambda spp, seed: raylab_render(name, spp, seed, out), ours_ref)
+        theirs, their_rows = time_to_target(
+            lambda spp, seed: mitsuba(scene, spp, seed), theirs_ref)
+        for who, rows in (("raylab", our_rows), (f"Mitsuba {sampler}", their_rows)):
+            print(f"  {who}: " + ", ".join(f"{n} spp {e:.4f} in {t:.3f} s" for n, e, t in rows))
+        if ours and theirs:
+            print(f"{name}: RMSE {TARGET} at {ours[0]:.1f} spp in {ours[1]:.3f} s (raylab), "
+                  f"{theirs[0]:.1f} spp in {theirs[1]:.3f} s (Mitsuba): "
+                  f"raylab takes {ours[1] / theirs[1]:.2f} of the peer's time")
+        else:
+            print(f"{name}: RMSE {TARGET} not reached below {reference_spp // 4} spp")
+print(f"load average: {os.getloadavg()[0]:.2f}")
