@@ -6,8 +6,9 @@ Each renderer's error is measured against its own reference (REF spp, another se
 difference of convention between them (a checker cell's edge, an emitter's side) cannot
 count as noise; the two references' means are printed to show they are the same image.
 Both render at 1, 2, 4, ... spp; the spp where RMSE (over pixels and channels, linear
-values) crosses 0.01 is interpolated in log-log, and its time in time against spp between
-the two renders around it. Each render is timed as speed.py times it (Mitsuba after a
+values) crosses 0.01 and its time are interpolated in log-log between the two renders
+around it (Mitsuba's `multijitter` rounds some counts up, 32 to 35: the spp printed for it
+are those asked, its times those of what it rendered). Each render is timed as speed.py times it (Mitsuba after a
 warm-up render at that spp, so its JIT compile is not counted), the median of RUNS.
 
     python tests/mitsuba/convergence.py [target/release/raylab] [RUNS] [SAMPLER] [NAME,...] [REF]
@@ -83,10 +84,12 @@ def time_to_target(render, reference):
     if len(rows) < 2 or rows[-1][1] > TARGET:
         return None, rows
     (n0, e0, t0), (n1, e1, t1) = rows[-2], rows[-1]
-    # log e linear in log n between the two.
+    # log e, log n and log t linear in one another between the two renders: the time from
+    # the renders' own times, so that a sampler rounding its count up (Mitsuba's
+    # multijitter takes 35 for 32) is timed for what it did.
     a = (math.log(TARGET) - math.log(e0)) / (math.log(e1) - math.log(e0))
     n = math.exp(math.log(n0) + a * (math.log(n1) - math.log(n0)))
-    return (n, t0 + (n - n0) / (n1 - n0) * (t1 - t0)), rows
+    return (n, math.exp(math.log(t0) + a * (math.log(t1) - math.log(t0)))), rows
 
 
 with tempfile.TemporaryDirectory() as tmp:
