@@ -8,21 +8,18 @@ count as noise; the two references' means are printed to show they are the same 
 Both render at 1, 2, 4, ... spp; the spp where RMSE (over pixels and channels, linear
 values) crosses 0.01 and its time are interpolated in log-log between the two renders
 around it (Mitsuba's `multijitter` rounds some counts up, 32 to 35: the spp printed for it
-are those asked, its times those of what it rendered). Each render is timed as speed.py times it (Mitsuba after a
-warm-up render at that spp, so its JIT compile is not counted), the median of RUNS.
+are those asked, its times those of what it rendered). Each render is timed as speed.py
+times it (Mitsuba after one warm-up render per spp, so its JIT compile is not counted),
+the median of RUNS.
 
     python tests/mitsuba/convergence.py [target/release/raylab] [RUNS] [SAMPLER] [NAME,...] [REF]
 """
 
 import math
 import os
-import pathlib
-import re
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 import drjit as dr
 import mitsuba as mi
@@ -30,37 +27,31 @@ import numpy as np
 
 import peer
 
-here = pathlib.Path(__file__).parent
 raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
 runs = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 sampler = sys.argv[3] if len(sys.argv) > 3 else "multijitter"
 names = sys.argv[4].split(",") if len(sys.argv) > 4 else peer.NAMES
 reference_spp = int(sys.argv[5]) if len(sys.argv) > 5 else 4096
-models = here.parent.parent / "scenes" / "models"
 TARGET = 0.01
 
 mi.set_variant("llvm_ad_rgb")
 dr.set_thread_count(2)
 
 
-def mitsuba(scene, spp, seed, timed=True):
-    """(seconds, image) of one render; the first at an spp compiles its kernel."""
-    if timed:
-        mitsuba(scene, spp, seed + 1000, timed=False)
-    start = time.perf_counter()
-    image = mi.render(scene, spp=spp, seed=seed)
-    dr.eval(image)
-    dr.sync_thread()
-    return time.perf_counter() - start, np.array(image)[:, :, :3]
+def mitsuba(scene, spp, seed, compiled):
+    """(seconds, image) of one render, its kernel compiled first where the spp is not in
+    `compiled`."""
+    if spp not in compiled:
+        peer.mitsuba_render(scene, spp, seed + 1000)
+        compiled.add(spp)
+    seconds, image = peer.mitsuba_render(scene, spp, seed)
+    return seconds, peer.rgb(image)
 
 
-def raylab_render(name, spp, seed, out):
-    """(seconds, image) of one render, the time raylab's summary line gives."""
-    o = subprocess.run([raylab, "render", str(here / f"speed-{name}.toml"), "-o", out,
-                        "--threads", "2", "--spp", str(spp), "--set", f"seed={seed}"],
-                       check=True, capture_output=True, text=True)
-    seconds = float(re.search(r"spp: ([0-9.]+) s", o.stderr).group(1))
-    return seconds, np.array(mi.Bitmap(out))[:, :, :3]
+def ours(name, spp, seed, out):
+    """(seconds, image) of one raylab render."""
+    seconds = peer.raylab_render(raylab, name, out, "--spp", str(spp), "--set", f"seed={seed}")
+    return seconds, peer.rgb(out)
 
 
 def rmse(image, reference):
@@ -95,22 +86,22 @@ def time_to_target(render, reference):
 with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "image.exr")
     for name in names:
-        scene = mi.load_dict(peer.scene(name, 64, sampler, models))
-        _, ours_ref = raylab_render(name, reference_spp, 777, out)
-        _, theirs_ref = mitsuba(scene, reference_spp, 777, timed=False)
+        scene, compiled = peer.scene(name, 64, sampler), set()
+        _, ours_ref = ours(name, reference_spp, 777, out)
+        _, theirs_ref = mitsuba(scene, reference_spp, 777, {reference_spp})
         print(f"{name}: reference means raylab {ours_ref.mean():.4f}, "
               f"Mitsuba {theirs_ref.mean():.4f} ({reference_spp} spp); "
               f"between them RMSE {rmse(ours_ref, theirs_ref):.4f}")
-        ours, our_rows = time_to_target(
-            lambda spp, seed: raylab_render(name, spp, seed, out), ours_ref)
-        theirs, their_rows = time_to_target(
-            lambda spp, seed: mitsuba(scene, spp, seed), theirs_ref)
+        our_time, our_rows = time_to_target(
+            lambda spp, seed: ours(name, spp, seed, out), ours_ref)
+        their_time, their_rows = time_to_target(
+            lambda spp, seed: mitsuba(scene, spp, seed, compiled), theirs_ref)
         for who, rows in (("raylab", our_rows), (f"Mitsuba {sampler}", their_rows)):
             print(f"  {who}: " + ", ".join(f"{n} spp {e:.4f} in {t:.3f} s" for n, e, t in rows))
-        if ours and theirs:
-            print(f"{name}: RMSE {TARGET} at {ours[0]:.1f} spp in {ours[1]:.3f} s (raylab), "
-                  f"{theirs[0]:.1f} spp in {theirs[1]:.3f} s (Mitsuba): "
-                  f"raylab takes {ours[1] / theirs[1]:.2f} of the peer's time")
+        if our_time and their_time:
+            (n, t), (m, u) = our_time, their_time
+            print(f"{name}: RMSE {TARGET} at {n:.1f} spp in {t:.3f} s (raylab), "
+                  f"{m:.1f} spp in {u:.3f} s (Mitsuba): raylab takes {t / u:.2f} of the peer's time")
         else:
             print(f"{name}: RMSE {TARGET} not reached below {reference_spp // 4} spp")
 print(f"load average: {os.getloadavg()[0]:.2f}")

@@ -22,62 +22,37 @@ renderer's median samples per second, their ratio, and the machine's load averag
 """
 
 import os
-import pathlib
-import re
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 import drjit as dr
 import mitsuba as mi
-import numpy as np
 
 import peer
 
-here = pathlib.Path(__file__).parent
 raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
 runs = int(sys.argv[2]) if len(sys.argv) > 2 else 5
 sampler = sys.argv[3] if len(sys.argv) > 3 else "independent"
+names = sys.argv[4].split(",") if len(sys.argv) > 4 else peer.NAMES
 spp = 64
 
 mi.set_variant("llvm_ad_rgb")
 dr.set_thread_count(2)
-names = sys.argv[4].split(",") if len(sys.argv) > 4 else peer.NAMES
-models = here.parent.parent / "scenes" / "models"
-
-
-def mitsuba_seconds(scene, seed):
-    """Seconds for one render, and its image (evaluated: Dr.Jit launches lazily)."""
-    start = time.perf_counter()
-    image = mi.render(scene, spp=spp, seed=seed)
-    dr.eval(image)
-    dr.sync_thread()
-    return time.perf_counter() - start, image
-
-
-def raylab_seconds(name, out):
-    o = subprocess.run([raylab, "render", str(here / f"speed-{name}.toml"), "-o", out,
-                        "--threads", "2"], check=True, capture_output=True, text=True)
-    # The summary line: "NAME WxH at N spp: S s, ..."
-    return float(re.search(r"spp: ([0-9.]+) s", o.stderr).group(1))
-
 
 samples = peer.WIDTH * peer.HEIGHT * spp
 with tempfile.TemporaryDirectory() as tmp:
     for name in names:
-        scene = mi.load_dict(peer.scene(name, spp, sampler, models))
-        mitsuba_seconds(scene, 0)  # the JIT compiles here
+        scene = peer.scene(name, spp, sampler)
+        peer.mitsuba_render(scene, spp, 0)  # the JIT compiles here
         ours, theirs = [], []
         out = os.path.join(tmp, f"{name}.exr")
         for run in range(runs):
-            ours.append(raylab_seconds(name, out))
-            seconds, image = mitsuba_seconds(scene, run + 1)
+            ours.append(peer.raylab_render(raylab, name, out))
+            seconds, image = peer.mitsuba_render(scene, spp, run + 1)
             theirs.append(seconds)
         # The same work: the two images agree within noise.
-        a = np.array(mi.Bitmap(out))[:, :, :3]
-        b = np.array(image)[:, :, :3]
+        a, b = peer.rgb(out), peer.rgb(image)
         print(f"{name}: image mean raylab {a.mean():.4f}, Mitsuba {b.mean():.4f}")
         r = samples / statistics.median(ours) / 1e6
         m = samples / statistics.median(theirs) / 1e6

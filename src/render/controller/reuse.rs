@@ -86,9 +86,10 @@ impl Controller {
     /// The samples every pixel has but those behind: while they catch up, the count the
     /// others were kept at; else the film's.
     fn floor(&self) -> u32 {
-        match self.kept.catching_up(self.film.spp()) {
-            true => self.kept.at,
-            false => self.film.spp(),
+        if self.kept.catching_up(self.film.spp()) {
+            self.kept.at
+        } else {
+            self.film.spp()
         }
     }
 
@@ -96,6 +97,7 @@ impl Controller {
     /// Whether the film keeps the rest; false: more than half of it would be behind the
     /// others, and the whole image starts again, its preview pyramid showing it sooner.
     pub(super) fn keep_unreached(&mut self, reach: &Reach) -> bool {
+        let floor = self.floor();
         let kept = &mut self.kept;
         // The last picture shows the pixels that were behind as they were when it was
         // sent: a stopped pass may have brought them up since. (While frames come, few.)
@@ -103,8 +105,6 @@ impl Controller {
         if kept.outdated.len() > self.film.pixels.len() {
             kept.picture = None;
         }
-        let floor = self.floor();
-        let kept = &mut self.kept;
         // Behind: those started again, and those still catching up after the last change
         // (a pass stopped half-way may leave others ahead: they keep what they have).
         self.film.restart_reached(reach, floor, &mut kept.behind);
@@ -145,11 +145,12 @@ impl Controller {
     /// last picture with them as the film has them now; else every pixel's mean. Kept as
     /// the picture.
     pub(super) fn frame_pixels(&mut self) -> Arc<Vec<Color>> {
-        let pixels = match self.kept.catching_up(self.film.spp()) {
-            true => self.refreshed(&self.kept.behind),
-            false => None,
-        };
-        let pixels = Arc::new(pixels.unwrap_or_else(|| self.film.pixels().collect()));
+        let refreshed = self
+            .kept
+            .catching_up(self.film.spp())
+            .then(|| self.refreshed(&self.kept.behind))
+            .flatten();
+        let pixels = Arc::new(refreshed.unwrap_or_else(|| self.film.pixels().collect()));
         self.kept.picture = Some(Arc::clone(&pixels));
         self.kept.outdated.clear();
         pixels
