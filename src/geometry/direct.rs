@@ -3,8 +3,9 @@
 //! lanes, `N` rays against one shape at a time.
 
 use super::mesh::triangle_nearest;
-use super::{Mesh, Plane, PrimRef, Quad, Shape, Sphere};
-use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Vector, max, min};
+use super::shapes::{QuadAt, plane_nearest, quad_nearest, sphere_nearest};
+use super::{Mesh, PrimRef, Shape};
+use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Vector, Wide, max, min};
 use crate::math::{Ray, Vec3};
 use obvhs::aabb::Aabb;
 
@@ -18,12 +19,15 @@ const DIRECT_MAX: usize = 16;
 pub(crate) const SMALL_MESH: usize = 16;
 
 /// The spheres, quads and small meshes tested directly (when there are at most
-/// DIRECT_MAX), and the planes.
+/// DIRECT_MAX), and the planes: what their tests read, each vector kept [`Wide`] for the
+/// lanes to load.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Direct {
-    planes: Vec<Plane>,
-    spheres: Vec<Sphere>,
-    quads: Vec<Quad>,
+    // Each plane's unit normal and a point on it.
+    planes: Vec<[Wide; 2]>,
+    // Each sphere's centre at time 0, velocity and radius.
+    spheres: Vec<(Wide, Wide, f32)>,
+    quads: Vec<QuadAt<Wide>>,
     meshes: Vec<SmallMesh>,
     // The primitive of each, planes first, then spheres, quads and the meshes' triangles.
     prims: Vec<PrimRef>,
@@ -33,10 +37,11 @@ pub(super) struct Direct {
 #[derive(Clone, Debug)]
 struct SmallMesh {
     // The box, a hair larger than the triangles' (see `SmallMesh::new`).
-    lo: Vec3,
-    hi: Vec3,
-    velocity: Vec3,
-    edges: Vec<[Vec3; 3]>,
+    lo: Wide,
+    hi: Wide,
+    velocity: Wide,
+    // Each triangle's [v0, e1, e2] (see `triangle_nearest`).
+    edges: Vec<[Wide; 3]>,
 }
 
 impl SmallMesh {
@@ -49,10 +54,10 @@ impl SmallMesh {
         let size = (b.max - b.min).max_element() + b.min.abs().max(b.max.abs()).max_element();
         let pad = Vec3::splat(1e-5 * size + 1e-6);
         SmallMesh {
-            lo: b.min - pad,
-            hi: b.max + pad,
-            velocity: mesh.velocity,
-            edges: mesh.edges().to_vec(),
+            lo: Wide::splat(b.min - pad),
+            hi: Wide::splat(b.max + pad),
+            velocity: Wide::splat(mesh.velocity),
+            edges: mesh.edges().iter().map(|e| e.map(Wide::splat)).collect(),
         }
     }
 
@@ -61,15 +66,15 @@ impl SmallMesh {
     #[inline(always)]
     fn may_meet<R: Real>(&self, o: R::V3, d: R::V3, t_max: R) -> R::Mask {
         let (o, d) = (o.coords(), d.coords());
-        let (lo, hi) = (self.lo.to_array(), self.hi.to_array());
+        let (lo, hi) = (
+            R::V3::wide(&self.lo).coords(),
+            R::V3::wide(&self.hi).coords(),
+        );
         // A slack on the far end for the rounding of t_max against the box's distances.
         let (mut near, mut far) = (R::splat(0.0), t_max * R::splat(1.0 + 1e-4));
         for k in 0..3 {
             let inv = R::splat(1.0) / d[k];
-            let (t0, t1) = (
-                (R::splat(lo[k]) - o[k]) * inv,
-                (R::splat(hi[k]) - o[k]) * inv,
-            );
+            let (t0, t1) = ((lo[k] - o[k]) * inv, (hi[k] - o[k]) * inv);
             // min and max keep their first argument where the second is NaN.
             near = max(near, min(t0, t1));
             far = min(far, max(t0, t1));
@@ -80,7 +85,7 @@ impl SmallMesh {
     /// The origins `o` at times `time` in the mesh's own frame (it only translates).
     #[inline(always)]
     fn local<R: Real>(&self, o: R::V3, time: R) -> R::V3 {
-        o - R::V3::splat(self.velocity).scale(time)
+        o - R::V3::wide(&self.velocity).scale(time)
     }
 }
 
@@ -104,15 +109,16 @@ impl Direct {
             let prim = PrimRef { object, index: 0 };
             match shape {
                 Shape::Plane(p) => {
-                    direct.planes.push(p.clone());
+                    direct.planes.push([p.normal, p.point].map(Wide::splat));
                     tested[0].push(prim);
                 }
                 Shape::Sphere(s) if direct_ok => {
-                    direct.spheres.push(s.clone());
+                    let (center, velocity) = (Wide::splat(s.center), Wide::splat(s.velocity));
+                    direct.spheres.push((center, velocity, s.radius));
                     tested[1].push(prim);
                 }
                 Shape::Quad(q) if direct_ok => {
-                    direct.quads.push(q.clone());
+                    direct.quads.push(q.at(Wide::splat));
                     tested[2].push(prim);
                 }
                 Shape::Mesh(m) if direct_ok && small(shape) => {
@@ -159,23 +165,29 @@ impl Direct {
         };
         let mut limit = t_max;
         let mut place = 0;
-        for p in &self.planes {
-            limit = keep(p.nearest(o, d, limit), place);
+        for [n, p] in &self.planes {
+            limit = keep(
+                plane_nearest(R::V3::wide(n), R::V3::wide(p), o, d, limit),
+                place,
+            );
             place += 1;
         }
         for s in &self.spheres {
-            limit = keep(s.nearest(o, d, time, limit), place);
+            limit = keep(sphere_nearest(sphere_at::<R>(s), o, d, time, limit), place);
             place += 1;
         }
         for q in &self.quads {
-            limit = keep(q.nearest(o, d, limit), place);
+            limit = keep(quad_nearest(&quad_at::<R>(q), o, d, limit), place);
             place += 1;
         }
         for m in &self.meshes {
             if R::any(m.may_meet(o, d, limit)) {
                 let o = m.local(o, time);
                 for (k, e) in m.edges.iter().enumerate() {
-                    limit = keep(triangle_nearest(e, o, d, limit).0, place + k);
+                    limit = keep(
+                        triangle_nearest(e.each_ref().map(R::V3::wide), o, d, limit).0,
+                        place + k,
+                    );
                 }
             }
             place += m.edges.len();
@@ -207,18 +219,18 @@ impl Direct {
             blocked = blocked | t.less(miss);
             R::all(blocked)
         };
-        for p in &self.planes {
-            if block(p.nearest(o, d, t_max)) {
+        for [n, p] in &self.planes {
+            if block(plane_nearest(R::V3::wide(n), R::V3::wide(p), o, d, t_max)) {
                 return blocked;
             }
         }
         for s in &self.spheres {
-            if block(s.nearest(o, d, time, t_max)) {
+            if block(sphere_nearest(sphere_at::<R>(s), o, d, time, t_max)) {
                 return blocked;
             }
         }
         for q in &self.quads {
-            if block(q.nearest(o, d, t_max)) {
+            if block(quad_nearest(&quad_at::<R>(q), o, d, t_max)) {
                 return blocked;
             }
         }
@@ -226,13 +238,31 @@ impl Direct {
             if R::any(m.may_meet(o, d, t_max)) {
                 let o = m.local(o, time);
                 for e in &m.edges {
-                    if block(triangle_nearest(e, o, d, t_max).0) {
+                    if block(triangle_nearest(e.each_ref().map(R::V3::wide), o, d, t_max).0) {
                         return blocked;
                     }
                 }
             }
         }
         blocked
+    }
+}
+
+/// A sphere as [`sphere_nearest`] reads it, loaded for `R`.
+#[inline(always)]
+fn sphere_at<R: Real>((center, velocity, radius): &(Wide, Wide, f32)) -> (R::V3, R::V3, f32) {
+    (R::V3::wide(center), R::V3::wide(velocity), *radius)
+}
+
+/// A quad as [`quad_nearest`] reads it, loaded for `R`.
+#[inline(always)]
+fn quad_at<R: Real>(q: &QuadAt<Wide>) -> QuadAt<R::V3> {
+    QuadAt {
+        corner: R::V3::wide(&q.corner),
+        edge_u: R::V3::wide(&q.edge_u),
+        edge_v: R::V3::wide(&q.edge_v),
+        normal: R::V3::wide(&q.normal),
+        w: R::V3::wide(&q.w),
     }
 }
 
@@ -252,8 +282,13 @@ impl LaneKernel for DirectWave<'_> {
             let rays = self.rays.lanes::<N>(group * N);
             let far = Lanes::splat(f32::INFINITY);
             let (t, place) = self.direct.nearest(rays.origin, rays.dir, rays.time, far);
-            // The places made integers in lanes.
-            let place: [i32; N] = std::array::from_fn(|i| place.0[i] as i32);
+            // The places made integers in lanes: a whole number p with |p| < 2²² is the
+            // low bits of p + 2²³ (exact, with 2²³'s exponent), and −1 (none) becomes −2,
+            // which indexes nothing. (`as i32` saturates, which is done lane by lane: 7
+            // instructions a ray with AVX2.)
+            const TWO_23: f32 = 8_388_608.0;
+            let bits = |p: f32| (p + TWO_23).to_bits().wrapping_sub(TWO_23.to_bits());
+            let place: [i32; N] = std::array::from_fn(|i| bits(place.0[i]) as i32);
             for ((out, &place), &t) in out.iter_mut().zip(&place).zip(&t.0) {
                 *out = self.direct.found(t, place);
             }

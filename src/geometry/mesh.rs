@@ -220,7 +220,7 @@ impl Mesh {
     #[inline]
     pub fn intersect_t(&self, i: usize, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
         let ray = &self.local(ray);
-        let (t, u, v) = triangle_nearest(&self.edges[i], ray.origin, ray.dir, t_max);
+        let (t, u, v) = triangle_nearest(self.edges[i], ray.origin, ray.dir, t_max);
         (t != f32::INFINITY).then_some((t, Vec2::new(u, v)))
     }
 
@@ -285,12 +285,11 @@ impl Mesh {
 /// A hit needs det ≠ 0, u in [0, 1], v ≥ 0 and u + v ≤ 1.
 #[inline(always)]
 pub(crate) fn triangle_nearest<R: Real>(
-    edges: &[Vec3; 3],
+    [v0, e1, e2]: [R::V3; 3],
     o: R::V3,
     d: R::V3,
     t_max: R,
 ) -> (R, R, R) {
-    let [v0, e1, e2] = edges.map(R::V3::splat);
     let (zero, one, miss) = (R::splat(0.0), R::splat(1.0), R::splat(f32::INFINITY));
     let pvec = d.cross(e2);
     let det = e1.dot(pvec);

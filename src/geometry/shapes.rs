@@ -62,26 +62,8 @@ impl Sphere {
     /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
     #[inline(always)]
     pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> R {
-        let f = o - self.center_of(time);
-        let b = -f.dot(d);
-        let l = f + d.scale(b);
-        let r2 = R::splat(self.radius * self.radius);
-        let disc = r2 - l.length_squared();
-        let (zero, miss) = (R::splat(0.0), R::splat(f32::INFINITY));
-        let real = !disc.less(zero);
-        if !R::any(real) {
-            return miss;
-        }
-        let c = f.length_squared() - r2;
-        let q = b + disc.sqrt().copysign(b);
-        let real = real & !q.equal(zero);
-        // The roots c/q and q, in order.
-        let a = c / q;
-        let ordered = a.less(q);
-        let (t0, t1) = (R::select(ordered, a, q), R::select(ordered, q, a));
-        let near = real & zero.less(t0) & t0.less(t_max);
-        let far = real & zero.less(t1) & t1.less(t_max);
-        R::select(near, t0, R::select(far, t1, miss))
+        let (center, velocity) = (R::V3::splat(self.center), R::V3::splat(self.velocity));
+        sphere_nearest((center, velocity, self.radius), o, d, time, t_max)
     }
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
@@ -173,17 +155,19 @@ impl Quad {
     /// b = w·(edge_u × rel) (rel = p − corner) are both in [0, 1]; +∞ where it misses.
     #[inline(always)]
     pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, t_max: R) -> R {
-        let n = R::V3::splat(self.normal);
-        let Some(t) = plane_distance(n, R::V3::splat(self.corner), o, d, t_max) else {
-            return R::splat(f32::INFINITY);
-        };
-        let rel = (o + d.scale(t)) - R::V3::splat(self.corner);
-        let w = R::V3::splat(self.w);
-        let a = w.dot(rel.cross(R::V3::splat(self.edge_v)));
-        let b = w.dot(R::V3::splat(self.edge_u).cross(rel));
-        let (zero, one) = (R::splat(0.0), R::splat(1.0));
-        let inside = zero.less_eq(a) & a.less_eq(one) & zero.less_eq(b) & b.less_eq(one);
-        R::select(inside, t, R::splat(f32::INFINITY))
+        quad_nearest(&self.at(R::V3::splat), o, d, t_max)
+    }
+
+    /// What [`Quad::nearest`] reads of the quad, each vector made by `v`.
+    #[inline(always)]
+    pub(crate) fn at<V>(&self, v: impl Fn(Vec3) -> V) -> QuadAt<V> {
+        QuadAt {
+            corner: v(self.corner),
+            edge_u: v(self.edge_u),
+            edge_v: v(self.edge_v),
+            normal: v(self.normal),
+            w: v(self.w),
+        }
     }
 
     /// The hit record at `t`, with the point rebuilt from its surface coordinates.
@@ -248,14 +232,13 @@ impl Plane {
     /// [`Plane::intersect_t`] for one ray or one per lane; +∞ where it misses.
     #[inline(always)]
     pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, t_max: R) -> R {
-        plane_distance(
+        plane_nearest(
             R::V3::splat(self.normal),
             R::V3::splat(self.point),
             o,
             d,
             t_max,
         )
-        .unwrap_or(R::splat(f32::INFINITY))
     }
 
     /// The hit record at `t`, with the point projected onto the plane. The surface
@@ -295,6 +278,79 @@ fn plane_distance<R: Real>(n: R::V3, q: R::V3, o: R::V3, d: R::V3, t_max: R) -> 
     let zero = R::splat(0.0);
     let ok = !denom.abs().less(R::splat(1e-12)) & zero.less(t) & t.less(t_max);
     R::any(ok).then(|| R::select(ok, t, R::splat(f32::INFINITY)))
+}
+
+/// [`Sphere::nearest`] for a sphere given as its centre at time 0, its velocity and its
+/// radius, the vectors as the caller holds them (broadcast, or loaded as [`crate::math::lanes::Wide`]).
+#[inline(always)]
+pub(crate) fn sphere_nearest<R: Real>(
+    (center, velocity, radius): (R::V3, R::V3, f32),
+    o: R::V3,
+    d: R::V3,
+    time: R,
+    t_max: R,
+) -> R {
+    // c + v t, as `Sphere::center_of`.
+    let f = o - (center + velocity.scale(time));
+    let b = -f.dot(d);
+    let l = f + d.scale(b);
+    let r2 = R::splat(radius * radius);
+    let disc = r2 - l.length_squared();
+    let (zero, miss) = (R::splat(0.0), R::splat(f32::INFINITY));
+    let real = !disc.less(zero);
+    if !R::any(real) {
+        return miss;
+    }
+    let c = f.length_squared() - r2;
+    let q = b + disc.sqrt().copysign(b);
+    let real = real & !q.equal(zero);
+    // The roots c/q and q, in order.
+    let a = c / q;
+    let ordered = a.less(q);
+    let (t0, t1) = (R::select(ordered, a, q), R::select(ordered, q, a));
+    let near = real & zero.less(t0) & t0.less(t_max);
+    let far = real & zero.less(t1) & t1.less(t_max);
+    R::select(near, t0, R::select(far, t1, miss))
+}
+
+/// A quad as [`quad_nearest`] reads it: its corner, edges, unit normal and w = n / (n·n),
+/// each as one ray's vector, or broadcast or loaded for the lanes.
+#[derive(Clone, Debug)]
+pub(crate) struct QuadAt<V> {
+    pub(crate) corner: V,
+    pub(crate) edge_u: V,
+    pub(crate) edge_v: V,
+    pub(crate) normal: V,
+    pub(crate) w: V,
+}
+
+/// [`Quad::intersect_t`] for one ray or one per lane: the distance t to the plane
+/// n·(p − corner) = 0, where the point's coordinates a = w·(rel × edge_v) and
+/// b = w·(edge_u × rel) (rel = p − corner) are both in [0, 1]; +∞ where it misses.
+#[inline(always)]
+pub(crate) fn quad_nearest<R: Real>(q: &QuadAt<R::V3>, o: R::V3, d: R::V3, t_max: R) -> R {
+    let Some(t) = plane_distance(q.normal, q.corner, o, d, t_max) else {
+        return R::splat(f32::INFINITY);
+    };
+    let rel = (o + d.scale(t)) - q.corner;
+    let a = q.w.dot(rel.cross(q.edge_v));
+    let b = q.w.dot(q.edge_u.cross(rel));
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let inside = zero.less_eq(a) & a.less_eq(one) & zero.less_eq(b) & b.less_eq(one);
+    R::select(inside, t, R::splat(f32::INFINITY))
+}
+
+/// [`Plane::nearest`] for the plane through `point` with unit normal `normal`, as the
+/// caller holds them.
+#[inline(always)]
+pub(crate) fn plane_nearest<R: Real>(
+    normal: R::V3,
+    point: R::V3,
+    o: R::V3,
+    d: R::V3,
+    t_max: R,
+) -> R {
+    plane_distance(normal, point, o, d, t_max).unwrap_or(R::splat(f32::INFINITY))
 }
 
 /// A distance from the formulas above as the scalar callers take it: +∞ is no hit (a hit

@@ -18,7 +18,7 @@ mod vector;
 mod width;
 
 pub use columns::{Columns, RayColumns};
-pub use vector::{V3, Vector};
+pub use vector::{V3, Vector, Wide};
 pub use width::{LaneKernel, Width, asked_lanes};
 
 use super::Vec3;

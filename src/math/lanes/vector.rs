@@ -11,6 +11,9 @@ use std::ops::{Add, Sub};
 pub trait Vector<R: Real>: Copy + Add<Output = Self> + Sub<Output = Self> {
     /// `v` in every lane.
     fn splat(v: Vec3) -> Self;
+    /// The vector `wide` holds in every lane (lane 0's for one ray): a constant loaded
+    /// row by row (see [`Wide`]).
+    fn wide(wide: &Wide) -> Self;
     /// The dot product, (x x′ + y y′) + z z′.
     fn dot(self, o: Self) -> R;
     /// The cross product, (y z′ − z y′, z x′ − x z′, x y′ − y x′).
@@ -40,6 +43,10 @@ impl Vector<f32> for Vec3 {
     #[inline(always)]
     fn splat(v: Vec3) -> Vec3 {
         v
+    }
+    #[inline(always)]
+    fn wide(wide: &Wide) -> Vec3 {
+        wide.get(0)
     }
     #[inline(always)]
     fn dot(self, o: Vec3) -> f32 {
@@ -74,6 +81,13 @@ impl Vector<f32> for Vec3 {
         self.to_array()
     }
 }
+
+/// A constant vector in each of the widest width's 16 lanes, stored for the lanes to load
+/// as whole rows: what the directly tested shapes keep their corners, normals and edges in.
+/// Broadcast from a `Vec3` in its register, a constant lets the compiler's vectoriser pair
+/// its coordinates across lanes and shuffle them back together: a quad's test took about
+/// 200 instructions for 16 rays where 60 do (docs/performance.md, "Shaped by measurement").
+pub type Wide = V3<Lanes<16>>;
 
 /// A point or direction per lane: each coordinate a row of lanes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,6 +125,15 @@ impl<const N: usize> Vector<Lanes<N>> for V3<Lanes<N>> {
             x: Lanes::splat(v.x),
             y: Lanes::splat(v.y),
             z: Lanes::splat(v.z),
+        }
+    }
+    #[inline(always)]
+    fn wide(wide: &Wide) -> Self {
+        let first = |row: &Lanes<16>| Lanes::from_fn(|i| row.0[i]);
+        V3 {
+            x: first(&wide.x),
+            y: first(&wide.y),
+            z: first(&wide.z),
         }
     }
     #[inline(always)]
