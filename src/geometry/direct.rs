@@ -177,7 +177,7 @@ impl Direct {
             place += 1;
         }
         for q in &self.quads {
-            limit = keep(quad_nearest(&quad_at::<R>(q), o, d, limit), place);
+            limit = keep(quad_nearest(&q.load::<R>(), o, d, limit), place);
             place += 1;
         }
         for m in &self.meshes {
@@ -230,7 +230,7 @@ impl Direct {
             }
         }
         for q in &self.quads {
-            if block(quad_nearest(&quad_at::<R>(q), o, d, t_max)) {
+            if block(quad_nearest(&q.load::<R>(), o, d, t_max)) {
                 return blocked;
             }
         }
@@ -252,18 +252,6 @@ impl Direct {
 #[inline(always)]
 fn sphere_at<R: Real>((center, velocity, radius): &(Wide, Wide, f32)) -> (R::V3, R::V3, f32) {
     (R::V3::wide(center), R::V3::wide(velocity), *radius)
-}
-
-/// A quad as [`quad_nearest`] reads it, loaded for `R`.
-#[inline(always)]
-fn quad_at<R: Real>(q: &QuadAt<Wide>) -> QuadAt<R::V3> {
-    QuadAt {
-        corner: R::V3::wide(&q.corner),
-        edge_u: R::V3::wide(&q.edge_u),
-        edge_v: R::V3::wide(&q.edge_v),
-        normal: R::V3::wide(&q.normal),
-        w: R::V3::wide(&q.w),
-    }
 }
 
 /// The nearest hit of every ray of a wave against the directly tested shapes, `N` rays at a

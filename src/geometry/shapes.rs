@@ -1,7 +1,7 @@
 //! Spheres, parallelograms and planes.
 
 use super::SurfaceHit;
-use crate::math::lanes::{Real, Vector, clamp};
+use crate::math::lanes::{Real, Vector, Wide, clamp};
 use crate::math::{Ray, Vec3, orthonormal_basis};
 use glam::Vec2;
 use obvhs::aabb::Aabb;
@@ -158,7 +158,8 @@ impl Quad {
         quad_nearest(&self.at(R::V3::splat), o, d, t_max)
     }
 
-    /// What [`Quad::nearest`] reads of the quad, each vector made by `v`.
+    /// What [`Quad::nearest`] reads of the quad, each vector made by `v`
+    /// (broadcast, or kept [`Wide`]).
     #[inline(always)]
     pub(crate) fn at<V>(&self, v: impl Fn(Vec3) -> V) -> QuadAt<V> {
         QuadAt {
@@ -322,6 +323,20 @@ pub(crate) struct QuadAt<V> {
     pub(crate) edge_v: V,
     pub(crate) normal: V,
     pub(crate) w: V,
+}
+
+impl QuadAt<Wide> {
+    /// The quad loaded for `R` (see [`Wide`]).
+    #[inline(always)]
+    pub(crate) fn load<R: Real>(&self) -> QuadAt<R::V3> {
+        QuadAt {
+            corner: R::V3::wide(&self.corner),
+            edge_u: R::V3::wide(&self.edge_u),
+            edge_v: R::V3::wide(&self.edge_v),
+            normal: R::V3::wide(&self.normal),
+            w: R::V3::wide(&self.w),
+        }
+    }
 }
 
 /// [`Quad::intersect_t`] for one ray or one per lane: the distance t to the plane
