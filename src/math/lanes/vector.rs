@@ -86,7 +86,8 @@ impl Vector<f32> for Vec3 {
 /// as whole rows: what the directly tested shapes keep their corners, normals and edges in.
 /// Broadcast from a `Vec3` in its register, a constant lets the compiler's vectoriser pair
 /// its coordinates across lanes and shuffle them back together: a quad's test took about
-/// 200 instructions for 16 rays where 60 do (docs/performance.md, "Shaped by measurement").
+/// 200 instructions for 16 rays where about 110 do (docs/performance.md, "Shaped by
+/// measurement").
 pub type Wide = V3<Lanes<16>>;
 
 /// A point or direction per lane: each coordinate a row of lanes.
