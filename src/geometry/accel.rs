@@ -345,6 +345,29 @@ mod tests {
         }
         let found = scalar.iter().filter(|h| h.is_some()).count();
         assert!(found > 300 && found < 1000, "{found} hits");
+        // The search tests copies of the shapes' vectors (`Wide`): it finds the nearest of
+        // every shape's own test, on its own vectors, bit for bit.
+        let own = |ray: &Ray| {
+            let mut best: Option<(PrimRef, f32)> = None;
+            for (object, shape) in shapes.iter().enumerate() {
+                // (A plane, unbounded, counts no leaf; it is primitive 0.)
+                for index in 0..shape.leaf_count().max(1) as u32 {
+                    let t_best = best.map_or(f32::INFINITY, |(_, t)| t);
+                    if let Some(t) = shape.intersect_t(index, ray, t_best) {
+                        let object = object as u32;
+                        best = Some((PrimRef { object, index }, t));
+                    }
+                }
+            }
+            best.map(|(p, t)| (p, t.to_bits()))
+        };
+        for (i, hit) in scalar.iter().enumerate() {
+            assert_eq!(
+                hit.map(|(p, t)| (p, t.to_bits())),
+                own(&rays.get(i)),
+                "ray {i}"
+            );
+        }
         // Shadow rays: beyond the nearest hit (blocked by it) or short of it, or of length 1.
         let reach = |i: usize| {
             let t = scalar[i].map_or(1.0, |(_, t)| t);

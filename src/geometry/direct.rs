@@ -3,7 +3,7 @@
 //! lanes, `N` rays against one shape at a time.
 
 use super::mesh::triangle_nearest;
-use super::shapes::{QuadAt, plane_nearest, quad_nearest, sphere_nearest};
+use super::shapes::{QuadAt, SphereAt, plane_nearest, quad_nearest, sphere_nearest};
 use super::{Mesh, PrimRef, Shape};
 use crate::math::lanes::{LaneKernel, Lanes, RayColumns, Real, Vector, Wide, max, min};
 use crate::math::{Ray, Vec3};
@@ -25,8 +25,7 @@ pub(crate) const SMALL_MESH: usize = 16;
 pub(super) struct Direct {
     // Each plane's unit normal and a point on it.
     planes: Vec<[Wide; 2]>,
-    // Each sphere's centre at time 0, velocity and radius.
-    spheres: Vec<(Wide, Wide, f32)>,
+    spheres: Vec<SphereAt<Wide>>,
     quads: Vec<QuadAt<Wide>>,
     meshes: Vec<SmallMesh>,
     // The primitive of each, planes first, then spheres, quads and the meshes' triangles.
@@ -113,8 +112,7 @@ impl Direct {
                     tested[0].push(prim);
                 }
                 Shape::Sphere(s) if direct_ok => {
-                    let (center, velocity) = (Wide::splat(s.center), Wide::splat(s.velocity));
-                    direct.spheres.push((center, velocity, s.radius));
+                    direct.spheres.push(s.at(Wide::splat));
                     tested[1].push(prim);
                 }
                 Shape::Quad(q) if direct_ok => {
@@ -173,7 +171,7 @@ impl Direct {
             place += 1;
         }
         for s in &self.spheres {
-            limit = keep(sphere_nearest(sphere_at::<R>(s), o, d, time, limit), place);
+            limit = keep(sphere_nearest(&s.load::<R>(), o, d, time, limit), place);
             place += 1;
         }
         for q in &self.quads {
@@ -225,7 +223,7 @@ impl Direct {
             }
         }
         for s in &self.spheres {
-            if block(sphere_nearest(sphere_at::<R>(s), o, d, time, t_max)) {
+            if block(sphere_nearest(&s.load::<R>(), o, d, time, t_max)) {
                 return blocked;
             }
         }
@@ -246,12 +244,6 @@ impl Direct {
         }
         blocked
     }
-}
-
-/// A sphere as [`sphere_nearest`] reads it, loaded for `R`.
-#[inline(always)]
-fn sphere_at<R: Real>((center, velocity, radius): &(Wide, Wide, f32)) -> (R::V3, R::V3, f32) {
-    (R::V3::wide(center), R::V3::wide(velocity), *radius)
 }
 
 /// The nearest hit of every ray of a wave against the directly tested shapes, `N` rays at a

@@ -62,8 +62,18 @@ impl Sphere {
     /// the near root as c/q, which avoids cancellation for small spheres seen from far away.
     #[inline(always)]
     pub(crate) fn nearest<R: Real>(&self, o: R::V3, d: R::V3, time: R, t_max: R) -> R {
-        let (center, velocity) = (R::V3::splat(self.center), R::V3::splat(self.velocity));
-        sphere_nearest((center, velocity, self.radius), o, d, time, t_max)
+        sphere_nearest(&self.at(R::V3::splat), o, d, time, t_max)
+    }
+
+    /// What [`Sphere::nearest`] reads of the sphere, each vector made by `v` (broadcast,
+    /// or kept [`Wide`]).
+    #[inline(always)]
+    pub(crate) fn at<V>(&self, v: impl Fn(Vec3) -> V) -> SphereAt<V> {
+        SphereAt {
+            center: v(self.center),
+            velocity: v(self.velocity),
+            radius: self.radius,
+        }
     }
 
     /// The hit record at `t`, with the point reprojected onto the sphere.
@@ -281,21 +291,41 @@ fn plane_distance<R: Real>(n: R::V3, q: R::V3, o: R::V3, d: R::V3, t_max: R) -> 
     R::any(ok).then(|| R::select(ok, t, R::splat(f32::INFINITY)))
 }
 
-/// [`Sphere::nearest`] for a sphere given as its centre at time 0, its velocity and its
-/// radius, the vectors as the caller holds them (broadcast, or loaded as [`crate::math::lanes::Wide`]).
+/// A sphere as [`sphere_nearest`] reads it: its centre at time 0 and velocity, each as
+/// one ray's vector, or broadcast or loaded for the lanes, and its radius.
+#[derive(Clone, Debug)]
+pub(crate) struct SphereAt<V> {
+    pub(crate) center: V,
+    pub(crate) velocity: V,
+    pub(crate) radius: f32,
+}
+
+impl SphereAt<Wide> {
+    /// The sphere loaded for `R` (see [`Wide`]).
+    #[inline(always)]
+    pub(crate) fn load<R: Real>(&self) -> SphereAt<R::V3> {
+        SphereAt {
+            center: R::V3::wide(&self.center),
+            velocity: R::V3::wide(&self.velocity),
+            radius: self.radius,
+        }
+    }
+}
+
+/// [`Sphere::nearest`] for the sphere `s`, its vectors as the caller holds them.
 #[inline(always)]
 pub(crate) fn sphere_nearest<R: Real>(
-    (center, velocity, radius): (R::V3, R::V3, f32),
+    s: &SphereAt<R::V3>,
     o: R::V3,
     d: R::V3,
     time: R,
     t_max: R,
 ) -> R {
     // c + v t, as `Sphere::center_of`.
-    let f = o - (center + velocity.scale(time));
+    let f = o - (s.center + s.velocity.scale(time));
     let b = -f.dot(d);
     let l = f + d.scale(b);
-    let r2 = R::splat(radius * radius);
+    let r2 = R::splat(s.radius * s.radius);
     let disc = r2 - l.length_squared();
     let (zero, miss) = (R::splat(0.0), R::splat(f32::INFINITY));
     let real = !disc.less(zero);
