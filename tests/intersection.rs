@@ -155,7 +155,8 @@ fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
 
 #[test]
 fn axis_aligned_rays_with_signed_zeros_hit() {
-    // -Vec3::Z is (-0.0, -0.0, -1.0): a direction obvhs 0.4 mishandles unless canonicalized.
+    // -Vec3::Z is (-0.0, -0.0, -1.0): the box test's reciprocals there are −∞, and the ray
+    // must enter each box by its max planes.
     let one_sphere = scene_of(vec![Shape::Sphere(Sphere::new(
         Vec3::new(0.0, 0.0, -2.0),
         0.5,
@@ -445,36 +446,84 @@ fn rays_do_not_leak_through_thin_or_touching_geometry() {
     }
 }
 
-/// The obvhs 0.4 bug that `geometry::accel` works around, reproduced with obvhs alone (the
-/// report to file upstream is in the comment on `positive_zeros` there). When this fails,
-/// obvhs has fixed it and the workaround can go.
+/// Rays that run exactly along the faces of the BVH's boxes (axis-aligned triangles on a
+/// grid of integer coordinates, rays in those planes and along those lines) find what
+/// testing every triangle finds: the box test enlarges each exit against rounding, so a
+/// box a ray only touches is still entered.
 #[test]
-fn obvhs_0_4_misses_rays_with_negative_zero_components() {
-    use obvhs::aabb::Aabb;
-    use obvhs::ray::{Ray as ObvRay, RayHit};
-    use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh};
-    // Two boxes, so that the root is an inner node whose children are ordered by octant.
-    let boxes = [
-        Aabb::new(glam::vec3a(-1.0, -1.0, -3.0), glam::vec3a(1.0, 1.0, -2.0)),
-        Aabb::new(glam::vec3a(4.0, 4.0, -3.0), glam::vec3a(5.0, 5.0, -2.0)),
-    ];
-    let bvh = build_cwbvh(
-        &boxes,
-        BvhBuildParams::medium_build(),
-        &mut std::time::Duration::default(),
-    );
-    let hits = |dir: glam::Vec3A| {
-        let mut hit = RayHit::none();
-        bvh.ray_traverse(ObvRay::new_inf(glam::Vec3A::ZERO, dir), &mut hit, |r, i| {
-            boxes[bvh.primitive_indices[i] as usize].intersect_ray(r)
-        })
-    };
-    assert!(
-        hits(glam::vec3a(0.0, 0.0, -1.0)),
-        "+0.0 components hit the box"
-    );
-    assert!(
-        !hits(-glam::Vec3A::Z),
-        "(-0.0, -0.0, -1.0) hits the box: obvhs is fixed, drop positive_zeros"
-    );
+fn rays_along_the_boxes_faces_find_what_every_triangle_finds() {
+    // A staircase of unit squares (two triangles each) facing +z, +x and +y in turn: every
+    // box face lies on an integer plane.
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for k in 0..40u32 {
+        let (x, y, z) = ((k % 7) as f32, (k / 7) as f32, (k % 5) as f32);
+        let corners = match k % 3 {
+            0 => [
+                [x, y, z],
+                [x + 1.0, y, z],
+                [x + 1.0, y + 1.0, z],
+                [x, y + 1.0, z],
+            ],
+            1 => [
+                [x, y, z],
+                [x, y + 1.0, z],
+                [x, y + 1.0, z + 1.0],
+                [x, y, z + 1.0],
+            ],
+            _ => [
+                [x, y, z],
+                [x, y, z + 1.0],
+                [x + 1.0, y, z + 1.0],
+                [x + 1.0, y, z],
+            ],
+        };
+        let base = positions.len() as u32;
+        positions.extend(corners.map(Vec3::from_array));
+        triangles.push([base, base + 1, base + 2]);
+        triangles.push([base, base + 2, base + 3]);
+    }
+    let mesh = Mesh::new(positions, triangles, None, None).unwrap();
+    let scene = scene_of(vec![Shape::Mesh(mesh)]);
+    let mut hits = 0;
+    for a in -1..9 {
+        for b in -1..9 {
+            let (a, b) = (a as f32, b as f32 * 0.5);
+            for dir in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z] {
+                // From outside the staircase, on grid lines and half-way between them.
+                let origin = match () {
+                    _ if dir.x != 0.0 => Vec3::new(-20.0 * dir.x, a, b),
+                    _ if dir.y != 0.0 => Vec3::new(a, -20.0 * dir.y, b),
+                    _ => Vec3::new(a, b, -20.0 * dir.z),
+                };
+                let ray = Ray::new(origin, dir, 0.0);
+                let found = scene.intersect(&ray, f32::INFINITY).map(|h| h.surface.t);
+                let every = scene
+                    .intersect_brute_force(&ray, f32::INFINITY)
+                    .map(|h| h.surface.t);
+                assert_eq!(found, every, "from {origin} along {dir}");
+                assert_eq!(scene.occluded(&ray, f32::INFINITY), every.is_some());
+                hits += every.is_some() as u32;
+            }
+        }
+    }
+    // Rays from all around aimed at the squares' corners, which are the boxes' corners:
+    // where the triangle test takes a hit on the corner, the rounded box test must too.
+    let mut rng = Rng::new(5);
+    for _ in 0..20_000 {
+        let corner = Vec3::new(
+            (rng.f() * 8.0).floor(),
+            (rng.f() * 7.0).floor(),
+            (rng.f() * 6.0).floor(),
+        );
+        let origin = corner - rng.dir() * rng.range(1.0, 30.0);
+        let ray = Ray::new(origin, (corner - origin).normalize(), 0.0);
+        let found = scene.intersect(&ray, f32::INFINITY).map(|h| h.surface.t);
+        let every = scene
+            .intersect_brute_force(&ray, f32::INFINITY)
+            .map(|h| h.surface.t);
+        assert_eq!(found, every, "from {origin} to {corner}");
+        hits += every.is_some() as u32;
+    }
+    assert!(hits > 100, "too few hits ({hits}) to mean anything");
 }

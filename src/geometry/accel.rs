@@ -1,38 +1,19 @@
 //! The BVH over every bounded primitive of a scene, plus the unbounded planes beside it.
 //!
-//! The tree is obvhs's compressed wide BVH (8 children a node), built with PLOC and
-//! reinsertion: a SAH-quality tree that builds a million triangles in well under a second.
+//! obvhs builds the tree (PLOC and reinsertion, collapsed to 8 children a node: a
+//! SAH-quality tree that builds a million triangles in well under a second); it is
+//! traversed as [`WideBvh`], eight boxes against a ray in one vector instruction.
 
 use super::direct::{Direct, DirectWave};
+use super::wide_bvh::{Stack, WideBvh};
 use super::{PrimRef, Shape};
 use crate::math::Ray;
-use crate::math::lanes::{Lanes, Mask, RayColumns, RayOf, Width};
+use crate::math::lanes::{LaneKernel, Lanes, Mask, RayColumns, RayOf, Width};
 use crate::math::rng::mix64;
-use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::CwBvh, cwbvh::builder::build_cwbvh};
+use obvhs::{BvhBuildParams, aabb::Aabb, cwbvh::builder::build_cwbvh};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Duration;
-
-/// The direction with every −0.0 turned into +0.0 (x + 0.0 does that in IEEE arithmetic).
-///
-/// Works around a bug in obvhs 0.4.0, written up here to be filed upstream
-/// (tests/intersection.rs `obvhs_0_4_misses_rays_with_negative_zero_components` runs it):
-///
-/// > **A ray direction with a −0.0 component misses everything in `CwBvh::ray_traverse`.**
-/// > Build a `CwBvh` over two boxes, [−1, 1]² × [−3, −2] and [4, 5]² × [−3, −2], with
-/// > `build_cwbvh(&boxes, BvhBuildParams::medium_build(), ..)`. A ray from the origin along
-/// > `vec3a(0.0, 0.0, -1.0)` hits the first box; along `-Vec3A::Z`, which is
-/// > (−0.0, −0.0, −1.0), it hits nothing. Cause: `ray_get_octant_inv4` (cwbvh/mod.rs)
-/// > classifies a component as negative by `dir.x < 0.0`, false for −0.0, while
-/// > `Ray::new`'s `safe_inverse` turns ±0.0 into `x.signum() / f32::EPSILON`, and
-/// > `(-0.0f32).signum()` is −1.0: the node test takes the near and far planes of one
-/// > octant with the inverse direction of another. Fix: `dir.x.is_sign_negative()` (for
-/// > each axis) in `ray_get_octant_inv4`, or `if x < 0.0 { -1.0 } else { 1.0 }` in
-/// > `safe_inverse`, so that both agree.
-#[inline]
-pub(super) fn positive_zeros(dir: crate::math::Vec3) -> crate::math::Vec3 {
-    dir + crate::math::Vec3::ZERO
-}
 
 /// Makes many identical boxes slightly different. PLOC merges mutual nearest neighbours;
 /// among many identical boxes every distance ties, few pairs are mutual and the build turns
@@ -78,15 +59,16 @@ fn break_ties(bounds: &mut [Aabb]) {
     }
 }
 
-/// The BVH over the boxes `bounds` (made distinct first, see [`break_ties`]); its
-/// `primitive_indices` give each leaf's place in `bounds`.
-pub(super) fn build_tree(bounds: &mut [Aabb]) -> CwBvh {
+/// The BVH over the boxes `bounds` (made distinct first, see [`break_ties`]), and the
+/// leaf order: slot k of the leaves holds the primitive whose box is `bounds[order[k]]`.
+pub(super) fn build_tree(bounds: &mut [Aabb]) -> (WideBvh, Vec<u32>) {
     break_ties(bounds);
-    build_cwbvh(
+    let cw = build_cwbvh(
         bounds,
         BvhBuildParams::medium_build(),
         &mut Duration::default(),
-    )
+    );
+    (WideBvh::new(&cw, bounds), cw.primitive_indices)
 }
 
 /// Hashes keys that are hashes already: passes them through.
@@ -112,8 +94,8 @@ impl Hasher for KeyHasher {
 /// unbounded planes.
 #[derive(Clone, Debug)]
 pub struct Accel {
-    bvh: Option<CwBvh>,
-    // In the BVH's leaf order, so a leaf's primitive id indexes this directly.
+    bvh: Option<WideBvh>,
+    // In the BVH's leaf order, so a leaf's slot indexes this directly.
     prims: Vec<PrimRef>,
     // The shapes tested one by one, copied out beside their object numbers: a tight loop
     // per kind, with no lookup in the scene's list and no match on the kind of shape.
@@ -129,13 +111,11 @@ impl Accel {
             .iter()
             .map(|p| shapes[p.object as usize].leaf_bounds(p.index))
             .collect();
-        let bvh = (!prims.is_empty()).then(|| build_tree(&mut bounds));
-        if let Some(bvh) = &bvh {
-            prims = bvh
-                .primitive_indices
-                .iter()
-                .map(|&i| prims[i as usize])
-                .collect();
+        let mut bvh = None;
+        if !prims.is_empty() {
+            let (tree, order) = build_tree(&mut bounds);
+            prims = order.iter().map(|&i| prims[i as usize]).collect();
+            bvh = Some(tree);
         }
         Accel { bvh, prims, direct }
     }
@@ -149,7 +129,7 @@ impl Accel {
     #[inline]
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> Option<(PrimRef, f32)> {
         let best = self.direct.intersect(ray, t_max);
-        self.beyond_direct(shapes, ray, t_max, best)
+        self.beyond_direct(&mut Stack::new(), shapes, ray, t_max, best)
     }
 
     /// [`Accel::intersect`] for every ray of `rays` (each from 0 to ∞), into `out`: the
@@ -169,9 +149,12 @@ impl Accel {
             out,
         });
         if self.bvh.is_some() {
-            for (i, best) in out.iter_mut().enumerate() {
-                *best = self.beyond_direct(shapes, &rays.get(i), f32::INFINITY, *best);
-            }
+            width.dispatch(BvhWave {
+                accel: self,
+                shapes,
+                rays,
+                out,
+            });
         }
     }
 
@@ -179,6 +162,7 @@ impl Accel {
     #[inline(always)]
     fn beyond_direct(
         &self,
+        stack: &mut Stack,
         shapes: &[Shape],
         ray: &Ray,
         t_max: f32,
@@ -188,17 +172,15 @@ impl Accel {
         let Some(bvh) = &self.bvh else {
             return best;
         };
-        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_best);
-        let mut hit = obvhs::ray::RayHit::none();
-        // Every distance returned is below the traversal's current limit and so taken
-        // (obvhs keeps t < tmax): the last primitive returned is the nearest.
+        // Every distance returned is below the search's current limit and so taken: the
+        // last primitive returned is the nearest.
         let mut nearest = PrimRef {
             object: 0,
             index: 0,
         };
-        let found = bvh.ray_traverse(obv_ray, &mut hit, |r, id| {
-            let p = self.prims[id];
-            match shapes[p.object as usize].intersect_leaf(p.index, ray, r.tmax) {
+        let found = bvh.nearest(stack, ray.origin, ray.dir, t_best, |slot, t_best| {
+            let p = self.prims[slot as usize];
+            match shapes[p.object as usize].intersect_leaf(p.index, ray, t_best) {
                 Some((index, t)) => {
                     nearest = PrimRef { index, ..p };
                     t
@@ -206,8 +188,8 @@ impl Accel {
                 None => f32::INFINITY,
             }
         });
-        if found {
-            best = Some((nearest, hit.t));
+        if let Some((_, t)) = found {
+            best = Some((nearest, t));
         }
         best
     }
@@ -217,7 +199,8 @@ impl Accel {
     #[inline]
     pub fn occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
         let (o, d) = (ray.origin, ray.dir);
-        self.direct.occluded(o, d, ray.time, t_max, false) || self.bvh_occluded(shapes, ray, t_max)
+        self.direct.occluded(o, d, ray.time, t_max, false)
+            || self.bvh_occluded(&mut Stack::new(), shapes, ray, t_max)
     }
 
     /// [`Accel::occluded`] for `N` rays (each up to its `t_max`), where `done` does not
@@ -235,9 +218,10 @@ impl Accel {
             .direct
             .occluded(rays.origin, rays.dir, rays.time, t_max, done);
         if self.bvh.is_some() {
+            let mut stack = Stack::new();
             for (i, b) in blocked.0.iter_mut().enumerate() {
                 if *b == 0 {
-                    *b = if self.bvh_occluded(shapes, &rays.get(i), t_max.0[i]) {
+                    *b = if self.bvh_occluded(&mut stack, shapes, &rays.get(i), t_max.0[i]) {
                         u32::MAX
                     } else {
                         0
@@ -250,18 +234,13 @@ impl Accel {
 
     /// Whether a BVH primitive blocks `ray` in (0, t_max).
     #[inline(always)]
-    fn bvh_occluded(&self, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
+    fn bvh_occluded(&self, stack: &mut Stack, shapes: &[Shape], ray: &Ray, t_max: f32) -> bool {
         let Some(bvh) = &self.bvh else {
             return false;
         };
-        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
-        // A blocker found is told as a distance below the limit, which ends the search.
-        !bvh.ray_traverse_miss(obv_ray, |r, id| {
-            let p = self.prims[id];
-            match shapes[p.object as usize].leaf_blocks(p.index, ray, r.tmax) {
-                true => 0.0,
-                false => f32::INFINITY,
-            }
+        bvh.any(stack, ray.origin, ray.dir, t_max, |slot, t_max| {
+            let p = self.prims[slot as usize];
+            shapes[p.object as usize].leaf_blocks(p.index, ray, t_max)
         })
     }
 
@@ -285,6 +264,28 @@ impl Accel {
             }
         }
         best
+    }
+}
+
+/// The BVH's search for every ray of a wave, one ray after another, given the directly
+/// tested shapes' nearest hits in `out`: run as a lane kernel only so that the box tests
+/// are compiled for the processor's vector extension (eight boxes in one instruction).
+struct BvhWave<'a> {
+    accel: &'a Accel,
+    shapes: &'a [Shape],
+    rays: &'a RayColumns,
+    out: &'a mut [Option<(PrimRef, f32)>],
+}
+
+impl LaneKernel for BvhWave<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<const N: usize>(self) {
+        let mut stack = Stack::new();
+        for (i, best) in self.out.iter_mut().enumerate() {
+            let ray = self.rays.get(i);
+            *best = (self.accel).beyond_direct(&mut stack, self.shapes, &ray, f32::INFINITY, *best);
+        }
     }
 }
 

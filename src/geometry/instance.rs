@@ -7,19 +7,19 @@
 //! transform is stored per placement, so a model placed ten times costs its triangles
 //! and its tree once.
 
-use super::accel::{build_tree, positive_zeros};
+use super::accel::build_tree;
+use super::wide_bvh::{Stack, WideBvh};
 use super::{Mesh, MeshError, SurfaceHit};
 use crate::math::{Ray, Vec3};
 use glam::{Affine3A, Mat3A, Vec2};
 use obvhs::aabb::Aabb;
-use obvhs::cwbvh::CwBvh;
 use std::sync::Arc;
 
 /// A mesh in its own frame and the BVH over its triangles, shared by its placements.
 #[derive(Debug)]
 pub struct SharedMesh {
     mesh: Mesh,
-    bvh: CwBvh,
+    bvh: WideBvh,
     // The BVH's leaf order: leaf k is triangle `triangles[k]`.
     triangles: Vec<u32>,
 }
@@ -33,8 +33,7 @@ impl SharedMesh {
         let mut bounds: Vec<Aabb> = (0..mesh.triangle_count())
             .map(|i| mesh.triangle_bounds(i))
             .collect();
-        let bvh = build_tree(&mut bounds);
-        let triangles = bvh.primitive_indices.clone();
+        let (bvh, triangles) = build_tree(&mut bounds);
         Arc::new(SharedMesh {
             mesh,
             bvh,
@@ -50,34 +49,41 @@ impl SharedMesh {
     /// The nearest triangle `ray` (in the mesh's frame) hits in (0, t_max), and where.
     #[inline]
     fn nearest(&self, ray: &Ray, t_max: f32) -> Option<(u32, f32)> {
-        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
-        let mut hit = obvhs::ray::RayHit::none();
-        // Every distance returned is below the traversal's current limit and so taken
-        // (obvhs keeps t < tmax): the last triangle returned is the nearest.
+        // Every distance returned is below the search's current limit and so taken: the
+        // last triangle returned is the nearest.
         let mut nearest = 0;
-        let found = self.bvh.ray_traverse(obv_ray, &mut hit, |r, leaf| {
-            let triangle = self.triangles[leaf];
-            match self.mesh.intersect_t(triangle as usize, ray, r.tmax) {
-                Some((t, _)) => {
-                    nearest = triangle;
-                    t
+        let found = (self.bvh).nearest(
+            &mut Stack::new(),
+            ray.origin,
+            ray.dir,
+            t_max,
+            |slot, t_max| {
+                let triangle = self.triangles[slot as usize];
+                match self.mesh.intersect_t(triangle as usize, ray, t_max) {
+                    Some((t, _)) => {
+                        nearest = triangle;
+                        t
+                    }
+                    None => f32::INFINITY,
                 }
-                None => f32::INFINITY,
-            }
-        });
-        found.then_some((nearest, hit.t))
+            },
+        );
+        found.map(|(_, t)| (nearest, t))
     }
 
     /// Whether any triangle blocks `ray` (in the mesh's frame) in (0, t_max).
     #[inline]
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let obv_ray = obvhs::ray::Ray::new(ray.origin, positive_zeros(ray.dir), 0.0, t_max);
-        !self.bvh.ray_traverse_miss(obv_ray, |r, leaf| {
-            let triangle = self.triangles[leaf] as usize;
-            self.mesh
-                .intersect_t(triangle, ray, r.tmax)
-                .map_or(f32::INFINITY, |(t, _)| t)
-        })
+        (self.bvh).any(
+            &mut Stack::new(),
+            ray.origin,
+            ray.dir,
+            t_max,
+            |slot, t_max| {
+                let triangle = self.triangles[slot as usize] as usize;
+                self.mesh.intersect_t(triangle, ray, t_max).is_some()
+            },
+        )
     }
 }
 

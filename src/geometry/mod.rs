@@ -10,6 +10,7 @@ mod direct;
 mod instance;
 mod mesh;
 mod shapes;
+mod wide_bvh;
 
 pub use accel::Accel;
 pub(crate) use accel::KeyHasher;

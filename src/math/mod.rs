@@ -1,7 +1,7 @@
 //! Vectors, rays, robust ray offsets, and deterministic random numbers.
 //!
 //! `Vec3` and `Color` are glam's 16-byte aligned `Vec3A`: SIMD arithmetic, and the type
-//! the BVH traversal (obvhs) takes without conversion.
+//! obvhs's boxes (which the BVH is built from) are made of.
 
 pub mod lanes;
 pub mod rng;
