@@ -330,9 +330,9 @@ fn set_child(node: &mut Node, i: usize, aabb: &Aabb, (first, count): (u32, u32))
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::accel::build_tree;
     use crate::math::rng::{mix64, to_unit_f32};
     use glam::Vec3A;
+    use obvhs::{BvhBuildParams, cwbvh::builder::build_cwbvh};
 
     /// Where the ray enters `b` (from 0 on), if it does: the plain slab test.
     fn entry(b: &Aabb, o: Vec3, d: Vec3) -> Option<f32> {
@@ -351,14 +351,20 @@ mod tests {
             to_unit_f32(state)
         };
         // 2,000 small boxes in a 10-unit cube.
-        let mut bounds: Vec<Aabb> = (0..2000)
+        let bounds: Vec<Aabb> = (0..2000)
             .map(|_| {
                 let c = Vec3A::new(u(), u(), u()) * 10.0;
                 let h = Vec3A::new(u(), u(), u()) * 0.3 + 0.05;
                 Aabb::new(c - h, c + h)
             })
             .collect();
-        let (bvh, order) = build_tree(&mut bounds);
+        // (As `accel::build_tree` builds it, but for its ties, which these boxes have none of.)
+        let cw = build_cwbvh(
+            &bounds,
+            BvhBuildParams::medium_build(),
+            &mut Default::default(),
+        );
+        let (bvh, order) = (WideBvh::new(&cw, &bounds), cw.primitive_indices);
         let mut stack = Stack::new();
         let mut found = 0;
         for _ in 0..3000 {
