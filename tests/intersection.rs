@@ -136,6 +136,8 @@ fn bvh_equals_brute_force_on_random_rays_over_random_meshes() {
                         a.surface.t, b.surface.t,
                         "seed {seed}: different nearest distance"
                     );
+                    // Ties at one distance too: the same object as testing every one.
+                    assert_eq!(a.object, b.object, "seed {seed}: different nearest object");
                 }
                 (a, b) => panic!(
                     "seed {seed}: bvh {:?} vs brute force {:?}",

@@ -284,7 +284,8 @@ impl LaneKernel for BvhWave<'_> {
         let mut stack = Stack::new();
         for (i, best) in self.out.iter_mut().enumerate() {
             let ray = self.rays.get(i);
-            *best = (self.accel).beyond_direct(&mut stack, self.shapes, &ray, f32::INFINITY, *best);
+            let accel = self.accel;
+            *best = accel.beyond_direct(&mut stack, self.shapes, &ray, f32::INFINITY, *best);
         }
     }
 }

@@ -49,41 +49,25 @@ impl SharedMesh {
     /// The nearest triangle `ray` (in the mesh's frame) hits in (0, t_max), and where.
     #[inline]
     fn nearest(&self, ray: &Ray, t_max: f32) -> Option<(u32, f32)> {
-        // Every distance returned is below the search's current limit and so taken: the
-        // last triangle returned is the nearest.
-        let mut nearest = 0;
-        let found = (self.bvh).nearest(
-            &mut Stack::new(),
-            ray.origin,
-            ray.dir,
-            t_max,
-            |slot, t_max| {
-                let triangle = self.triangles[slot as usize];
-                match self.mesh.intersect_t(triangle as usize, ray, t_max) {
-                    Some((t, _)) => {
-                        nearest = triangle;
-                        t
-                    }
-                    None => f32::INFINITY,
-                }
-            },
-        );
-        found.map(|(_, t)| (nearest, t))
+        let found = self
+            .bvh
+            .nearest(&mut Stack::new(), ray.origin, ray.dir, t_max, |slot, t| {
+                let triangle = self.triangles[slot as usize] as usize;
+                self.mesh
+                    .intersect_t(triangle, ray, t)
+                    .map_or(f32::INFINITY, |(t, _)| t)
+            });
+        found.map(|(slot, t)| (self.triangles[slot as usize], t))
     }
 
     /// Whether any triangle blocks `ray` (in the mesh's frame) in (0, t_max).
     #[inline]
     fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        (self.bvh).any(
-            &mut Stack::new(),
-            ray.origin,
-            ray.dir,
-            t_max,
-            |slot, t_max| {
+        self.bvh
+            .any(&mut Stack::new(), ray.origin, ray.dir, t_max, |slot, t| {
                 let triangle = self.triangles[slot as usize] as usize;
-                self.mesh.intersect_t(triangle, ray, t_max).is_some()
-            },
-        )
+                self.mesh.intersect_t(triangle, ray, t).is_some()
+            })
     }
 }
 
