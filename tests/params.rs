@@ -42,6 +42,7 @@ fn case(
         "noise_target" => ("soft-shadows", &[("spp", "32")], "off", "5"),
         "ior" => ("glass", &[], "1.2", "1.8"),
         "abbe" => ("dispersion", &[], "0", "20"),
+        "roughness" => ("glass", &[], "0", "0.3"),
         "fresnel" => ("glazed", &[], "constant", "exact"),
         "constant_reflectance" => ("glazed", &[("fresnel", "constant")], "0.1", "0.5"),
         "absorption_scale" => ("glass", &[], "0", "3"),
@@ -210,8 +211,8 @@ fn a_scene_files_params_refuse_nan_and_infinity_at_the_value() {
             checked += 1;
         }
     }
-    // 14 real parameters (7 of them optional: on 10fbafe these 7 took NaN and infinity
-    // as "unset").
-    assert_eq!(checked, 14 * 4);
+    // 15 real parameters (8 of them optional: on 10fbafe the 7 it had took NaN and
+    // infinity as "unset").
+    assert_eq!(checked, 15 * 4);
     assert!(!dir.join("x.png").exists(), "nothing rendered");
 }

@@ -94,6 +94,12 @@ fn changes(base: &Params) -> Vec<(&'static str, Params, Params)> {
     vec![
         ("ior", base.clone(), p(&|p| p.ior = Some(1.7))),
         ("abbe", base.clone(), p(&|p| p.abbe = Some(25.0))),
+        ("roughness", base.clone(), p(&|p| p.roughness = Some(0.2))),
+        (
+            "roughness back to smooth",
+            p(&|p| p.roughness = Some(0.2)),
+            p(&|p| p.roughness = Some(0.0)),
+        ),
         (
             "fresnel",
             base.clone(),

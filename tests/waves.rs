@@ -414,6 +414,15 @@ absorption = [0.9, 0.2, 0.05]
 type = "dielectric"
 ior = 1.7
 abbe = 30
+[material.frosted]
+type = "dielectric"
+ior = 1.5
+roughness = 0.3
+[material.frosted_flint]
+type = "dielectric"
+ior = 1.7
+abbe = 30
+roughness = 0.15
 [material.glaze]
 type = "glazed"
 color = [0.0, 0.0, 0.0]
@@ -497,6 +506,8 @@ fn one_of_every_material_kind_gives_the_recursions_image_at_every_width() {
         "constant",
         "tinted",
         "flint",
+        "frosted",
+        "frosted_flint",
         "glaze",
         "glaze_constant",
         "gold",
@@ -528,13 +539,13 @@ fn one_of_every_material_kind_gives_the_recursions_image_at_every_width() {
             .replace("{light}", light);
         Scene::from_toml_str(&text, "every_kind.toml", Path::new(".")).unwrap()
     };
-    // In the split tree, the kinds that draw numbers at a hit (glossy lobes) are there in
-    // the stochastic tree only: below a split, the waves draw a level's numbers before the
-    // level below, the recursion one branch after another (the same image within noise:
-    // `where_the_numbers_are_drawn_in_another_order_...`).
+    // In the split tree, the kinds that draw numbers at a hit (glossy lobes, rough glass's
+    // facets) are there in the stochastic tree only: below a split, the waves draw a
+    // level's numbers before the level below, the recursion one branch after another (the
+    // same image within noise: `where_the_numbers_are_drawn_in_another_order_...`).
     let still: Vec<&str> = kinds
         .into_iter()
-        .filter(|k| !["glossy", "brushed"].contains(k))
+        .filter(|k| !["glossy", "brushed", "frosted", "frosted_flint"].contains(k))
         .collect();
     let lit = scene_with(AREA_LIGHT, &spheres(&kinds));
     let point_lit = scene_with("", &spheres(&still));

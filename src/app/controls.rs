@@ -57,6 +57,7 @@ impl Section {
                 "constant_reflectance",
                 "absorption_scale",
                 "abbe",
+                "roughness",
             ],
             Section::RayTree => &["max_depth", "min_weight", "tree", "transport"],
             Section::Sampling => &["spp", "noise_target", "pattern", "seed"],

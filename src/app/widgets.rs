@@ -52,6 +52,12 @@ fn scene_ior(scene: &Scene) -> Option<f32> {
         .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
 }
 
+/// The first dielectric's roughness the `roughness` parameter reaches: the slider's value
+/// until it is moved.
+fn scene_roughness(scene: &Scene) -> Option<f32> {
+    scene.materials.iter().find_map(Material::roughness)
+}
+
 /// The Abbe number the `abbe` parameter replaces: the scene's first dielectric's that is
 /// not fixed (not a glaze's coat, which ignores it).
 fn scene_abbe(scene: &Scene) -> Option<f32> {
@@ -160,6 +166,16 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
                     n(650.0)
                 ))
                 .hint("Cauchy's n(λ) = A + B/λ², through n_d = IOR and the Abbe number.");
+            }
+        }
+        "roughness" => {
+            let mut alpha = p.roughness.or(scene_roughness(c.scene)).unwrap_or(0.0);
+            if ui
+                .add(param_slider(&mut alpha, "roughness").fixed_decimals(2))
+                .hint(tip("roughness"))
+                .changed()
+            {
+                p.roughness = Some(alpha);
             }
         }
         "fresnel" => {
@@ -384,6 +400,7 @@ pub(crate) fn step_param(c: &mut Controls, name: &str, up: bool) -> bool {
     let value = match name {
         "ior" => shown_ior(p, c.scene) as f64,
         "abbe" => p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0) as f64,
+        "roughness" => p.roughness.or(scene_roughness(c.scene)).unwrap_or(0.0) as f64,
         "focus_distance" => p.focus_distance.unwrap_or(c.camera.look_distance()) as f64,
         "polarizer" => p.polarizer.unwrap_or(90.0) as f64,
         "constant_reflectance" => {

@@ -30,6 +30,10 @@ pub struct Dielectric {
     /// Abbe number V_d: how much the index varies with the wavelength, `ior` being n_d at
     /// 587.6 nm (lower is more dispersive; 0: none). Glazes ignore it.
     pub abbe: f32,
+    /// The GGX roughness α of the interface (`material/rough.rs`): 0 is smooth, the
+    /// lecture's one reflected and one refracted ray; above 0 both are jittered, frosted
+    /// glass. Glazes ignore it.
+    pub roughness: f32,
 }
 
 /// The lecture's glazed surface: a clear coat over a base colour. The coat reflects R
@@ -55,11 +59,12 @@ impl Dielectric {
             constant_reflectance: 0.04,
             absorption: Color::ZERO,
             abbe: 0.0,
+            roughness: 0.0,
         }
     }
 
-    /// This interface with the parameters' overrides: `ior` (unless fixed), `fresnel`,
-    /// `constant_reflectance`, and σ times `absorption_scale`.
+    /// This interface with the parameters' overrides: `ior`, `abbe` and `roughness` (unless
+    /// fixed), `fresnel`, `constant_reflectance`, and σ times `absorption_scale`.
     pub(super) fn with_params(&self, params: &Params) -> Dielectric {
         Dielectric {
             ior: match params.ior {
@@ -76,7 +81,18 @@ impl Dielectric {
                 Some(abbe) if !self.ior_fixed => abbe,
                 _ => self.abbe,
             },
+            roughness: match params.roughness {
+                Some(alpha) if !self.ior_fixed => alpha,
+                _ => self.roughness,
+            },
         }
+    }
+
+    /// Whether its interface is rough: each hit jitters its children
+    /// ([`Dielectric::roughness`]).
+    #[inline]
+    pub fn is_rough(&self) -> bool {
+        self.roughness > 0.0
     }
 
     /// Whether its index depends on the wavelength.
@@ -91,7 +107,7 @@ impl Dielectric {
     }
 
     /// The reflectance R from `n1` into `n2` at cos θi, by this interface's Fresnel mode.
-    fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
+    pub(super) fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
         self.fresnel
             .reflectance(cos_i, n1, n2, self.constant_reflectance)
     }
@@ -116,7 +132,7 @@ impl Dielectric {
 
     /// The indices (n1, n2) on the side the ray comes from and the other, at the ray's
     /// wavelength.
-    fn sides(&self, hit: &Interaction) -> (f32, f32) {
+    pub(super) fn sides(&self, hit: &Interaction) -> (f32, f32) {
         let ior = self.ior_at(hit.wavelength);
         if hit.entering {
             (hit.outside_ior, ior)

@@ -19,6 +19,7 @@ mod dielectric;
 mod diffuse;
 mod image;
 mod metals;
+mod rough;
 mod scatter;
 mod specular;
 mod texture;
@@ -28,6 +29,7 @@ pub(crate) use dielectric::{Split, split_lanes};
 pub use diffuse::{Brdf, Diffuse};
 pub use image::{ImageMap, Texels, Wrap};
 pub use metals::{METALS, Metal, find_metal, metal, metal_names};
+pub use rough::Microfacet;
 pub use scatter::{Direct, Interface, Lobe, LobeKind, Part, Scatter, Side};
 pub use specular::{Conductor, Glossy, Mirror, glossy_pdf};
 pub use texture::Texture;
@@ -155,6 +157,7 @@ impl Material {
             Material::Conductor(m) => m.scatter(hit, u),
             // It emits (`emission`) and reflects nothing.
             Material::Emissive(_) => Scatter::default(),
+            Material::Dielectric(m) if m.is_rough() => m.rough_scatter(hit, u),
             Material::Dielectric(m) => m.scatter(hit),
             Material::Glazed(m) => m.scatter(hit),
         }
@@ -208,8 +211,9 @@ impl Material {
     #[inline]
     pub(crate) fn splitting(&self) -> Option<&Dielectric> {
         match self {
-            Material::Dielectric(d) => Some(d),
-            Material::Diffuse(_)
+            Material::Dielectric(d) if !d.is_rough() => Some(d),
+            Material::Dielectric(_)
+            | Material::Diffuse(_)
             | Material::Mirror(_)
             | Material::Glossy(_)
             | Material::Conductor(_)
@@ -264,7 +268,8 @@ impl Material {
     /// objects and followed through them (a glossy or diffuse surface ends them).
     pub fn mirror_like(&self) -> bool {
         match self {
-            Material::Mirror(_) | Material::Dielectric(_) | Material::Glazed(_) => true,
+            Material::Mirror(_) | Material::Glazed(_) => true,
+            Material::Dielectric(d) => !d.is_rough(),
             Material::Conductor(c) => c.exponent.is_none(),
             Material::Diffuse(_) | Material::Glossy(_) | Material::Emissive(_) => false,
         }
@@ -293,6 +298,12 @@ impl Material {
     /// glossy metals reflect without polarising; materials without that lobe, `None`.
     pub fn mueller(&self, hit: &Interaction, lobe: Option<&Lobe>, side: Side) -> Option<Mueller> {
         match (self, side) {
+            // A rough interface's facets each polarise in their own plane of incidence:
+            // not modelled, its lobes pass the light's state as they find it.
+            (Material::Dielectric(d), _) if d.is_rough() => lobe.map(|l| match side {
+                Side::Reflect => Mueller::neutral_reflection(l.weight),
+                Side::Transmit => Mueller::neutral_transmission(l.weight),
+            }),
             (Material::Dielectric(d), _) => Some(d.child_mueller(hit, side)),
             (Material::Glazed(g), _) => Some(g.mueller(hit, side)),
             (Material::Conductor(c), Side::Reflect) => Some(c.mueller(hit)),
@@ -313,8 +324,12 @@ impl Material {
     pub fn with_params(&self, params: &Params) -> Material {
         match self {
             Material::Dielectric(d) => Material::Dielectric(d.with_params(params)),
+            // (A glaze's coat is smooth whatever the `roughness`: unchanged by it.)
             Material::Glazed(g) => Material::Glazed(Glazed {
-                coat: g.coat.with_params(params),
+                coat: Dielectric {
+                    roughness: g.coat.roughness,
+                    ..g.coat.with_params(params)
+                },
                 base: g.base.clone(),
             }),
             Material::Glossy(g) => Material::Glossy(Glossy {
@@ -399,6 +414,22 @@ impl Material {
             | Material::Mirror(_)
             | Material::Emissive(_)
             | Material::Dielectric(_)
+            | Material::Glazed(_) => None,
+        }
+    }
+
+    /// The roughness α the `roughness` parameter replaces, if this is a dielectric whose
+    /// interface the parameter reaches (not one with `ior_fixed`): above 0 its children
+    /// are jittered over facets (a [`LobeKind::Microfacet`] lobe each).
+    pub fn roughness(&self) -> Option<f32> {
+        match self {
+            Material::Dielectric(d) if !d.ior_fixed => Some(d.roughness),
+            Material::Dielectric(_)
+            | Material::Diffuse(_)
+            | Material::Mirror(_)
+            | Material::Glossy(_)
+            | Material::Conductor(_)
+            | Material::Emissive(_)
             | Material::Glazed(_) => None,
         }
     }

@@ -3,7 +3,7 @@
 //! which can say how much light it passes towards a direction and with what density it
 //! would have drawn it.
 
-use super::{Brdf, Interaction, glossy_pdf};
+use super::{Brdf, Interaction, Microfacet, glossy_pdf};
 use crate::math::{Color, Vec3};
 
 /// Which side of the surface a child ray leaves on.
@@ -27,6 +27,9 @@ pub enum LobeKind {
         /// The Phong exponent n.
         exponent: f32,
     },
+    /// One facet of a rough interface drawn among those the ray sees, the child reflected
+    /// or refracted there ([`Microfacet::eval`] gives its density towards any direction).
+    Microfacet(Microfacet),
 }
 
 /// One child ray of a hit.
@@ -56,13 +59,17 @@ impl Lobe {
         }
     }
 
-    /// The density per unit solid angle with which this lobe draws `dir` at `at`, or `None`
-    /// for a single direction (no density: nothing else can find it).
+    /// The density per solid angle with which this lobe draws `dir` at `at`, where a light
+    /// sample competes with it; `None` where none does: a single direction (no density:
+    /// nothing else can find it), and a rough refraction, whose light samples would leave
+    /// on the wrong side of the surface (a path through it finds its lights alone).
     #[inline]
     pub fn pdf(&self, at: &Interaction, dir: Vec3) -> Option<f32> {
         match self.kind {
             LobeKind::Delta => None,
             LobeKind::Glossy { exponent } => Some(glossy_pdf(at, exponent, dir)),
+            LobeKind::Microfacet(_) if self.side == Side::Transmit => None,
+            LobeKind::Microfacet(facets) => Some(facets.eval(at, self.side, dir).1),
         }
     }
 
@@ -155,7 +162,8 @@ impl Part<'_> {
     /// f cos θ towards `dir` (what light arriving from `dir` is multiplied by), and the
     /// density with which this part would draw `dir`: for the smooth BRDF
     /// scale · f(dir, view) cos θ and [`Brdf::pdf`] (0 below the surface); for a glossy
-    /// lobe W · pdf and pdf, since its weight W is f cos θ / pdf; for one direction, 0.
+    /// lobe W · pdf and pdf, since its weight W is f cos θ / pdf; for a rough reflection
+    /// [`Microfacet::eval`]; where no light sample competes ([`Lobe::pdf`]), 0.
     #[inline]
     pub fn eval(&self, at: &Interaction, dir: Vec3) -> (Color, f32) {
         match self {
@@ -170,9 +178,13 @@ impl Part<'_> {
                     d.brdf.pdf(at.n_shade, dir, view),
                 )
             }
-            Part::Lobe(lobe) => match lobe.pdf(at, dir) {
-                Some(pdf) => (lobe.weight * pdf, pdf),
-                None => (Color::ZERO, 0.0),
+            Part::Lobe(lobe) => match (lobe.kind, lobe.pdf(at, dir)) {
+                (LobeKind::Microfacet(facets), Some(_)) => {
+                    let (f_cos, pdf) = facets.eval(at, lobe.side, dir);
+                    (Color::splat(f_cos), pdf)
+                }
+                (_, Some(pdf)) => (lobe.weight * pdf, pdf),
+                (_, None) => (Color::ZERO, 0.0),
             },
         }
     }
@@ -214,6 +226,10 @@ mod tests {
                 ..Diffuse::solid(Color::splat(0.5))
             }),
             Material::Dielectric(Dielectric::clear(1.5)),
+            Material::Dielectric(Dielectric {
+                roughness: 0.3,
+                ..Dielectric::clear(1.5)
+            }),
             Material::Glazed(Glazed {
                 coat: Dielectric::clear(1.5),
                 base: Texture::Solid(Color::ZERO),
@@ -227,13 +243,19 @@ mod tests {
         for m in every_kind() {
             let s = m.scatter(&hit, &mut Fixed(vec![0.3, 0.6]));
             let kind = m.kind();
-            // The lobes say how they were drawn: glossy exactly where the exponent is.
+            // The lobes say how they were drawn: glossy exactly where the exponent is, over
+            // facets exactly where the interface is rough.
             for lobe in s.lobes() {
-                let expected = match m.phong_exponent() {
-                    Some(exponent) => LobeKind::Glossy { exponent },
-                    None => LobeKind::Delta,
-                };
-                assert_eq!(lobe.kind, expected, "{kind}");
+                match (m.phong_exponent(), m.roughness()) {
+                    (Some(exponent), _) => {
+                        assert_eq!(lobe.kind, LobeKind::Glossy { exponent }, "{kind}")
+                    }
+                    (None, Some(alpha)) if alpha > 0.0 => assert!(
+                        matches!(lobe.kind, LobeKind::Microfacet(f) if f.alpha == alpha),
+                        "{kind}"
+                    ),
+                    (None, _) => assert_eq!(lobe.kind, LobeKind::Delta, "{kind}"),
+                }
             }
             // Photons pass it one way exactly where every lobe has one direction.
             let one_way = s.lobes().count() > 0 && s.lobes().all(Lobe::is_delta);

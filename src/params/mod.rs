@@ -8,8 +8,8 @@ pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
 use serde::{Deserialize, Serialize};
 pub use table::{
-    ABBE_RANGE, Choice, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, SliderRange, Spec,
-    TABLE, spec,
+    ABBE_RANGE, Choice, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, ROUGHNESS_RANGE,
+    SliderRange, Spec, TABLE, spec,
 };
 
 /// How the ray tree branches at a dielectric.
@@ -78,6 +78,11 @@ pub struct Params {
     /// dispersion; `None` keeps each material's own. 0 to 100.
     #[serde(deserialize_with = "real::optional")]
     pub abbe: Option<f32>,
+    /// GGX roughness α of every dielectric's interface (except those with `ior_fixed`):
+    /// 0 is smooth, above 0 the reflected and refracted rays are jittered over facets
+    /// (frosted glass); `None` keeps each material's own. 0 to 1.
+    #[serde(deserialize_with = "real::optional")]
+    pub roughness: Option<f32>,
     /// Reflectance model of every dielectric and glazed material; `None` keeps each
     /// material's own.
     pub fresnel: Option<FresnelMode>,
@@ -235,6 +240,7 @@ impl Default for Params {
             noise_target: None,
             ior: None,
             abbe: None,
+            roughness: None,
             fresnel: None,
             constant_reflectance: None,
             absorption_scale: 1.0,

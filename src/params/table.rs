@@ -119,6 +119,8 @@ pub const MAX_PHONG_EXPONENT: f32 = 100_000.0;
 pub const IOR_RANGE: (f32, f32) = (1.0, 3.0);
 /// The Abbe numbers accepted, for the parameter and for scene files (0: no dispersion).
 pub const ABBE_RANGE: (f32, f32) = (0.0, 100.0);
+/// The GGX roughnesses α accepted, for the parameter and for scene files (0: smooth).
+pub const ROUGHNESS_RANGE: (f32, f32) = (0.0, 1.0);
 
 /// Every parameter, in the order of [`super::Params`]'s fields.
 pub const TABLE: &[Spec] = &[
@@ -211,6 +213,16 @@ pub const TABLE: &[Spec] = &[
         doc: "Abbe number V_d of the dielectric materials (not those with ior_fixed): dispersion, lower is stronger, 0 none",
         explain: "Dispersion: the index of refraction depends on the wavelength, n(λ) = A + B/λ² (Cauchy) with n_d = IOR at 587.6 nm and V_d = (n_d − 1)/(n_F − n_C). Lower V disperses more: crown glass 64, flint 36, diamond 55 (its fire is its high n). 0: no dispersion.",
         slider: slider(0.0, 100.0),
+        display_only: false,
+    },
+    Spec {
+        name: "roughness",
+        label: "Roughness α",
+        kind: number(ROUGHNESS_RANGE.0 as f64, ROUGHNESS_RANGE.1 as f64),
+        unit: "",
+        doc: "GGX roughness α of the dielectric materials (not those with ior_fixed): 0 smooth, above 0 frosted",
+        explain: "Rough glass: the surface is a field of tiny facets whose normals spread by the GGX distribution of width α. Each hit jitters the facet the ray meets, so both the reflected and the refracted ray are jittered, as glossy reflection jitters the mirror ray: frosted glass. Each child carries its Fresnel share at the facet's angle times the share of facets not shadowed (Smith G1). 0: the smooth interface of the lecture.",
+        slider: slider(0.0, 1.0),
         display_only: false,
     },
     Spec {

@@ -3,7 +3,7 @@
 use super::SceneError;
 use super::source::Source;
 use super::values::{
-    Abbe, CheckerScale, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Unit,
+    Abbe, CheckerScale, Exponent, Ior, NonNegative, Positive, Reflectance, Rgb, Roughness, Unit,
 };
 use crate::material::{
     Conductor, Dielectric, Diffuse, Emissive, Glazed, Glossy, Material, Mirror, Texture,
@@ -94,6 +94,7 @@ pub(super) enum MaterialDef {
         constant_reflectance: Option<Unit>,
         absorption: Option<Rgb>,
         abbe: Option<Abbe>,
+        roughness: Option<Roughness>,
     },
     Glazed {
         color: Reflectance,
@@ -250,11 +251,13 @@ pub(super) fn material(def: MaterialDef) -> Material {
             constant_reflectance,
             absorption,
             abbe,
+            roughness,
         } => {
             let clear = interface(ior.0, ior_fixed, fresnel, constant_reflectance);
             Material::Dielectric(Dielectric {
                 absorption: absorption.map_or(clear.absorption, |a| a.0),
                 abbe: abbe.map_or(clear.abbe, |a| a.0),
+                roughness: roughness.map_or(clear.roughness, |a| a.0),
                 ..clear
             })
         }

@@ -3,7 +3,7 @@
 
 use crate::geometry::{MAX_COORDINATE, within_limits};
 use crate::math::{Color, Vec3};
-use crate::params::{ABBE_RANGE, IOR_RANGE};
+use crate::params::{ABBE_RANGE, IOR_RANGE, ROUGHNESS_RANGE};
 use serde::Deserialize;
 
 /// A finite number.
@@ -79,6 +79,11 @@ checked_number!(
     /// An Abbe number, 0 (no dispersion) to 100.
     Abbe, |v, f| (ABBE_RANGE.0..=ABBE_RANGE.1).contains(&f),
     "an Abbe number must be between {} (no dispersion) and {}, got {v}", ABBE_RANGE.0, ABBE_RANGE.1
+);
+checked_number!(
+    /// A GGX roughness α, 0 (smooth) to 1.
+    Roughness, |v, f| (ROUGHNESS_RANGE.0..=ROUGHNESS_RANGE.1).contains(&f),
+    "a roughness must be between {} (smooth) and {}, got {v}", ROUGHNESS_RANGE.0, ROUGHNESS_RANGE.1
 );
 checked_number!(
     /// A Phong exponent, 1 to 100,000.

@@ -5,7 +5,7 @@
 //!
 //! A sample's outcome depends on the parameters only through
 //! - the materials its rays hit (each resolved from the parameters: ior, Abbe number,
-//!   Fresnel mode, constant reflectance, absorption, Phong exponent);
+//!   roughness, Fresnel mode, constant reflectance, absorption, Phong exponent);
 //! - the depth and weight tests of its branches (`max_depth`, `min_weight`);
 //! - the photons it gathers (their map depends on every material and both limits);
 //! - and on what every sample depends on (the pattern, seed, transport, tree, camera,
@@ -135,6 +135,7 @@ pub fn reach(scene: &Scene, old: &Params, new: &Params) -> Option<Reach> {
         exposure: 0.0,
         ior: None,
         abbe: None,
+        roughness: None,
         fresnel: None,
         constant_reflectance: None,
         absorption_scale: 0.0,

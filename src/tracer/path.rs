@@ -324,10 +324,16 @@ impl Tracer<'_> {
                 id,
             };
             let mut lit = self.light_samples(&v, w);
-            // The point lights' caustics, from this pass's photons.
-            if let (Some(map), Part::Smooth(d)) = (&self.photons, part) {
+            // The point lights' caustics, from this pass's photons. Recorded where a map
+            // would be gathered from even when there is none (no mirror-like object to aim
+            // at): a change may make one (a rough glass made smooth).
+            if let Part::Smooth(d) = part
+                && self.gathers_photons()
+            {
                 w.met.photons();
-                lit += map.gather(p, &at, &d.brdf, d.scale);
+                if let Some(map) = &self.photons {
+                    lit += map.gather(p, &at, &d.brdf, d.scale);
+                }
             }
             let lit = match &s_frame {
                 Some(s) => s.direct(material, &at, lit),

@@ -1,0 +1,378 @@
+//! Rough glass: a dielectric whose interface is a field of GGX microfacets of roughness α
+//! (Walter et al. 2007; the formulas are in [`crate::optics::microfacet`]). Where the lecture
+//! jitters the mirror ray for glossy reflection, the rough interface jitters the facet the
+//! ray meets, and with it both children: at each hit one facet normal m is drawn among
+//! those the ray sees, and the ray splits there as at a smooth interface, its reflected
+//! child of weight F(m) · G1(o) and its refracted child of weight (1 − F(m)) · G1(o), F at
+//! the facet's own angle by the material's Fresnel mode. A child that would leave on the
+//! wrong side of the surface is shadowed (G1 = 0): that light is lost, as single scattering
+//! on a rough surface loses it. α → 0 is the smooth dielectric.
+
+use super::{Dielectric, Interaction, Interface, Lobe, LobeKind, Scatter, Side};
+use crate::math::{Uniform, Vec3, orthonormal_basis};
+use crate::optics::microfacet::{
+    reflection_normal, refraction_jacobian, refraction_normal, sample_visible_normal, smith_g1,
+    visible_normal_pdf,
+};
+use crate::optics::{FresnelMode, reflect, refract};
+
+/// A rough interface as one hit sees it: what its lobes need to say how much light they
+/// pass towards any direction, and with what density they draw it (path tracing weighs
+/// its light samples by that).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Microfacet {
+    /// The GGX roughness α.
+    pub alpha: f32,
+    /// The index on the side the ray comes from.
+    pub n1: f32,
+    /// The index on the other side.
+    pub n2: f32,
+    /// How each facet's reflectance is computed.
+    pub fresnel: FresnelMode,
+    /// The reflectance of the constant model.
+    pub constant_reflectance: f32,
+}
+
+/// The macro surface's frame at a hit: the shading normal, or the geometric one where the
+/// ray would meet the shading normal from behind (no facet of it would be visible).
+struct Frame {
+    t: Vec3,
+    b: Vec3,
+    n: Vec3,
+}
+
+impl Frame {
+    fn at(hit: &Interaction) -> Frame {
+        let n = if -hit.dir.dot(hit.n_shade) > 0.0 {
+            hit.n_shade
+        } else {
+            hit.n_geom
+        };
+        let (t, b) = orthonormal_basis(n);
+        Frame { t, b, n }
+    }
+
+    fn local(&self, v: Vec3) -> Vec3 {
+        Vec3::new(v.dot(self.t), v.dot(self.b), v.dot(self.n))
+    }
+
+    fn world(&self, v: Vec3) -> Vec3 {
+        v.x * self.t + v.y * self.b + v.z * self.n
+    }
+}
+
+impl Microfacet {
+    /// The reflectance of the facet seen at cos θ = `cos_m` (1 under total internal
+    /// reflection).
+    fn reflectance(&self, cos_m: f32) -> f32 {
+        self.fresnel
+            .reflectance(cos_m, self.n1, self.n2, self.constant_reflectance)
+    }
+
+    /// What the lobe on `side` passes from direction `dir` towards the viewer of `at`
+    /// (f cos θo), and the density with which it draws `dir`: the facet m that sends the
+    /// view there (the half vector), D_v(m) times the Jacobian of reflection (1/(4|o·m|))
+    /// or refraction, and f cos θo = that density times the weight the lobe would carry,
+    /// F(m) G1(o) or (1 − F(m)) G1(o). (0, 0) where no facet sends it there.
+    pub fn eval(&self, at: &Interaction, side: Side, dir: Vec3) -> (f32, f32) {
+        let frame = Frame::at(at);
+        let (v, o) = (frame.local(-at.dir), frame.local(dir));
+        let leaves_here = dir.dot(at.n_geom) > 0.0;
+        let (m, jacobian, share) = match side {
+            Side::Reflect if o.z > 0.0 && leaves_here => {
+                let Some(m) = reflection_normal(v, o) else {
+                    return (0.0, 0.0);
+                };
+                let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
+                (m, 1.0 / (4.0 * o.dot(m).abs()), f)
+            }
+            Side::Transmit if o.z < 0.0 && !leaves_here => {
+                let Some(m) = refraction_normal(v, o, self.n1, self.n2) else {
+                    return (0.0, 0.0);
+                };
+                let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
+                (m, refraction_jacobian(v, o, m, self.n1, self.n2), 1.0 - f)
+            }
+            _ => return (0.0, 0.0),
+        };
+        let pdf = visible_normal_pdf(v, m, self.alpha) * jacobian;
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return (0.0, 0.0);
+        }
+        (share * smith_g1(o.z, self.alpha) * pdf, pdf)
+    }
+}
+
+impl Dielectric {
+    /// This interface as rough ([`Dielectric::roughness`] above 0): one facet drawn among
+    /// those the ray sees (two numbers from `u`), and the ray reflected and refracted there.
+    pub(super) fn rough_scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {
+        let (n1, n2) = self.sides(hit);
+        let facets = Microfacet {
+            alpha: self.roughness,
+            n1,
+            n2,
+            fresnel: self.fresnel,
+            constant_reflectance: self.constant_reflectance,
+        };
+        let frame = Frame::at(hit);
+        let v = frame.local(-hit.dir);
+        let m = frame.world(sample_visible_normal(v, facets.alpha, u.next_2d()));
+        let cos_m = (-hit.dir).dot(m).clamp(0.0, 1.0);
+        let refracted = refract(hit.dir, m, n1, n2);
+        let r = facets.reflectance(cos_m);
+        let kind = LobeKind::Microfacet(facets);
+        // A child on the wrong side of the macro surface (either normal) is masked.
+        let lobe = |side, dir: Vec3, share: f32| {
+            let (cos_o, cos_geom) = (dir.dot(frame.n), dir.dot(hit.n_geom));
+            let right_side = match side {
+                Side::Reflect => cos_o > 0.0 && cos_geom > 0.0,
+                Side::Transmit => cos_o < 0.0 && cos_geom < 0.0,
+            };
+            let weight = share * smith_g1(cos_o, facets.alpha);
+            (right_side && weight > 0.0).then(|| Lobe {
+                side,
+                kind,
+                dir,
+                weight: crate::math::Color::splat(weight),
+            })
+        };
+        Scatter {
+            lobes: [
+                lobe(Side::Reflect, reflect(hit.dir, m), r),
+                refracted.and_then(|t| lobe(Side::Transmit, t, 1.0 - r)),
+            ],
+            interface: Some(Interface {
+                cos_i: cos_m,
+                n1,
+                n2,
+                r,
+            }),
+            total_internal_reflection: refracted.is_none(),
+            ..Scatter::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::test_util::{Fixed, hit_at};
+    use crate::material::{Material, Part};
+    use glam::Vec2;
+
+    fn frosted(alpha: f32) -> Dielectric {
+        Dielectric {
+            roughness: alpha,
+            ..Dielectric::clear(1.5)
+        }
+    }
+
+    /// A hit at `theta` degrees, entering the glass or leaving it (from inside, the
+    /// normal facing the ray as the tracer gives it).
+    fn hit(theta: f32, entering: bool) -> Interaction {
+        Interaction {
+            entering,
+            ..hit_at(theta)
+        }
+    }
+
+    /// The lobes a hit gets with the facet drawn from `u`.
+    fn lobes(d: &Dielectric, at: &Interaction, u: Vec2) -> Scatter {
+        d.rough_scatter(at, &mut Fixed(vec![u.x, u.y]))
+    }
+
+    /// E[W_r + W_t] over facets drawn at the points of a `k` × `k` grid (stratified, so
+    /// close to the integral), each lobe's share apart: (reflected, refracted).
+    fn sampled_albedo(d: &Dielectric, at: &Interaction, k: u32) -> (f64, f64) {
+        let (mut r, mut t) = (0.0, 0.0);
+        for i in 0..k {
+            for j in 0..k {
+                let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                for lobe in lobes(d, at, u).lobes() {
+                    match lobe.side {
+                        Side::Reflect => r += lobe.weight.x as f64,
+                        Side::Transmit => t += lobe.weight.x as f64,
+                    }
+                }
+            }
+        }
+        let n = (k * k) as f64;
+        (r / n, t / n)
+    }
+
+    /// ∫ f(dir) dω over the whole sphere by the midpoint rule in (cos θ, φ) about +Z, `n`
+    /// rows of cos θ: each side of the surface (+Y) separately, (upper, lower). The pole
+    /// lies in the surface, where no lobe peaks: the rows are finest along its equator.
+    fn sphere(f: impl Fn(Vec3) -> f64, n: usize) -> (f64, f64) {
+        let (mut upper, mut lower) = (0.0, 0.0);
+        let cell = 2.0 * std::f64::consts::PI * 2.0 / (n * 2 * n) as f64;
+        for i in 0..n {
+            let z = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+            let s = (1.0 - z * z).sqrt();
+            for j in 0..2 * n {
+                let phi = std::f64::consts::PI * (j as f64 + 0.5) / n as f64;
+                let d = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32);
+                let v = f(d) * cell;
+                if d.y > 0.0 { upper += v } else { lower += v }
+            }
+        }
+        (upper, lower)
+    }
+
+    /// The facets a hit's lobes are evaluated with.
+    fn facets(d: &Dielectric, at: &Interaction) -> Microfacet {
+        match lobes(d, at, Vec2::splat(0.5))
+            .lobes()
+            .next()
+            .map(|l| l.kind)
+        {
+            Some(LobeKind::Microfacet(f)) => f,
+            other => panic!("a rough lobe, not {other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_jittered_rays_carry_what_the_lobes_pass_and_no_more() {
+        // The white furnace, one bounce: what a hit's two children carry on average (their
+        // weights, over facets drawn) is the integral of f cos θ of the two lobes over
+        // every direction (quadrature, apart from the sampling code), to 1e-3; no energy is
+        // created (at most 1), and what is lost is what single scattering loses: little at
+        // low roughness, more at grazing angles and high roughness.
+        for alpha in [0.1f32, 0.3, 0.7] {
+            for (theta, entering) in [(0.0, true), (45.0, true), (80.0, true), (30.0, false)] {
+                let d = frosted(alpha);
+                let at = hit(theta, entering);
+                let (r, t) = sampled_albedo(&d, &at, 400);
+                let mf = facets(&d, &at);
+                let f = |side| move |o: Vec3| mf.eval(&at, side, o).0 as f64;
+                let (r_up, r_down) = sphere(f(Side::Reflect), 1500);
+                let (t_up, t_down) = sphere(f(Side::Transmit), 1500);
+                assert_eq!((r_down, t_up), (0.0, 0.0), "each lobe on its own side");
+                let case = format!("α {alpha}, θ {theta}, entering {entering}");
+                assert!(
+                    (r - r_up).abs() < 1e-3,
+                    "{case}: reflected {r} against {r_up}"
+                );
+                assert!(
+                    (t - t_down).abs() < 1e-3,
+                    "{case}: refracted {t} against {t_down}"
+                );
+                assert!(r + t <= 1.0 + 1e-6, "{case}: {}", r + t);
+                if alpha <= 0.1 && entering && theta < 60.0 {
+                    assert!(r + t > 0.99, "{case}: {}", r + t);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn each_lobe_draws_its_directions_with_the_density_it_reports() {
+        // ∫ pdf dω over a lobe's side is the share of facets drawn that give it a ray (each
+        // lobe is drawn at every hit, and is masked where its ray would leave on the wrong
+        // side), both to 1e-3.
+        for (alpha, theta) in [(0.2f32, 20.0), (0.5, 70.0)] {
+            let d = frosted(alpha);
+            let at = hit(theta, true);
+            let mf = facets(&d, &at);
+            let k = 300;
+            let (mut reflected, mut refracted) = (0u32, 0u32);
+            for i in 0..k {
+                for j in 0..k {
+                    let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                    // Counted where the ray leaves on its side, whatever its weight.
+                    let frame = Frame::at(&at);
+                    let m = frame.world(sample_visible_normal(frame.local(-at.dir), alpha, u));
+                    reflected += (reflect(at.dir, m).y > 0.0) as u32;
+                    refracted += refract(at.dir, m, 1.0, 1.5).is_some_and(|t| t.y < 0.0) as u32;
+                }
+            }
+            let share = |c: u32| c as f64 / (k * k) as f64;
+            let pdf = |side| move |o: Vec3| mf.eval(&at, side, o).1 as f64;
+            let (r, _) = sphere(pdf(Side::Reflect), 1500);
+            let (_, t) = sphere(pdf(Side::Transmit), 1500);
+            assert!((r - share(reflected)).abs() < 1e-3, "α {alpha}: {r}");
+            assert!((t - share(refracted)).abs() < 1e-3, "α {alpha}: {t}");
+        }
+    }
+
+    #[test]
+    fn the_lobes_are_reciprocal() {
+        // Reflection: f(i → o) = f(o → i). Refraction (Walter's generalized reciprocity):
+        // f(i → o) / n_o² = f(o → i) / n_i², the index on each one's side.
+        let d = frosted(0.35);
+        let f = |from: Vec3, to: Vec3, entering: bool, side| {
+            // `from` towards the viewer, the normal +Y on its side.
+            let at = Interaction {
+                dir: -from,
+                n_geom: Vec3::Y * from.y.signum(),
+                n_shade: Vec3::Y * from.y.signum(),
+                entering,
+                ..hit_at(0.0)
+            };
+            let mf = facets(&d, &at);
+            let (f_cos, _) = mf.eval(&at, side, to);
+            f_cos / to.y.abs()
+        };
+        let i = Vec3::new(0.4, 0.8, 0.2).normalize();
+        for o in [Vec3::new(-0.3, 0.9, 0.1), Vec3::new(0.5, 0.3, -0.6)] {
+            let o = o.normalize();
+            let (a, b) = (f(i, o, true, Side::Reflect), f(o, i, true, Side::Reflect));
+            assert!(a > 0.0 && (a / b - 1.0).abs() < 1e-4, "{a} {b}");
+        }
+        for o in [Vec3::new(-0.2, -0.9, 0.1), Vec3::new(-0.6, -0.5, 0.3)] {
+            let o = o.normalize();
+            // i outside (air, 1), o inside (glass, 1.5).
+            let forward = f(i, o, true, Side::Transmit) / (1.5f32 * 1.5);
+            let back = f(o, i, false, Side::Transmit) / 1.0;
+            assert!(
+                forward > 0.0 && (forward / back - 1.0).abs() < 1e-4,
+                "{forward} {back}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_nearly_smooth_interface_splits_as_the_smooth_one() {
+        let smooth = Dielectric::clear(1.5);
+        for (theta, entering) in [(30.0, true), (60.0, false), (20.0, false)] {
+            let at = hit(theta, entering);
+            let a = lobes(&frosted(1e-4), &at, Vec2::new(0.37, 0.81));
+            let b = smooth.scatter(&at);
+            assert_eq!(a.total_internal_reflection, b.total_internal_reflection);
+            for (x, y) in a.lobes().zip(b.lobes()) {
+                assert_eq!(x.side, y.side);
+                assert!((x.dir - y.dir).length() < 1e-3, "{theta}");
+                assert!((x.weight - y.weight).abs().max_element() < 1e-3, "{theta}");
+            }
+            assert_eq!(a.lobes().count(), b.lobes().count());
+        }
+        // Roughness 0 is the smooth material, drawing nothing.
+        let glass = Material::Dielectric(frosted(0.0));
+        let mut none = Fixed(vec![]);
+        assert_eq!(
+            glass.scatter(&hit_at(30.0), &mut none),
+            smooth.scatter(&hit_at(30.0))
+        );
+    }
+
+    #[test]
+    fn a_path_weighs_light_samples_by_the_reflection_alone() {
+        let d = frosted(0.3);
+        let at = hit(40.0, true);
+        let s = lobes(&d, &at, Vec2::new(0.3, 0.6));
+        let [Some(r), Some(t)] = s.lobes else {
+            panic!("both children");
+        };
+        // The reflection's own direction: its weight is f cos / pdf there.
+        let (f_cos, pdf) = Part::Lobe(&r).eval(&at, r.dir);
+        assert!((f_cos.x / pdf - r.weight.x).abs() < 1e-4);
+        assert_eq!(r.pdf(&at, r.dir), Some(pdf));
+        // The refraction: no light sample competes.
+        assert_eq!(t.pdf(&at, t.dir), None);
+        assert_eq!(
+            Part::Lobe(&t).eval(&at, t.dir),
+            (crate::math::Color::ZERO, 0.0)
+        );
+    }
+}
