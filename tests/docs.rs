@@ -243,7 +243,7 @@ fn the_scene_page_states_the_defaults_the_loader_uses() {
     for said in [
         "`fresnel` (default `exact`)",
         "`constant_reflectance` (0..1, default 0.04)",
-        "default 0), `abbe` (0..100, default 0), `ior_fixed` (default false)",
+        "default 0), `abbe` (0..100, default 0), `roughness` (0..1, default 0), `ior_fixed` (default false)",
     ] {
         assert!(dielectric.contains(said), "{said}");
     }
@@ -252,6 +252,7 @@ fn the_scene_page_states_the_defaults_the_loader_uses() {
     };
     assert_eq!(g.fresnel, raylab::optics::FresnelMode::Exact);
     assert_eq!((g.constant_reflectance, g.abbe), (0.04, 0.0));
+    assert_eq!(g.roughness, 0.0);
     assert_eq!((g.absorption, g.ior_fixed), (Color::ZERO, false));
 
     assert!(row(&page, "glazed").contains("`ior` (default 1.5)"));

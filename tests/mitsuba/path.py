@@ -10,9 +10,12 @@ puts about 0.3 % of blocks there).
 raylab's max_depth counts bounces and gathers light at the last one: its paths have up
 to max_depth + 2 segments, Mitsuba's max_depth + 2 = 10 segments here.
 
+With a ROUGHNESS above 0 the glass sphere is rough glass: raylab's `roughness`, Mitsuba's
+`roughdielectric` (GGX, the same α, visible normals sampled).
+
     pip install mitsuba==3.9.1 numpy
     cargo build --release
-    python tests/mitsuba/path.py [target/release/raylab]
+    python tests/mitsuba/path.py [target/release/raylab] [SPP] [ROUGHNESS]
 """
 
 import pathlib
@@ -26,6 +29,7 @@ import numpy as np
 here = pathlib.Path(__file__).parent
 raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
 spp = int(sys.argv[2]) if len(sys.argv) > 2 else 2048
+roughness = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
 
 mi.set_variant("scalar_rgb")
 T = mi.ScalarTransform4f
@@ -59,7 +63,9 @@ scene = mi.load_dict({
                "bsdf": {"type": "conductor", "material": "none",
                         "specular_reflectance": {"type": "rgb", "value": 0.9}}},
     "glass": {"type": "sphere", "center": [1.6, 0.7, 0], "radius": 0.7,
-              "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}},
+              "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0} if roughness == 0
+              else {"type": "roughdielectric", "distribution": "ggx", "alpha": roughness,
+                    "sample_visible": True, "int_ior": 1.5, "ext_ior": 1.0}},
 })
 
 mitsuba = [np.array(mi.render(scene, seed=s))[:, :, :3] for s in (1, 2)]
@@ -68,7 +74,8 @@ with tempfile.TemporaryDirectory() as tmp:
     for s in (1, 2):
         out = pathlib.Path(tmp) / f"r{s}.exr"
         subprocess.run([raylab, "render", str(here / "path.toml"), "-o", str(out), "-q",
-                        "--set", f"seed={s}", "--set", f"spp={spp}"], check=True)
+                        "--set", f"seed={s}", "--set", f"spp={spp}",
+                        "--set", f"roughness={roughness}"], check=True)
         ours.append(np.array(mi.Bitmap(str(out)))[:, :, :3])
 
 
