@@ -61,6 +61,17 @@ impl Frame {
     }
 }
 
+/// The two children of a hit at one facet: each one's direction and weight, `None` where
+/// it does not exist (the refraction under total internal reflection at the facet) or is
+/// masked (it would leave on the wrong side of the macro surface, either normal).
+struct Children {
+    reflected: Option<(Vec3, f32)>,
+    refracted: Option<(Vec3, f32)>,
+    // The facet's reflectance, and whether it reflects totally.
+    r: f32,
+    total: bool,
+}
+
 impl Microfacet {
     /// The reflectance of the facet seen at cos θ = `cos_m` (1 under total internal
     /// reflection).
@@ -69,37 +80,88 @@ impl Microfacet {
             .reflectance(cos_m, self.n1, self.n2, self.constant_reflectance)
     }
 
+    /// The children of a ray along `dir` meeting the facet `m` (world space), the macro
+    /// surface's frame `frame` and geometric normal `n_geom` facing the ray: reflected of
+    /// weight F(m) G1(o), refracted of weight (1 − F(m)) G1(o).
+    fn children(&self, dir: Vec3, m: Vec3, frame: &Frame, n_geom: Vec3) -> Children {
+        let r = self.reflectance((-dir).dot(m).clamp(0.0, 1.0));
+        let child = |side, o: Vec3, share: f32| {
+            let (cos_o, cos_geom) = (o.dot(frame.n), o.dot(n_geom));
+            let right_side = match side {
+                Side::Reflect => cos_o > 0.0 && cos_geom > 0.0,
+                Side::Transmit => cos_o < 0.0 && cos_geom < 0.0,
+            };
+            let weight = share * smith_g1(cos_o, self.alpha);
+            (right_side && weight > 0.0).then_some((o, weight))
+        };
+        let refracted = refract(dir, m, self.n1, self.n2);
+        Children {
+            reflected: child(Side::Reflect, reflect(dir, m), r),
+            refracted: refracted.and_then(|t| child(Side::Transmit, t, 1.0 - r)),
+            r,
+            total: refracted.is_none(),
+        }
+    }
+
     /// What the lobe on `side` passes from direction `dir` towards the viewer of `at`
-    /// (f cos θo), and the density with which it draws `dir`: the facet m that sends the
-    /// view there (the half vector), D_v(m) times the Jacobian of reflection (1/(4|o·m|))
-    /// or refraction, and f cos θo = that density times the weight the lobe would carry,
-    /// F(m) G1(o) or (1 − F(m)) G1(o). (0, 0) where no facet sends it there.
-    pub fn eval(&self, at: &Interaction, side: Side, dir: Vec3) -> (f32, f32) {
+    /// (f cos θo), the density with which it draws `dir`, and the facet that sends the
+    /// view there (world space): the half vector m, D_v(m) times the Jacobian of reflection
+    /// (1/(4|o·m|)) or refraction, and f cos θo = that density times the weight the lobe
+    /// would carry, F(m) G1(o) or (1 − F(m)) G1(o). `None` where no facet sends it there.
+    fn lobe_eval(&self, at: &Interaction, side: Side, dir: Vec3) -> Option<(f32, f32, Vec3)> {
         let frame = Frame::at(at);
         let (v, o) = (frame.local(-at.dir), frame.local(dir));
         let leaves_here = dir.dot(at.n_geom) > 0.0;
         let (m, jacobian, share) = match side {
             Side::Reflect if o.z > 0.0 && leaves_here => {
-                let Some(m) = reflection_normal(v, o) else {
-                    return (0.0, 0.0);
-                };
+                let m = reflection_normal(v, o)?;
                 let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
                 (m, 1.0 / (4.0 * o.dot(m).abs()), f)
             }
             Side::Transmit if o.z < 0.0 && !leaves_here => {
-                let Some(m) = refraction_normal(v, o, self.n1, self.n2) else {
-                    return (0.0, 0.0);
-                };
+                let m = refraction_normal(v, o, self.n1, self.n2)?;
                 let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
                 (m, refraction_jacobian(v, o, m, self.n1, self.n2), 1.0 - f)
             }
-            _ => return (0.0, 0.0),
+            _ => return None,
         };
         let pdf = visible_normal_pdf(v, m, self.alpha) * jacobian;
-        if !(pdf > 0.0 && pdf.is_finite()) {
+        (pdf > 0.0 && pdf.is_finite())
+            .then(|| (share * smith_g1(o.z, self.alpha) * pdf, pdf, frame.world(m)))
+    }
+
+    /// [`Microfacet::lobe_eval`]'s f cos θo and density alone, (0, 0) where no facet sends
+    /// the view to `dir`: the lobe on `side` as the split tree draws it (at every hit).
+    pub fn eval(&self, at: &Interaction, side: Side, dir: Vec3) -> (f32, f32) {
+        self.lobe_eval(at, side, dir)
+            .map_or((0.0, 0.0), |(f_cos, pdf, _)| (f_cos, pdf))
+    }
+
+    /// The whole interface towards `dir`, as a path meets it: f cos θo of the lobe on
+    /// `dir`'s side, and the density with which a path draws `dir`: the lobe's density
+    /// times the chance that the path follows that lobe at the facet that sends the view
+    /// there, its weight over both children's (a path follows one child in proportion to
+    /// its weight).
+    pub fn eval_path(&self, at: &Interaction, dir: Vec3) -> (f32, f32) {
+        let side = if dir.dot(at.n_geom) > 0.0 {
+            Side::Reflect
+        } else {
+            Side::Transmit
+        };
+        let Some((f_cos, pdf, m)) = self.lobe_eval(at, side, dir) else {
             return (0.0, 0.0);
+        };
+        let c = self.children(at.dir, m, &Frame::at(at), at.n_geom);
+        let weight = |child: Option<(Vec3, f32)>| child.map_or(0.0, |(_, w)| w);
+        let (w_r, w_t) = (weight(c.reflected), weight(c.refracted));
+        let chosen = match side {
+            Side::Reflect => w_r,
+            Side::Transmit => w_t,
+        };
+        if chosen <= 0.0 {
+            return (f_cos, 0.0);
         }
-        (share * smith_g1(o.z, self.alpha) * pdf, pdf)
+        (f_cos, pdf * chosen / (w_r + w_t))
     }
 }
 
@@ -118,37 +180,28 @@ impl Dielectric {
         let frame = Frame::at(hit);
         let v = frame.local(-hit.dir);
         let m = frame.world(sample_visible_normal(v, facets.alpha, u.next_2d()));
-        let cos_m = (-hit.dir).dot(m).clamp(0.0, 1.0);
-        let refracted = refract(hit.dir, m, n1, n2);
-        let r = facets.reflectance(cos_m);
-        let kind = LobeKind::Microfacet(facets);
-        // A child on the wrong side of the macro surface (either normal) is masked.
-        let lobe = |side, dir: Vec3, share: f32| {
-            let (cos_o, cos_geom) = (dir.dot(frame.n), dir.dot(hit.n_geom));
-            let right_side = match side {
-                Side::Reflect => cos_o > 0.0 && cos_geom > 0.0,
-                Side::Transmit => cos_o < 0.0 && cos_geom < 0.0,
-            };
-            let weight = share * smith_g1(cos_o, facets.alpha);
-            (right_side && weight > 0.0).then(|| Lobe {
+        let c = facets.children(hit.dir, m, &frame, hit.n_geom);
+        let lobe = |side, child: Option<(Vec3, f32)>| {
+            child.map(|(dir, weight)| Lobe {
                 side,
-                kind,
+                kind: LobeKind::Microfacet(facets),
                 dir,
                 weight: crate::math::Color::splat(weight),
             })
         };
         Scatter {
             lobes: [
-                lobe(Side::Reflect, reflect(hit.dir, m), r),
-                refracted.and_then(|t| lobe(Side::Transmit, t, 1.0 - r)),
+                lobe(Side::Reflect, c.reflected),
+                lobe(Side::Transmit, c.refracted),
             ],
             interface: Some(Interface {
-                cos_i: cos_m,
+                cos_i: (-hit.dir).dot(m).clamp(0.0, 1.0),
                 n1,
                 n2,
-                r,
+                r: c.r,
             }),
-            total_internal_reflection: refracted.is_none(),
+            total_internal_reflection: c.total,
+            facets: Some(facets),
             ..Scatter::default()
         }
     }
@@ -297,6 +350,42 @@ mod tests {
     }
 
     #[test]
+    fn a_paths_density_integrates_to_the_chance_that_it_goes_on() {
+        // A path follows one child in proportion to its weight: the density with which it
+        // draws a direction (`eval_path`), over every direction, is the share of facets
+        // drawn that leave it a child; and what the interface passes whole is what the
+        // two lobes pass, to 1e-3.
+        for (alpha, theta, entering) in [(0.3f32, 35.0, true), (0.6, 25.0, false)] {
+            let d = frosted(alpha);
+            let at = hit(theta, entering);
+            let mf = facets(&d, &at);
+            let k = 300;
+            let mut going_on = 0;
+            for i in 0..k {
+                for j in 0..k {
+                    let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                    going_on += (lobes(&d, &at, u).lobes().count() > 0) as u32;
+                }
+            }
+            let share = going_on as f64 / (k * k) as f64;
+            let (up, down) = sphere(|o| mf.eval_path(&at, o).1 as f64, 1500);
+            assert!(
+                (up + down - share).abs() < 1e-3,
+                "α {alpha}: {} against {share}",
+                up + down
+            );
+            let (r, t) = sampled_albedo(&d, &at, 300);
+            let (up, down) = sphere(|o| mf.eval_path(&at, o).0 as f64, 1500);
+            assert!(
+                (up + down - (r + t)).abs() < 1e-3,
+                "α {alpha}: {} against {}",
+                up + down,
+                r + t
+            );
+        }
+    }
+
+    #[test]
     fn the_lobes_are_reciprocal() {
         // Reflection: f(i → o) = f(o → i). Refraction (Walter's generalized reciprocity):
         // f(i → o) / n_o² = f(o → i) / n_i², the index on each one's side.
@@ -357,22 +446,18 @@ mod tests {
     }
 
     #[test]
-    fn a_path_weighs_light_samples_by_the_reflection_alone() {
-        let d = frosted(0.3);
-        let at = hit(40.0, true);
-        let s = lobes(&d, &at, Vec2::new(0.3, 0.6));
-        let [Some(r), Some(t)] = s.lobes else {
-            panic!("both children");
-        };
-        // The reflection's own direction: its weight is f cos / pdf there.
-        let (f_cos, pdf) = Part::Lobe(&r).eval(&at, r.dir);
-        assert!((f_cos.x / pdf - r.weight.x).abs() < 1e-4);
-        assert_eq!(r.pdf(&at, r.dir), Some(pdf));
-        // The refraction: no light sample competes.
-        assert_eq!(t.pdf(&at, t.dir), None);
-        assert_eq!(
-            Part::Lobe(&t).eval(&at, t.dir),
-            (crate::math::Color::ZERO, 0.0)
-        );
+    fn each_childs_weight_is_what_its_lobe_passes_over_its_density_there() {
+        // What path tracing weighs its light samples by: f cos θ and the density at the
+        // child's own direction, whose ratio is the weight the child carries.
+        for (theta, entering) in [(40.0, true), (20.0, false)] {
+            let at = hit(theta, entering);
+            let s = lobes(&frosted(0.3), &at, Vec2::new(0.3, 0.6));
+            assert_eq!(s.lobes().count(), 2, "both children");
+            for lobe in s.lobes() {
+                let (f_cos, pdf) = Part::Lobe(lobe).eval(&at, lobe.dir);
+                assert!(pdf > 0.0 && (f_cos.x / pdf - lobe.weight.x).abs() < 1e-4);
+                assert_eq!(lobe.pdf(&at, lobe.dir), Some(pdf));
+            }
+        }
     }
 }

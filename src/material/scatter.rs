@@ -59,16 +59,13 @@ impl Lobe {
         }
     }
 
-    /// The density per solid angle with which this lobe draws `dir` at `at`, where a light
-    /// sample competes with it; `None` where none does: a single direction (no density:
-    /// nothing else can find it), and a rough refraction, whose light samples would leave
-    /// on the wrong side of the surface (a path through it finds its lights alone).
+    /// The density per unit solid angle with which this lobe draws `dir` at `at`, or `None`
+    /// for a single direction (no density: nothing else can find it).
     #[inline]
     pub fn pdf(&self, at: &Interaction, dir: Vec3) -> Option<f32> {
         match self.kind {
             LobeKind::Delta => None,
             LobeKind::Glossy { exponent } => Some(glossy_pdf(at, exponent, dir)),
-            LobeKind::Microfacet(_) if self.side == Side::Transmit => None,
             LobeKind::Microfacet(facets) => Some(facets.eval(at, self.side, dir).1),
         }
     }
@@ -114,6 +111,9 @@ pub struct Scatter {
     pub interface: Option<Interface>,
     /// The refracted ray does not exist: total internal reflection.
     pub total_internal_reflection: bool,
+    /// A rough interface's facets, where the lobes are jittered over them: what a path's
+    /// light samples see of the interface as a whole ([`Part::Interface`]).
+    pub facets: Option<Microfacet>,
 }
 
 impl Scatter {
@@ -141,6 +141,9 @@ pub enum Part<'s> {
     Smooth(&'s Direct),
     /// A child ray, its direction already drawn.
     Lobe(&'s Lobe),
+    /// A rough interface as a whole, both its lobes ([`Microfacet::eval_path`]): what a
+    /// path's light samples see of it. Never chosen: a path follows one of its lobes.
+    Interface(&'s Microfacet),
 }
 
 impl Part<'_> {
@@ -150,6 +153,7 @@ impl Part<'_> {
         match self {
             Part::Smooth(d) => d.scale * (d.brdf.albedo + d.brdf.specular).max_element(),
             Part::Lobe(lobe) => lobe.weight.max_element(),
+            Part::Interface(_) => 0.0,
         }
     }
 
@@ -159,11 +163,24 @@ impl Part<'_> {
         matches!(self, Part::Lobe(lobe) if lobe.is_delta())
     }
 
+    /// Whether a path that follows it samples the lights through it: not for one
+    /// direction, and not for a lobe of a rough interface, whose light samples see the
+    /// interface whole ([`Part::Interface`]) whichever lobe the path follows (which lobes
+    /// a hit has depends on the facet it draws).
+    #[inline]
+    pub fn lit_by_samples(&self) -> bool {
+        match self {
+            Part::Lobe(lobe) => matches!(lobe.kind, LobeKind::Glossy { .. }),
+            Part::Smooth(_) | Part::Interface(_) => true,
+        }
+    }
+
     /// f cos θ towards `dir` (what light arriving from `dir` is multiplied by), and the
     /// density with which this part would draw `dir`: for the smooth BRDF
     /// scale · f(dir, view) cos θ and [`Brdf::pdf`] (0 below the surface); for a glossy
-    /// lobe W · pdf and pdf, since its weight W is f cos θ / pdf; for a rough reflection
-    /// [`Microfacet::eval`]; where no light sample competes ([`Lobe::pdf`]), 0.
+    /// lobe W · pdf and pdf, since its weight W is f cos θ / pdf; for a rough lobe
+    /// [`Microfacet::eval`], for a rough interface [`Microfacet::eval_path`]; for one
+    /// direction, 0.
     #[inline]
     pub fn eval(&self, at: &Interaction, dir: Vec3) -> (Color, f32) {
         match self {
@@ -178,14 +195,20 @@ impl Part<'_> {
                     d.brdf.pdf(at.n_shade, dir, view),
                 )
             }
-            Part::Lobe(lobe) => match (lobe.kind, lobe.pdf(at, dir)) {
-                (LobeKind::Microfacet(facets), Some(_)) => {
+            Part::Lobe(lobe) => match lobe.kind {
+                LobeKind::Microfacet(facets) => {
                     let (f_cos, pdf) = facets.eval(at, lobe.side, dir);
                     (Color::splat(f_cos), pdf)
                 }
-                (_, Some(pdf)) => (lobe.weight * pdf, pdf),
-                (_, None) => (Color::ZERO, 0.0),
+                _ => match lobe.pdf(at, dir) {
+                    Some(pdf) => (lobe.weight * pdf, pdf),
+                    None => (Color::ZERO, 0.0),
+                },
             },
+            Part::Interface(facets) => {
+                let (f_cos, pdf) = facets.eval_path(at, dir);
+                (Color::splat(f_cos), pdf)
+            }
         }
     }
 }

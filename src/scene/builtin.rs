@@ -53,6 +53,10 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/glossy.toml"),
     },
     BuiltinScene {
+        name: "frosted",
+        text: include_str!("../../scenes/frosted.toml"),
+    },
+    BuiltinScene {
         name: "depth-of-field",
         text: include_str!("../../scenes/depth-of-field.toml"),
     },

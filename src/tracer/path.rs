@@ -7,7 +7,11 @@
 //!
 //! Where the chosen part is smooth or glossy, light arrives by two strategies: a sample of
 //! each light and of the emitting surfaces (next-event estimation, a shadow ray), and the
-//! path's own next direction, drawn from the BRDF, meeting a light. Each counts with its
+//! path's own next direction, drawn from the BRDF, meeting a light. A rough interface
+//! (rough glass) is sampled so at every vertex, as a whole, whichever of its jittered
+//! children the path follows: the light samples on either side of it (a refraction's
+//! leave through it), weighed against the density with which the path draws their
+//! direction, its lobe's density times the chance of following that lobe. Each counts with its
 //! multiple-importance weight (Veach's power heuristic, p_a² / (p_a² + p_b²) of the two
 //! densities per solid angle), so that neither small bright lights (found by light
 //! samples) nor sharp highlights of large ones (found by the BRDF) are noisy. Behind a
@@ -158,17 +162,36 @@ impl<P: Polarization> PathState<P> {
 }
 
 /// A path's vertex as its light samples see it: the ray that arrived, the point and the
-/// hit as its material sees it, the part the path goes on through, the absorption of the
-/// medium the point lies in, whether the path ends here (`alone`: the light samples then
-/// stand alone, not weighed against the path's own next direction), and the vertex's node.
+/// hit as its material sees it, the part the light is seen through, the absorption of the
+/// medium the point lies in and of the one beyond the surface (where a rough refraction's
+/// light samples go), whether the path ends here (`alone`: the light samples then stand
+/// alone, not weighed against the path's own next direction), and the vertex's node.
 struct Vertex<'v> {
     ray: &'v Ray,
     p: Vec3,
     at: &'v Interaction,
     part: &'v Part<'v>,
     sigma: Color,
+    sigma_beyond: Color,
     alone: bool,
     id: usize,
+}
+
+impl Vertex<'_> {
+    /// A shadow ray towards `dir` from the vertex: where it sets out, just off the surface
+    /// on the side the ray came from (or beyond it, for a rough interface's refraction),
+    /// and the absorption of the medium it crosses.
+    fn leaving(&self, dir: Vec3) -> (Vec3, Color) {
+        let through = matches!(self.part, Part::Interface(_)) && dir.dot(self.at.n_geom) < 0.0;
+        if through {
+            (
+                offset_ray_origin(self.p, -self.at.n_geom),
+                self.sigma_beyond,
+            )
+        } else {
+            (offset_ray_origin(self.p, self.at.n_geom), self.sigma)
+        }
+    }
 }
 
 /// What a vertex leaves the path: going on along the new ray, or ended, and why.
@@ -296,6 +319,31 @@ impl Tracer<'_> {
             record_interface(w.rec, id, i);
         }
         w.stats.count_tir(scatter.total_internal_reflection);
+        let s_frame = st.pol.as_ref().map(|p| p.at_interface(ray.dir, at.n_shade));
+        let p = hit.surface.p;
+        // At `max_depth` the path gathers light here and goes no further, so light
+        // samples stand alone; before it, they are weighed against the BRDF's own
+        // choice of their direction.
+        let last = depth >= self.params.max_depth;
+        // A rough interface is lit as a whole at every vertex (see the module's doc).
+        if let Some(facets) = &scatter.facets {
+            let v = Vertex {
+                ray: &ray,
+                p,
+                at: &at,
+                part: &Part::Interface(facets),
+                sigma,
+                sigma_beyond: self.absorption_in(&st.media.crossed(at.entering, &hit)),
+                alone: last,
+                id,
+            };
+            let lit = self.light_samples(&v, w);
+            let lit = match &s_frame {
+                Some(s) => s.direct(material, &at, lit),
+                None => lit,
+            };
+            *added += st.throughput * lit;
+        }
         // One part, in proportion to its weight.
         let parts = scatter.parts();
         let sum: f32 = parts.iter().flatten().map(Part::weight).sum();
@@ -306,20 +354,15 @@ impl Tracer<'_> {
             return Next::End(End::Absorbed);
         };
         let p_choice = part.weight() / sum;
-        let s_frame = st.pol.as_ref().map(|p| p.at_interface(ray.dir, at.n_shade));
-        let p = hit.surface.p;
-        // At `max_depth` the path gathers light here and goes no further, so light
-        // samples stand alone; before it, they are weighed against the BRDF's own
-        // choice of their direction.
-        let last = depth >= self.params.max_depth;
         w.met.branch(depth + 1, f32::INFINITY);
-        if !part.is_delta() {
+        if part.lit_by_samples() {
             let v = Vertex {
                 ray: &ray,
                 p,
                 at: &at,
                 part,
                 sigma,
+                sigma_beyond: sigma,
                 alone: last,
                 id,
             };
@@ -363,8 +406,14 @@ impl Tracer<'_> {
                 st.pol = None;
                 (dir, Side::Reflect, f_cos / pdf)
             }
+            // (Never chosen: not among the scatter's parts.)
+            Part::Interface(_) => return Next::End(End::Absorbed),
             Part::Lobe(lobe) => {
-                st.came = lobe.pdf(&at, lobe.dir);
+                // Through a rough interface, the density of the path's own choice.
+                st.came = match &scatter.facets {
+                    Some(facets) => Some(facets.eval_path(&at, lobe.dir).1),
+                    None => lobe.pdf(&at, lobe.dir),
+                };
                 st.pol = s_frame.as_ref().map(|s| s.child(material, &at, lobe));
                 (lobe.dir, lobe.side, lobe.weight)
             }
@@ -401,7 +450,6 @@ impl Tracer<'_> {
     /// of the emitting surfaces, each weighed against the part drawing its direction
     /// (unless the vertex stands alone).
     fn light_samples<R: Recorder>(&self, v: &Vertex, w: &mut Walk<R>) -> Color {
-        let origin = offset_ray_origin(v.p, v.at.n_geom);
         let mut sum = Color::ZERO;
         for light in &self.lights {
             let u = light.draw(w.rng);
@@ -413,6 +461,7 @@ impl Tracer<'_> {
                 continue;
             }
             w.stats.shadow_rays += 1;
+            let (origin, sigma) = v.leaving(ls.dir);
             let s = Ray {
                 origin,
                 dir: ls.dir,
@@ -424,7 +473,7 @@ impl Tracer<'_> {
             } else {
                 f_cos
                     * ls.value
-                    * transmittance(v.sigma, ls.dist)
+                    * transmittance(sigma, ls.dist)
                     * light_weight(v.alone, ls.pdf, pdf)
             };
             sum += c;
@@ -433,18 +482,17 @@ impl Tracer<'_> {
         if !self.emitters.is_empty() {
             let (pick, u) = (w.rng.next_1d(), w.rng.next_2d());
             if let Some((object, q)) = self.emitters.sample(self.scene, pick, u, v.ray.time) {
-                sum += self.emitter_sample(v, origin, q, object, w);
+                sum += self.emitter_sample(v, q, object, w);
             }
         }
         sum
     }
 
-    /// The light from point `q` of emitting `object`, seen from the vertex `v` (its shadow
-    /// ray leaving from `origin`), weighed as [`light_weight`] says.
+    /// The light from point `q` of emitting `object`, seen from the vertex `v`, weighed as
+    /// [`light_weight`] says.
     fn emitter_sample<R: Recorder>(
         &self,
         v: &Vertex,
-        origin: Vec3,
         q: Vec3,
         object: u32,
         w: &mut Walk<R>,
@@ -460,6 +508,7 @@ impl Tracer<'_> {
             return Color::ZERO;
         }
         w.stats.shadow_rays += 1;
+        let (origin, sigma) = v.leaving(dir);
         let s = Ray {
             origin,
             dir,
@@ -477,7 +526,7 @@ impl Tracer<'_> {
                 match self.materials[h.material as usize].emission(h.surface.uv) {
                     Some(l) if light_pdf > 0.0 => {
                         f_cos * l / light_pdf
-                            * transmittance(v.sigma, dist)
+                            * transmittance(sigma, dist)
                             * light_weight(v.alone, light_pdf, pdf)
                     }
                     _ => Color::ZERO,

@@ -11,11 +11,13 @@ raylab's max_depth counts bounces and gathers light at the last one: its paths h
 to max_depth + 2 segments, Mitsuba's max_depth + 2 = 10 segments here.
 
 With a ROUGHNESS above 0 the glass sphere is rough glass: raylab's `roughness`, Mitsuba's
-`roughdielectric` (GGX, the same α, visible normals sampled).
+`roughdielectric` (GGX, the same α, visible normals sampled). MAX_DEPTH is raylab's
+(Mitsuba's is 2 more): rough glass traps light inside for many bounces, and where the two
+count the last of a long path differently a deep limit keeps that apart from the surface.
 
     pip install mitsuba==3.9.1 numpy
     cargo build --release
-    python tests/mitsuba/path.py [target/release/raylab] [SPP] [ROUGHNESS]
+    python tests/mitsuba/path.py [target/release/raylab] [SPP] [ROUGHNESS] [MAX_DEPTH]
 """
 
 import pathlib
@@ -30,6 +32,7 @@ here = pathlib.Path(__file__).parent
 raylab = sys.argv[1] if len(sys.argv) > 1 else "target/release/raylab"
 spp = int(sys.argv[2]) if len(sys.argv) > 2 else 2048
 roughness = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
+max_depth = int(sys.argv[4]) if len(sys.argv) > 4 else 8
 
 mi.set_variant("scalar_rgb")
 T = mi.ScalarTransform4f
@@ -41,7 +44,7 @@ def diffuse(r, g, b):
 
 scene = mi.load_dict({
     "type": "scene",
-    "integrator": {"type": "path", "max_depth": 10},
+    "integrator": {"type": "path", "max_depth": max_depth + 2},
     "sensor": {
         "type": "perspective", "fov": 40, "fov_axis": "y",
         "to_world": T().look_at(origin=[0, 1.6, 6], target=[0, 0.7, 0], up=[0, 1, 0]),
@@ -75,7 +78,8 @@ with tempfile.TemporaryDirectory() as tmp:
         out = pathlib.Path(tmp) / f"r{s}.exr"
         subprocess.run([raylab, "render", str(here / "path.toml"), "-o", str(out), "-q",
                         "--set", f"seed={s}", "--set", f"spp={spp}",
-                        "--set", f"roughness={roughness}"], check=True)
+                        "--set", f"roughness={roughness}", "--set", f"max_depth={max_depth}"],
+                       check=True)
         ours.append(np.array(mi.Bitmap(str(out)))[:, :, :3])
 
 
