@@ -20,7 +20,7 @@ render antialiasing -o screenshots/antialiasing-16spp.png --spp 16 --set pattern
 render soft-shadows -o screenshots/soft-shadows.png --spp 64
 render soft-shadows -o screenshots/soft-shadows-point.png --spp 64 --set light_size=0
 render glossy -o screenshots/glossy.png --spp 64
-render frosted -o screenshots/frosted.png --spp 512
+render frosted -o screenshots/frosted.png --spp 256
 render depth-of-field -o screenshots/depth-of-field.png --spp 64
 render motion-blur -o screenshots/motion-blur.png --spp 64
 # Beyond the slides.

@@ -157,6 +157,11 @@ pub const LECTURE: &[Slide] = &[
         .says(
             "Reflected rays jittered over a Phong lobe cos^n around the mirror direction: n = 10 to 10,000 from left to right.",
         ),
+    slide("Glossy transmission: jitter the refracted ray", "frosted")
+        .set(&[("spp", "256")])
+        .says(
+            "Rough glass: its surface is tiny facets whose normals spread by the roughness α = 0, 0.05, 0.15, 0.3 and 0.6 from left to right. Each hit jitters the facet it meets, so the refracted ray is jittered as glossy reflection jitters the mirror ray, and the reflected ray with it: the checks seen through the glass blur, then it turns milky.",
+        ),
     slide("Depth of field", "depth-of-field")
         .set(&[("spp", "256")])
         .asks(&["focus_distance", "aperture"])

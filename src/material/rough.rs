@@ -130,8 +130,12 @@ impl Microfacet {
             .then(|| (share * smith_g1(o.z, self.alpha) * pdf, pdf, frame.world(m)))
     }
 
-    /// [`Microfacet::lobe_eval`]'s f cos θo and density alone, (0, 0) where no facet sends
-    /// the view to `dir`: the lobe on `side` as the split tree draws it (at every hit).
+    /// What the lobe on `side` passes from `dir` towards the viewer of `at` (f cos θo),
+    /// and the density with which it draws `dir`, as the split tree draws it at every hit:
+    /// D_v(m) of the facet m that sends the view there (the half vector) times the
+    /// Jacobian of reflection (1/(4|o·m|)) or refraction, and f cos θo = that density times
+    /// the lobe's weight there, F(m) G1(o) or (1 − F(m)) G1(o). (0, 0) where no facet
+    /// sends the view to `dir`.
     pub fn eval(&self, at: &Interaction, side: Side, dir: Vec3) -> (f32, f32) {
         self.lobe_eval(at, side, dir)
             .map_or((0.0, 0.0), |(f_cos, pdf, _)| (f_cos, pdf))
