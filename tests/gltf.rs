@@ -142,19 +142,22 @@ fn triangles_gltf(buffer_uri: &str) -> String {
         r#"{{"asset": {{"version": "2.0"}},
   "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_ior"],
   "scene": 0, "scenes": [{{"nodes": [0]}}],
-  "nodes": [{{"translation": [10, 0, 0], "children": [1, 2, 3, 4]}},
-            {{"mesh": 0, "scale": [2, 2, 2]}}, {{"mesh": 1}}, {{"mesh": 2}}, {{"mesh": 3}}],
+  "nodes": [{{"translation": [10, 0, 0], "children": [1, 2, 3, 4, 5]}},
+            {{"mesh": 0, "scale": [2, 2, 2]}}, {{"mesh": 1}}, {{"mesh": 2}}, {{"mesh": 3}}, {{"mesh": 4}}],
   "materials": [
     {{"name": "Polished gold", "pbrMetallicRoughness": {{"metallicFactor": 1, "roughnessFactor": 0}}}},
-    {{"name": "water", "pbrMetallicRoughness": {{"metallicFactor": 0}},
+    {{"name": "water", "pbrMetallicRoughness": {{"metallicFactor": 0, "roughnessFactor": 0}},
       "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}}, "KHR_materials_ior": {{"ior": 1.33}}}}}},
     {{"name": "lamp", "emissiveFactor": [1, 0.5, 0.25]}},
-    {{"name": "clay", "pbrMetallicRoughness": {{"baseColorFactor": [0.5, 0.25, 0.125, 1], "metallicFactor": 0}}}}],
+    {{"name": "clay", "pbrMetallicRoughness": {{"baseColorFactor": [0.5, 0.25, 0.125, 1], "metallicFactor": 0}}}},
+    {{"name": "frosted", "pbrMetallicRoughness": {{"metallicFactor": 0, "roughnessFactor": 0.5}},
+      "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 1}}}}}}],
   "meshes": [
     {{"name": "gold", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 0}}]}},
     {{"name": "water", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 1}}]}},
     {{"name": "lamp", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 2}}]}},
-    {{"name": "clay", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 3}}]}}],
+    {{"name": "clay", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 3}}]}},
+    {{"name": "frosted", "primitives": [{{"attributes": {{"POSITION": 0}}, "material": 4}}]}}],
   "buffers": [{{"byteLength": 36, "uri": "{buffer_uri}"}}],
   "bufferViews": [{{"buffer": 0, "byteLength": 36}}],
   "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}}]}}"#
@@ -202,9 +205,15 @@ fn nodes_place_meshes_and_materials_map_to_the_closest_kind() {
         material_of("gold")
     );
     assert!(
-        matches!(material_of("water"), Material::Dielectric(g) if g.ior == 1.33),
+        matches!(material_of("water"), Material::Dielectric(g) if g.ior == 1.33 && g.roughness == 0.0),
         "{:?}",
         material_of("water")
+    );
+    // Rough transmission is rough glass, its GGX α the square of glTF's roughness.
+    assert!(
+        matches!(material_of("frosted"), Material::Dielectric(g) if g.ior == 1.5 && g.roughness == 0.25),
+        "{:?}",
+        material_of("frosted")
     );
     // An emitting material glows over its base colour (glTF's default, white).
     assert!(

@@ -194,7 +194,17 @@ impl<'a> Materials<'a> {
             .map_or(0.0, |t| unit(t.transmission_factor(), 0.0));
         if transmission >= 0.5 {
             let ior = m.ior().filter(|n| (1.0..=3.0).contains(n)).unwrap_or(1.5);
-            return Material::Dielectric(Dielectric::clear(ior));
+            // glTF's roughness is perceptual: the GGX α is its square (polished below 0.05,
+            // as for metals).
+            let roughness = if roughness >= 0.05 {
+                roughness * roughness
+            } else {
+                0.0
+            };
+            return Material::Dielectric(Dielectric {
+                roughness,
+                ..Dielectric::clear(ior)
+            });
         }
         if unit(pbr.metallic_factor(), 1.0) >= 0.5 {
             return match (metal_named_in(name), exponent) {
