@@ -179,9 +179,9 @@ struct Vertex<'v> {
 
 impl Vertex<'_> {
     /// A shadow ray towards `dir` from the vertex: where it sets out, just off the surface
-    /// on the side the ray came from (or beyond it, for a rough interface's refraction),
-    /// and the absorption of the medium it crosses.
-    fn leaving(&self, dir: Vec3) -> (Vec3, Color) {
+    /// on the side the ray came from (`here`) or beyond it (for a rough interface's
+    /// refraction), and the absorption of the medium it crosses.
+    fn leaving(&self, dir: Vec3, here: Vec3) -> (Vec3, Color) {
         let through = matches!(self.part, Part::Interface(_)) && dir.dot(self.at.n_geom) < 0.0;
         if through {
             (
@@ -189,7 +189,7 @@ impl Vertex<'_> {
                 self.sigma_beyond,
             )
         } else {
-            (offset_ray_origin(self.p, self.at.n_geom), self.sigma)
+            (here, self.sigma)
         }
     }
 }
@@ -450,6 +450,7 @@ impl Tracer<'_> {
     /// of the emitting surfaces, each weighed against the part drawing its direction
     /// (unless the vertex stands alone).
     fn light_samples<R: Recorder>(&self, v: &Vertex, w: &mut Walk<R>) -> Color {
+        let here = offset_ray_origin(v.p, v.at.n_geom);
         let mut sum = Color::ZERO;
         for light in &self.lights {
             let u = light.draw(w.rng);
@@ -461,7 +462,7 @@ impl Tracer<'_> {
                 continue;
             }
             w.stats.shadow_rays += 1;
-            let (origin, sigma) = v.leaving(ls.dir);
+            let (origin, sigma) = v.leaving(ls.dir, here);
             let s = Ray {
                 origin,
                 dir: ls.dir,
@@ -482,17 +483,18 @@ impl Tracer<'_> {
         if !self.emitters.is_empty() {
             let (pick, u) = (w.rng.next_1d(), w.rng.next_2d());
             if let Some((object, q)) = self.emitters.sample(self.scene, pick, u, v.ray.time) {
-                sum += self.emitter_sample(v, q, object, w);
+                sum += self.emitter_sample(v, here, q, object, w);
             }
         }
         sum
     }
 
-    /// The light from point `q` of emitting `object`, seen from the vertex `v`, weighed as
-    /// [`light_weight`] says.
+    /// The light from point `q` of emitting `object`, seen from the vertex `v` (`here` just
+    /// off it on the side the ray came from), weighed as [`light_weight`] says.
     fn emitter_sample<R: Recorder>(
         &self,
         v: &Vertex,
+        here: Vec3,
         q: Vec3,
         object: u32,
         w: &mut Walk<R>,
@@ -508,7 +510,7 @@ impl Tracer<'_> {
             return Color::ZERO;
         }
         w.stats.shadow_rays += 1;
-        let (origin, sigma) = v.leaving(dir);
+        let (origin, sigma) = v.leaving(dir, here);
         let s = Ray {
             origin,
             dir,
