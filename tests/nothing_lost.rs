@@ -23,7 +23,7 @@ fn numbers_beyond_f32_are_refused_from_every_source_naming_it() {
     let d = tempfile::tempdir().unwrap();
     let dir = d.path();
     let reals = overflowing();
-    assert_eq!(reals.len(), 14, "the real parameters: {reals:?}");
+    assert_eq!(reals.len(), 15, "the real parameters: {reals:?}");
     let o = raylab(
         &[
             "render", "-o", "good.png", "--size", "8x8", "--spp", "1", "-q",
