@@ -160,7 +160,7 @@ pub const LECTURE: &[Slide] = &[
     slide("Glossy transmission: jitter the refracted ray", "frosted")
         .set(&[("spp", "256")])
         .says(
-            "Rough glass: its surface is tiny facets whose normals spread by the roughness α = 0, 0.05, 0.15, 0.3 and 0.6 from left to right. Each hit jitters the facet it meets, so the refracted ray is jittered as glossy reflection jitters the mirror ray, and the reflected ray with it: the checks seen through the glass blur, then it turns milky.",
+            "Rough glass: tiny facets spread by roughness α = 0 to 0.6, left to right. Each hit jitters its facet, so the refracted ray is jittered as glossy reflection jitters the reflected one.",
         ),
     slide("Depth of field", "depth-of-field")
         .set(&[("spp", "256")])
