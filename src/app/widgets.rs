@@ -143,20 +143,34 @@ where
         .hint(tip(name));
 }
 
+/// The slider of a parameter that overrides the scene's own value (`None`: the scene's,
+/// `own`, shown until the slider moves; 0 without one), with `decimals` decimals; returns
+/// the value shown.
+fn own_or_set_slider(
+    ui: &mut Ui,
+    value: &mut Option<f32>,
+    own: Option<f32>,
+    name: &str,
+    decimals: usize,
+) -> f32 {
+    let mut shown = value.or(own).unwrap_or(0.0);
+    if ui
+        .add(param_slider(&mut shown, name).fixed_decimals(decimals))
+        .hint(tip(name))
+        .changed()
+    {
+        *value = Some(shown);
+    }
+    shown
+}
+
 /// Parameter `name`'s control (with its readouts), or `false` if it has none.
 pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
     let p = &mut *c.params;
     match name {
         "ior" => ior_ui(ui, p, c.scene),
         "abbe" => {
-            let mut abbe = p.abbe.or(scene_abbe(c.scene)).unwrap_or(0.0);
-            if ui
-                .add(param_slider(&mut abbe, "abbe").fixed_decimals(1))
-                .hint(tip("abbe"))
-                .changed()
-            {
-                p.abbe = Some(abbe);
-            }
+            let abbe = own_or_set_slider(ui, &mut p.abbe, scene_abbe(c.scene), name, 1);
             if abbe > 0.0 {
                 let ior = shown_ior(p, c.scene);
                 let n = |lambda| crate::optics::dispersion::ior_at(ior, abbe, lambda);
@@ -169,14 +183,7 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
             }
         }
         "roughness" => {
-            let mut alpha = p.roughness.or(scene_roughness(c.scene)).unwrap_or(0.0);
-            if ui
-                .add(param_slider(&mut alpha, "roughness").fixed_decimals(2))
-                .hint(tip("roughness"))
-                .changed()
-            {
-                p.roughness = Some(alpha);
-            }
+            own_or_set_slider(ui, &mut p.roughness, scene_roughness(c.scene), name, 2);
         }
         "fresnel" => {
             let own = (

@@ -107,7 +107,7 @@ impl Dielectric {
     }
 
     /// The reflectance R from `n1` into `n2` at cos θi, by this interface's Fresnel mode.
-    pub(super) fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
+    fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
         self.fresnel
             .reflectance(cos_i, n1, n2, self.constant_reflectance)
     }

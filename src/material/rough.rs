@@ -67,7 +67,8 @@ impl Frame {
 struct Children {
     reflected: Option<(Vec3, f32)>,
     refracted: Option<(Vec3, f32)>,
-    // The facet's reflectance, and whether it reflects totally.
+    // cos θ at the facet, its reflectance, and whether it reflects totally.
+    cos_m: f32,
     r: f32,
     total: bool,
 }
@@ -84,7 +85,8 @@ impl Microfacet {
     /// surface's frame `frame` and geometric normal `n_geom` facing the ray: reflected of
     /// weight F(m) G1(o), refracted of weight (1 − F(m)) G1(o).
     fn children(&self, dir: Vec3, m: Vec3, frame: &Frame, n_geom: Vec3) -> Children {
-        let r = self.reflectance((-dir).dot(m).clamp(0.0, 1.0));
+        let cos_m = (-dir).dot(m).clamp(0.0, 1.0);
+        let r = self.reflectance(cos_m);
         let child = |side, o: Vec3, share: f32| {
             let (cos_o, cos_geom) = (o.dot(frame.n), o.dot(n_geom));
             let right_side = match side {
@@ -98,6 +100,7 @@ impl Microfacet {
         Children {
             reflected: child(Side::Reflect, reflect(dir, m), r),
             refracted: refracted.and_then(|t| child(Side::Transmit, t, 1.0 - r)),
+            cos_m,
             r,
             total: refracted.is_none(),
         }
@@ -108,8 +111,13 @@ impl Microfacet {
     /// view there (world space): the half vector m, D_v(m) times the Jacobian of reflection
     /// (1/(4|o·m|)) or refraction, and f cos θo = that density times the weight the lobe
     /// would carry, F(m) G1(o) or (1 − F(m)) G1(o). `None` where no facet sends it there.
-    fn lobe_eval(&self, at: &Interaction, side: Side, dir: Vec3) -> Option<(f32, f32, Vec3)> {
-        let frame = Frame::at(at);
+    fn lobe_eval(
+        &self,
+        at: &Interaction,
+        frame: &Frame,
+        side: Side,
+        dir: Vec3,
+    ) -> Option<(f32, f32, Vec3)> {
         let (v, o) = (frame.local(-at.dir), frame.local(dir));
         let leaves_here = dir.dot(at.n_geom) > 0.0;
         let (m, jacobian, share) = match side {
@@ -137,7 +145,7 @@ impl Microfacet {
     /// the lobe's weight there, F(m) G1(o) or (1 − F(m)) G1(o). (0, 0) where no facet
     /// sends the view to `dir`.
     pub fn eval(&self, at: &Interaction, side: Side, dir: Vec3) -> (f32, f32) {
-        self.lobe_eval(at, side, dir)
+        self.lobe_eval(at, &Frame::at(at), side, dir)
             .map_or((0.0, 0.0), |(f_cos, pdf, _)| (f_cos, pdf))
     }
 
@@ -152,10 +160,11 @@ impl Microfacet {
         } else {
             Side::Transmit
         };
-        let Some((f_cos, pdf, m)) = self.lobe_eval(at, side, dir) else {
+        let frame = Frame::at(at);
+        let Some((f_cos, pdf, m)) = self.lobe_eval(at, &frame, side, dir) else {
             return (0.0, 0.0);
         };
-        let c = self.children(at.dir, m, &Frame::at(at), at.n_geom);
+        let c = self.children(at.dir, m, &frame, at.n_geom);
         let weight = |child: Option<(Vec3, f32)>| child.map_or(0.0, |(_, w)| w);
         let (w_r, w_t) = (weight(c.reflected), weight(c.refracted));
         let chosen = match side {
@@ -199,7 +208,7 @@ impl Dielectric {
                 lobe(Side::Transmit, c.refracted),
             ],
             interface: Some(Interface {
-                cos_i: (-hit.dir).dot(m).clamp(0.0, 1.0),
+                cos_i: c.cos_m,
                 n1,
                 n2,
                 r: c.r,
@@ -337,11 +346,12 @@ mod tests {
             for i in 0..k {
                 for j in 0..k {
                     let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
-                    // Counted where the ray leaves on its side, whatever its weight.
-                    let frame = Frame::at(&at);
-                    let m = frame.world(sample_visible_normal(frame.local(-at.dir), alpha, u));
-                    reflected += (reflect(at.dir, m).y > 0.0) as u32;
-                    refracted += refract(at.dir, m, 1.0, 1.5).is_some_and(|t| t.y < 0.0) as u32;
+                    for lobe in lobes(&d, &at, u).lobes() {
+                        match lobe.side {
+                            Side::Reflect => reflected += 1,
+                            Side::Transmit => refracted += 1,
+                        }
+                    }
                 }
             }
             let share = |c: u32| c as f64 / (k * k) as f64;

@@ -28,7 +28,7 @@ use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
 use super::shadow::SHADOW_REACH;
 use super::{End, Media, RayKind, Recorder, Stats, Tracer, TreeNode, Walk};
-use crate::material::{Interaction, Part, Side};
+use crate::material::{Interaction, Material, Part, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
 use crate::optics::dispersion;
 use crate::scene::Hit;
@@ -177,6 +177,18 @@ struct Vertex<'v> {
     id: usize,
 }
 
+/// A vertex as met: the ray that arrived, its hit and the hit as the material sees it, the
+/// absorption of the medium the ray crossed, whether the path ends here (`last`: at
+/// `max_depth`), and the vertex's node.
+struct Meeting<'m> {
+    ray: &'m Ray,
+    hit: &'m Hit,
+    at: &'m Interaction,
+    sigma: Color,
+    last: bool,
+    id: usize,
+}
+
 impl Vertex<'_> {
     /// A shadow ray towards `dir` from the vertex: where it sets out, just off the surface
     /// on the side the ray came from (`here`) or beyond it (for a rough interface's
@@ -320,29 +332,27 @@ impl Tracer<'_> {
         }
         w.stats.count_tir(scatter.total_internal_reflection);
         let s_frame = st.pol.as_ref().map(|p| p.at_interface(ray.dir, at.n_shade));
-        let p = hit.surface.p;
-        // At `max_depth` the path gathers light here and goes no further, so light
-        // samples stand alone; before it, they are weighed against the BRDF's own
-        // choice of their direction.
-        let last = depth >= self.params.max_depth;
+        // Light arriving through a part, as the camera's polariser sees it.
+        let seen = |lit: Color| match &s_frame {
+            Some(s) => s.direct(material, &at, lit),
+            None => lit,
+        };
+        let met = Meeting {
+            ray: &ray,
+            hit: &hit,
+            at: &at,
+            sigma,
+            // At `max_depth` the path gathers light here and goes no further, so light
+            // samples stand alone; before it, they are weighed against the BRDF's own
+            // choice of their direction.
+            last: depth >= self.params.max_depth,
+            id,
+        };
         // A rough interface is lit as a whole at every vertex (see the module's doc).
         if let Some(facets) = &scatter.facets {
-            let v = Vertex {
-                ray: &ray,
-                p,
-                at: &at,
-                part: &Part::Interface(facets),
-                sigma,
-                sigma_beyond: self.absorption_in(&st.media.crossed(at.entering, &hit)),
-                alone: last,
-                id,
-            };
-            let lit = self.light_samples(&v, w);
-            let lit = match &s_frame {
-                Some(s) => s.direct(material, &at, lit),
-                None => lit,
-            };
-            *added += st.throughput * lit;
+            let beyond = self.absorption_in(&st.media.crossed(at.entering, &hit));
+            let lit = self.lit_through(&met, &Part::Interface(facets), beyond, w);
+            *added += st.throughput * seen(lit);
         }
         // One part, in proportion to its weight.
         let parts = scatter.parts();
@@ -356,67 +366,22 @@ impl Tracer<'_> {
         let p_choice = part.weight() / sum;
         w.met.branch(depth + 1, f32::INFINITY);
         if part.lit_by_samples() {
-            let v = Vertex {
-                ray: &ray,
-                p,
-                at: &at,
-                part,
-                sigma,
-                sigma_beyond: sigma,
-                alone: last,
-                id,
-            };
-            let mut lit = self.light_samples(&v, w);
-            // The point lights' caustics, from this pass's photons. Recorded where a map
-            // would be gathered from even when there is none (no mirror-like object to aim
-            // at): a change may make one (a rough glass made smooth).
-            if let Part::Smooth(d) = part
-                && self.gathers_photons()
-            {
-                w.met.photons();
-                if let Some(map) = &self.photons {
-                    lit += map.gather(p, &at, &d.brdf, d.scale);
-                }
-            }
-            let lit = match &s_frame {
-                Some(s) => s.direct(material, &at, lit),
-                None => lit,
-            };
-            *added += st.throughput / p_choice * lit;
+            let lit = self.lit_through(&met, part, sigma, w);
+            *added += st.throughput / p_choice * seen(lit);
         }
-        if last {
+        if met.last {
             w.stats.pruned_by_depth += 1;
             return Next::End(End::DepthLimit);
         }
-        // The next direction and what the path carries along it.
-        let (dir, side, weight) = match part {
-            Part::Smooth(d) => {
-                let pick = w.rng.next_1d();
-                let dir = d.brdf.sample(at.n_shade, -ray.dir, pick, w.rng.next_2d());
-                let (f_cos, pdf) = part.eval(&at, dir);
-                if pdf <= 0.0 || f_cos == Color::ZERO {
-                    return Next::End(End::Absorbed);
-                }
-                st.came = Some(pdf);
-                // A diffuse surface sends on unpolarised light: the analyzer ends
-                // here, as what it makes of the light from now on.
-                if let Some(s) = &s_frame {
-                    st.throughput *= s.direct(material, &at, Color::ONE);
-                }
-                st.pol = None;
-                (dir, Side::Reflect, f_cos / pdf)
-            }
-            // (Never chosen: not among the scatter's parts.)
-            Part::Interface(_) => return Next::End(End::Absorbed),
-            Part::Lobe(lobe) => {
-                // Through a rough interface, the density of the path's own choice.
-                st.came = match &scatter.facets {
-                    Some(facets) => Some(facets.eval_path(&at, lobe.dir).1),
-                    None => lobe.pdf(&at, lobe.dir),
-                };
-                st.pol = s_frame.as_ref().map(|s| s.child(material, &at, lobe));
-                (lobe.dir, lobe.side, lobe.weight)
-            }
+        let next = next_direction(
+            st,
+            (part, &scatter, material),
+            &met,
+            s_frame.as_ref(),
+            w.rng,
+        );
+        let Some((dir, side, weight)) = next else {
+            return Next::End(End::Absorbed);
         };
         st.throughput *= weight / p_choice;
         if !st.survives_roulette(depth, w.rng) {
@@ -424,6 +389,40 @@ impl Tracer<'_> {
         }
         st.set_out(&at, &hit, side, dir, id, w.stats);
         Next::On
+    }
+
+    /// The light arriving at the vertex `met` through `part`: its light samples (those
+    /// leaving through the surface crossing a medium of absorption `beyond`), and for a
+    /// smooth part the point lights' caustics from this pass's photons.
+    fn lit_through<R: Recorder>(
+        &self,
+        met: &Meeting,
+        part: &Part,
+        beyond: Color,
+        w: &mut Walk<R>,
+    ) -> Color {
+        let v = Vertex {
+            ray: met.ray,
+            p: met.hit.surface.p,
+            at: met.at,
+            part,
+            sigma: met.sigma,
+            sigma_beyond: beyond,
+            alone: met.last,
+            id: met.id,
+        };
+        let mut lit = self.light_samples(&v, w);
+        // Recorded where a map would be gathered from even when there is none (no
+        // mirror-like object to aim at): a change may make one (a rough glass made smooth).
+        if let Part::Smooth(d) = part
+            && self.gathers_photons()
+        {
+            w.met.photons();
+            if let Some(map) = &self.photons {
+                lit += map.gather(v.p, met.at, &d.brdf, d.scale);
+            }
+        }
+        lit
     }
 
     /// The hit as its material sees it, for a path (or photon) through `media` carrying
@@ -538,6 +537,48 @@ impl Tracer<'_> {
         };
         w.rec.ray(|| shadow_node(v.id, &s, dist, seen.is_none(), c));
         c
+    }
+}
+
+/// The path's next direction through the `part` it chose of `scatter` at the vertex `met`
+/// (of `material`; `s_frame`, the camera's analyzer there), and what it carries along it (f cos θ / pdf, before the choice's
+/// chance): drawn from a smooth BRDF (the camera's analyzer ends there: a diffuse surface
+/// sends on unpolarised light), or a lobe's own. Sets the density the path drew it with,
+/// for the light it may meet. `None`: absorbed.
+fn next_direction<P: Polarization>(
+    st: &mut PathState<P>,
+    (part, scatter, material): (&Part, &Scatter, &Material),
+    met: &Meeting,
+    s_frame: Option<&P>,
+    rng: &mut SampleStream,
+) -> Option<(Vec3, Side, Color)> {
+    let at = met.at;
+    match part {
+        Part::Smooth(d) => {
+            let pick = rng.next_1d();
+            let dir = d.brdf.sample(at.n_shade, -met.ray.dir, pick, rng.next_2d());
+            let (f_cos, pdf) = part.eval(at, dir);
+            if pdf <= 0.0 || f_cos == Color::ZERO {
+                return None;
+            }
+            st.came = Some(pdf);
+            if let Some(s) = s_frame {
+                st.throughput *= s.direct(material, at, Color::ONE);
+            }
+            st.pol = None;
+            Some((dir, Side::Reflect, f_cos / pdf))
+        }
+        // (Never chosen: not among the scatter's parts.)
+        Part::Interface(_) => None,
+        Part::Lobe(lobe) => {
+            // Through a rough interface, the density of the path's own choice.
+            st.came = match &scatter.facets {
+                Some(facets) => Some(facets.eval_path(at, lobe.dir).1),
+                None => lobe.pdf(at, lobe.dir),
+            };
+            st.pol = s_frame.map(|s| s.child(material, at, lobe));
+            Some((lobe.dir, lobe.side, lobe.weight))
+        }
     }
 }
 
