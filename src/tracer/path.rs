@@ -545,6 +545,9 @@ impl Tracer<'_> {
 /// chance): drawn from a smooth BRDF (the camera's analyzer ends there: a diffuse surface
 /// sends on unpolarised light), or a lobe's own. Sets the density the path drew it with,
 /// for the light it may meet. `None`: absorbed.
+// Inlined into its one caller: callgrind counts 1 % fewer instructions on path.toml
+// with path tracing (95.07 M against 95.99 M, one thread, 4 spp).
+#[inline(always)]
 fn next_direction<P: Polarization>(
     st: &mut PathState<P>,
     (part, scatter, material): (&Part, &Scatter, &Material),
