@@ -3,8 +3,12 @@
 use crate::math::lanes::{RayOf, Real, Vector};
 use crate::math::rng::SobolLanes;
 use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk_of};
+use crate::optics::lens::{LensModel, RealLens, stopped_f_number};
 use crate::params::Params;
 use glam::Vec2;
+
+/// Millimetres per scene unit: a scene unit is a metre, a lens prescription is in mm.
+const MM: f32 = 1000.0;
 
 /// Where the camera is and what it sees.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -22,7 +26,10 @@ pub struct Camera {
 /// The lens and shutter settings of one render (from [`Params`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Exposure {
-    /// Lens radius; 0 is a pinhole (everything sharp).
+    /// The thin lens, or a real design.
+    pub lens: LensModel,
+    /// Lens radius (a real lens's entrance pupil radius); 0 is a pinhole (everything
+    /// sharp).
     pub aperture: f32,
     /// Distance from the lens to the plane in focus, along the view direction.
     pub focus_distance: f32,
@@ -106,6 +113,8 @@ pub struct CameraFrame {
     aperture: f32,
     focus_distance: f32,
     shutter: (f32, f32),
+    /// A real lens, traced through its glass; `None`: the thin lens (or pinhole).
+    real: Option<RealLens>,
 }
 
 impl Camera {
@@ -166,6 +175,7 @@ impl Camera {
     /// distance) and shutter interval.
     pub fn exposure(&self, params: &Params) -> Exposure {
         Exposure {
+            lens: params.lens,
             aperture: params.aperture,
             focus_distance: params
                 .focus_distance
@@ -174,12 +184,19 @@ impl Camera {
         }
     }
 
-    /// The f-number of a lens of radius `aperture` on a 35 mm camera (24 mm film height)
-    /// with this vertical field of view, taking one scene unit as a metre:
-    /// N = focal length / diameter, focal length = 12 mm / tan(fov/2). `None` for a pinhole.
-    pub fn f_number(&self, aperture: f32) -> Option<f32> {
+    /// The f-number of `lens` at radius `aperture`. The thin lens's is that of a lens on a
+    /// 35 mm camera (24 mm film height) with this vertical field of view, taking one scene
+    /// unit as a metre: N = focal length / diameter, focal length = 12 mm / tan(fov/2);
+    /// `None` for a pinhole. A real lens's is its own focal length over the entrance pupil
+    /// it is stopped to (it has no pinhole: its stop closes no further than
+    /// [`RealLens::new`] allows).
+    pub fn f_number(&self, lens: LensModel, aperture: f32) -> Option<f32> {
+        let pupil_mm = 2.0 * aperture * MM;
+        if let Some(real) = lens.prescription() {
+            return stopped_f_number(&real, pupil_mm).map(|n| n as f32);
+        }
         let focal_mm = 12.0 / (self.fov_deg.to_radians() * 0.5).tan();
-        (aperture > 0.0).then(|| focal_mm / (2000.0 * aperture))
+        (aperture > 0.0).then(|| focal_mm / pupil_mm)
     }
 
     /// A pinhole's frame for an image of the given aspect ratio (width / height).
@@ -187,6 +204,7 @@ impl Camera {
         self.frame(
             aspect,
             Exposure {
+                lens: LensModel::Thin,
                 aperture: 0.0,
                 focus_distance: self.look_distance(),
                 shutter: (0.0, 0.0),
@@ -200,6 +218,10 @@ impl Camera {
         let right = forward.cross(self.up).normalize();
         let up = right.cross(forward);
         let half_h = (self.fov_deg.to_radians() * 0.5).tan();
+        let real = exposure.lens.prescription().and_then(|lens| {
+            let (focus, pupil) = (exposure.focus_distance * MM, 2.0 * exposure.aperture * MM);
+            RealLens::new(&lens, focus, pupil, self.fov_deg, aspect, false)
+        });
         CameraFrame {
             origin: self.position,
             forward,
@@ -210,6 +232,7 @@ impl Camera {
             aperture: exposure.aperture,
             focus_distance: exposure.focus_distance,
             shutter: exposure.shutter,
+            real,
         }
     }
 }
@@ -229,10 +252,24 @@ impl CameraFrame {
         CameraSample::draw_lanes(u, lens, shutter)
     }
 
-    /// Whether its samples draw a lens point and a time: where it has a lens, and an open
-    /// shutter.
+    /// Whether its samples draw a lens point and a time: where it has a lens (a real one
+    /// always has), and an open shutter.
     fn draws(&self) -> (bool, bool) {
-        (self.aperture > 0.0, self.shutter.1 > self.shutter.0)
+        (
+            self.aperture > 0.0 || self.real.is_some(),
+            self.shutter.1 > self.shutter.0,
+        )
+    }
+
+    /// Whether its rays are made `N` at a time in lanes ([`CameraFrame::ray_of`]): the
+    /// thin lens's are; a real lens's are traced one by one through its glass.
+    pub(crate) fn in_lanes(&self) -> bool {
+        self.real.is_none()
+    }
+
+    /// The real lens, if the camera has one.
+    pub fn real_lens(&self) -> Option<&RealLens> {
+        self.real.as_ref()
     }
 
     /// The eye ray through `film`, the image position with (0, 0) at the top-left corner and
@@ -241,14 +278,43 @@ impl CameraFrame {
     ///
     /// Thin lens: every ray through one film point meets the plane of focus at the point the
     /// pinhole ray meets it, so that plane is sharp and everything else blurs.
+    ///
+    /// A real lens: the ray leaves its front surface, NaN where the lens blocks it.
     #[inline]
     pub fn ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> Ray {
-        self.ray_of(film.x, film.y, lens.x, lens.y, time_u).into()
+        self.weighed_ray(film, lens, time_u).0
+    }
+
+    /// [`CameraFrame::ray`], with what its radiance counts for: 1 through the thin lens;
+    /// through a real one, the share of the pupil it stands for ([`RealLens::ray`]), 0
+    /// where the lens blocks it.
+    #[inline(always)]
+    pub fn weighed_ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> (Ray, f32) {
+        let Some(real) = &self.real else {
+            return (
+                self.ray_of(film.x, film.y, lens.x, lens.y, time_u).into(),
+                1.0,
+            );
+        };
+        let time = self.shutter.0 + time_u * (self.shutter.1 - self.shutter.0);
+        match real.ray(film, lens, None) {
+            Some(r) => {
+                // Lens space to the scene: x right, y up, z along the view, mm to units.
+                let world = |v: Vec3| v.x * self.lens_u + v.y * self.lens_v + v.z * self.forward;
+                let ray = Ray::new(self.origin + world(r.origin) / MM, world(r.dir), time);
+                (ray, r.weight)
+            }
+            None => (
+                Ray::new(Vec3::splat(f32::NAN), Vec3::splat(f32::NAN), time),
+                0.0,
+            ),
+        }
     }
 
     /// [`CameraFrame::ray`] for one ray or one per lane, the film position (`film_x`,
     /// `film_y`), the lens sample (`lens_x`, `lens_y`) and the time sample given
-    /// coordinate by coordinate.
+    /// coordinate by coordinate: the thin lens (or pinhole) only, see
+    /// [`CameraFrame::in_lanes`].
     #[inline(always)]
     pub(crate) fn ray_of<R: Real>(
         &self,
@@ -360,9 +426,15 @@ mod tests {
         // 2 atan(12/28) vertical is a 28 mm lens on 35 mm film; a 1.75 mm radius is f/8.
         let fov = 2.0 * (12.0f32 / 28.0).atan().to_degrees();
         let c = Camera::looking_at(Vec3::ZERO, -Vec3::Z, Vec3::Y, fov);
-        let n = c.f_number(0.00175).unwrap();
+        let n = c.f_number(LensModel::Thin, 0.00175).unwrap();
         assert!((n - 8.0).abs() < 1e-3, "{n}");
-        assert_eq!(c.f_number(0.0), None);
+        assert_eq!(c.f_number(LensModel::Thin, 0.0), None);
+        // The double Gauss is f/2 open: a 50 mm pupil would be wider than it opens.
+        let n = c.f_number(LensModel::DoubleGauss50, 0.025).unwrap();
+        assert!((n - 2.0).abs() < 0.1, "{n}");
+        // Stopped to a 6.25 mm pupil (radius 3.125 mm) it is f/8.
+        let n = c.f_number(LensModel::DoubleGauss50, 0.003125).unwrap();
+        assert!((n - 8.0).abs() < 0.05, "{n}");
     }
 
     #[test]
@@ -379,6 +451,7 @@ mod tests {
         let f = c.frame(
             1.0,
             Exposure {
+                lens: LensModel::Thin,
                 aperture: 0.5,
                 focus_distance: 3.0,
                 shutter: (0.0, 0.0),
@@ -404,6 +477,7 @@ mod tests {
         use crate::math::lanes::Lanes;
         let c = cam();
         let lens = Exposure {
+            lens: LensModel::Thin,
             aperture: 0.3,
             focus_distance: 4.5,
             shutter: (0.25, 0.75),

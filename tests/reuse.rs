@@ -5,6 +5,8 @@
 //! transport, walked by the recursion and by the waves at every width.
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
 use raylab::math::Color;
 use raylab::math::lanes::Width;
 use raylab::optics::FresnelMode;
@@ -31,18 +33,7 @@ impl PassObserver for StopAfter {
 
 /// `params` rendered afresh to its target.
 fn fresh(scene: &Scene, params: &Params, traversal: Traversal) -> Film {
-    let mut film = Film::new(SIZE.0, SIZE.1);
-    render_pass_by(
-        traversal,
-        scene,
-        &scene.camera,
-        params,
-        &mut film,
-        params.spp,
-        &(),
-    )
-    .unwrap();
-    film
+    common::render_by(traversal, scene, params, SIZE)
 }
 
 /// `old` rendered to its target but for a last pass stopped half-way (if `ragged`), then

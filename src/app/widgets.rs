@@ -5,7 +5,7 @@
 use crate::camera::Camera;
 use crate::material::Material;
 use crate::optics::{FresnelMode, brewster_angle, critical_angle};
-use crate::params::{Kind, Params, SliderRange, choice_of, choices, spec};
+use crate::params::{Kind, LensModel, Params, SliderRange, choice_of, choices, spec};
 use crate::scene::Scene;
 use egui::{ComboBox, DragValue, Slider, Ui};
 
@@ -221,6 +221,7 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
             });
         }
         "transport" => choice_menu(ui, name, &mut p.transport, None),
+        "lens" => choice_menu(ui, name, &mut p.lens, None),
         "spp" => {
             slider_ui(ui, &mut p.spp, name);
             ui.checkbox(c.unlimited, "Keep refining")
@@ -259,9 +260,13 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
             slider_ui(ui, &mut p.aperture, name);
             let f = c
                 .camera
-                .f_number(p.aperture)
+                .f_number(p.lens, p.aperture)
                 .map_or("pinhole".to_string(), |n| format!("f/{n:.1}"));
-            ui.label(format!("{f} (35 mm equivalent, 1 unit = 1 m)"));
+            if p.lens == LensModel::Thin {
+                ui.label(format!("{f} (35 mm equivalent, 1 unit = 1 m)"));
+            } else {
+                ui.label(format!("{f} (the lens's own focal length, 1 unit = 1 m)"));
+            }
         }
         "focus_distance" => focus_ui(ui, c),
         "polarizer" => polarizer_ui(ui, p),

@@ -5,6 +5,7 @@
 //! light arrives from, `n2` the other side's.
 
 pub mod dispersion;
+pub mod lens;
 pub mod microfacet;
 pub mod polarization;
 

@@ -6,6 +6,7 @@ mod table;
 
 pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
+pub use crate::optics::lens::LensModel;
 use serde::{Deserialize, Serialize};
 pub use table::{
     ABBE_RANGE, Choice, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, ROUGHNESS_RANGE,
@@ -112,7 +113,10 @@ pub struct Params {
     /// material's own.
     #[serde(deserialize_with = "real::optional")]
     pub phong_exponent: Option<f32>,
-    /// Lens radius of the thin-lens camera, in scene units; 0 is a pinhole.
+    /// The camera's lens: the thin lens, or a real design traced through its glass.
+    pub lens: LensModel,
+    /// Lens radius of the thin-lens camera, in scene units; 0 is a pinhole. A real lens is
+    /// stopped down to an entrance pupil of this radius.
     #[serde(deserialize_with = "real::required")]
     pub aperture: f32,
     /// Distance from the lens to the plane in focus; `None` focuses on the camera's
@@ -250,6 +254,7 @@ impl Default for Params {
             min_weight: 0.001,
             light_size: 1.0,
             phong_exponent: None,
+            lens: LensModel::Thin,
             aperture: 0.0,
             focus_distance: None,
             shutter_open: 0.0,

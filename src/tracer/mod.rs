@@ -234,7 +234,7 @@ impl<'a> Tracer<'a> {
     /// records it; `None` where it first meets anything else, a light, or nothing. The
     /// interface workbench outlines the pixels at its angle by it.
     pub fn first_incidence(&self, x: u32, y: u32, sample: u32) -> Option<f32> {
-        let (_, ray) = self.camera_sample(x, y, sample);
+        let (_, ray, _) = self.camera_sample(x, y, sample);
         let hit = self.scene.intersect(&ray, f32::INFINITY)?;
         let mut nearest = hit.surface.t;
         if self.light_seen(&ray, &mut nearest).is_some() {
@@ -267,8 +267,12 @@ impl<'a> Tracer<'a> {
         rec: &mut R,
     ) -> (Color, Met) {
         let p = self.params;
-        let (mut rng, ray) = self.camera_sample(x, y, sample);
+        let (mut rng, ray, weight) = self.camera_sample(x, y, sample);
         stats.samples += 1;
+        if weight == 0.0 {
+            // The lens blocked it: black, and counted.
+            return (Color::ZERO, Met::default());
+        }
         if !(ray.origin.is_finite() && ray.dir.is_finite()) {
             // Not traced: the kernel counts and drops the sample, where the background
             // would have turned a NaN direction into a colour.
@@ -297,15 +301,18 @@ impl<'a> Tracer<'a> {
                 self.trace_in(&ray, root, &media, &mut walk, &analyzer)
             }
         };
-        (c, walk.met)
+        // (× 1 through the thin lens: the same bits.)
+        (c * weight, walk.met)
     }
 
-    /// Sample `sample` of pixel (x, y): its camera ray, and its random numbers from the
-    /// tree's first dimension on (the camera's are drawn first).
+    /// Sample `sample` of pixel (x, y): its camera ray and what its radiance counts for
+    /// ([`CameraFrame::weighed_ray`]), and its random numbers from the tree's first
+    /// dimension on (the camera's are drawn first).
     #[inline(always)]
-    fn camera_sample(&self, x: u32, y: u32, sample: u32) -> (SampleStream, Ray) {
+    fn camera_sample(&self, x: u32, y: u32, sample: u32) -> (SampleStream, Ray, f32) {
         let (rng, cs) = self.camera_draw(x, y, sample);
-        (rng, self.camera_ray(x, y, &cs))
+        let (ray, weight) = self.camera_ray(x, y, &cs);
+        (rng, ray, weight)
     }
 
     /// Sample `sample` of pixel (x, y): its random numbers, with the camera's drawn.
@@ -323,16 +330,23 @@ impl<'a> Tracer<'a> {
         (rng, cs)
     }
 
-    /// The camera ray of pixel (x, y) for the camera sample `cs`.
+    /// The camera ray of pixel (x, y) for the camera sample `cs`, and what its radiance
+    /// counts for (0: the lens blocks it).
     #[inline(always)]
-    fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> Ray {
+    fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> (Ray, f32) {
+        if !self.frame.in_lanes() {
+            let film = (Vec2::new(x as f32, y as f32) + cs.pixel)
+                / Vec2::new(self.width as f32, self.height as f32);
+            return self.frame.weighed_ray(film, cs.lens, cs.time);
+        }
         let (pixel, lens) = ((cs.pixel.x, cs.pixel.y), (cs.lens.x, cs.lens.y));
-        self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time)
-            .into()
+        let ray = self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time);
+        (ray.into(), 1.0)
     }
 
     /// [`Tracer::camera_ray`] for one ray or one per lane: the pixel (x, y), and the camera
-    /// sample's position in it, lens point and time, coordinate by coordinate.
+    /// sample's position in it, lens point and time, coordinate by coordinate. A frame
+    /// [`CameraFrame::in_lanes`] only.
     #[inline(always)]
     fn camera_ray_of<R: Real>(
         &self,

@@ -79,6 +79,27 @@ pub fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
         .install(f)
 }
 
+/// `params`' samples of `scene` at `size`, traced by `traversal`, in one pass.
+pub fn render_by(
+    traversal: raylab::tracer::Traversal,
+    scene: &raylab::scene::Scene,
+    params: &raylab::params::Params,
+    size: (u32, u32),
+) -> raylab::render::Film {
+    let mut film = raylab::render::Film::new(size.0, size.1);
+    raylab::render::render_pass_by(
+        traversal,
+        scene,
+        &scene.camera,
+        params,
+        &mut film,
+        params.spp,
+        &(),
+    )
+    .expect("a render of a valid scene");
+    film
+}
+
 /// A film's pixels as bits, for comparisons that must be exact.
 pub fn bits(film: &raylab::render::Film) -> Vec<[u32; 3]> {
     film.pixels()

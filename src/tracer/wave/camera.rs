@@ -20,24 +20,25 @@ pub(super) struct CameraRays<'a, 't> {
 }
 
 impl CameraRays<'_, '_> {
-    /// A sample's slot (its stream `rng`), and its root: its camera ray's node, if the ray
-    /// can be traced (`ray` finite; `None`: not).
+    /// A sample's slot (its stream `rng`, its camera ray's `weight`), and its root: its
+    /// camera ray's node, if the ray can be traced (`ray` finite; `None`: not).
     #[inline(always)]
-    fn push(&mut self, rng: SampleStream, ray: Option<&Ray>) {
+    fn push(&mut self, rng: SampleStream, ray: Option<&Ray>, weight: f32) {
         let node = ray.map(|ray| {
             let node = Node::new(self.slots.len() as u32, 0, 1.0, None);
             self.level.push(ray, node)
         });
-        self.push_slot(rng, node);
+        self.push_slot(rng, node, weight);
     }
 
     #[inline(always)]
-    fn push_slot(&mut self, rng: SampleStream, root: Option<u32>) {
+    fn push_slot(&mut self, rng: SampleStream, root: Option<u32>, weight: f32) {
         self.stats.samples += 1;
         self.stats.camera_rays += root.is_some() as u64;
         self.roots.push(root);
         self.slots.push(Slot {
             rng,
+            weight,
             tree_rays: 0,
             rays: root.is_some() as u32,
             met: Met::default(),
@@ -53,7 +54,8 @@ impl LaneKernel for CameraRays<'_, '_> {
         self.roots.clear();
         self.level.clear();
         let t = self.tracer;
-        let sobol = t.params.pattern == Pattern::Sobol;
+        // A real lens's rays are traced through its glass one by one.
+        let sobol = t.params.pattern == Pattern::Sobol && t.frame.in_lanes();
         let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
         let (chunks, rest) = self.samples.split_at(in_lanes);
         for chunk in chunks.chunks_exact(N) {
@@ -85,6 +87,7 @@ impl LaneKernel for CameraRays<'_, '_> {
                 self.roots.extend((first..first + N as u32).map(Some));
                 self.slots.extend((0..N).map(|i| Slot {
                     rng: lanes.stream(i),
+                    weight: 1.0,
                     tree_rays: 0,
                     rays: 1,
                     met: Met::default(),
@@ -93,15 +96,15 @@ impl LaneKernel for CameraRays<'_, '_> {
                 for i in 0..N {
                     let ray = rays.get(i);
                     let traced = ray.origin.is_finite() && ray.dir.is_finite();
-                    self.push(lanes.stream(i), traced.then_some(&ray));
+                    self.push(lanes.stream(i), traced.then_some(&ray), 1.0);
                 }
             }
         }
         for &(x, y, s) in rest {
             let (rng, cs) = t.camera_draw(x, y, s);
-            let ray = t.camera_ray(x, y, &cs);
-            let traced = ray.origin.is_finite() && ray.dir.is_finite();
-            self.push(rng, traced.then_some(&ray));
+            let (ray, weight) = t.camera_ray(x, y, &cs);
+            let traced = weight > 0.0 && ray.origin.is_finite() && ray.dir.is_finite();
+            self.push(rng, traced.then_some(&ray), weight);
         }
     }
 }

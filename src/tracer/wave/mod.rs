@@ -302,7 +302,14 @@ impl Tracer<'_> {
         sum_levels(&levels[..depth], radiance, below);
         traced.clear();
         traced.extend(roots.iter().zip(slots.iter()).map(|(root, slot)| Traced {
-            radiance: root.map_or(Color::NAN, |r| below[r as usize]),
+            // The camera's weight as the recursion applies it (× 1 through the thin lens);
+            // black where a real lens blocked the ray, NaN for one that could not be
+            // traced.
+            radiance: match *root {
+                Some(r) => below[r as usize] * slot.weight,
+                None if slot.weight == 0.0 => Color::ZERO,
+                None => Color::NAN,
+            },
             rays: slot.rays,
             met: slot.met,
         }));

@@ -72,6 +72,9 @@ pub(super) struct Level {
 /// A sample's state while its tree is traced.
 pub(super) struct Slot {
     pub(super) rng: SampleStream,
+    // What its radiance counts for: its camera ray's weight (1 but through a real lens;
+    // 0 where the lens blocked it).
+    pub(super) weight: f32,
     pub(super) tree_rays: u32,
     pub(super) rays: u32,
     // What the sample met that a parameter governs.

@@ -1,0 +1,146 @@
+//! The real lens in whole renders: the waves trace its rays as the recursion does, bit for
+//! bit; focused where the thin lens is, it makes the thin lens's picture in the band that
+//! is in focus; out of focus it does not.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use glam::Vec2;
+use raylab::math::Color;
+use raylab::math::lanes::Width;
+use raylab::params::{LensModel, Params};
+use raylab::render::Film;
+use raylab::scene::Scene;
+use raylab::tracer::{Traversal, pick};
+
+fn render(scene: &Scene, params: &Params, size: (u32, u32), traversal: Traversal) -> Film {
+    common::render_by(traversal, scene, params, size)
+}
+
+#[test]
+fn every_width_traces_every_design_as_the_recursion_does() {
+    let scene = Scene::load("depth-of-field").unwrap();
+    for lens in LensModel::DESIGNS {
+        let params = Params {
+            spp: 4,
+            lens,
+            ..scene.params.clone()
+        };
+        let reference = render(&scene, &params, (40, 30), Traversal::Recursive);
+        // The lens blocks some rays (black) and lets most through.
+        let lit = reference.pixels().filter(|p| p.max_element() > 0.0).count();
+        assert!(lit > 40 * 30 / 3, "{lens:?}: {lit} pixels lit");
+        for w in Width::ALL.into_iter().filter(|w| w.runs_here()) {
+            let film = render(&scene, &params, (40, 30), Traversal::Waves(w));
+            assert_eq!(
+                common::bits(&film),
+                common::bits(&reference),
+                "{lens:?}: {w:?} lanes"
+            );
+            assert_eq!(film.cost(), reference.cost(), "{lens:?}: {w:?}: rays");
+        }
+    }
+}
+
+/// The depth-of-field scene through `lens` at radius `aperture`, focused at `focus`,
+/// with `seed`.
+fn dof(lens: LensModel, aperture: f32, focus: f32, seed: u64) -> Film {
+    let scene = Scene::load("depth-of-field").unwrap();
+    let params = Params {
+        spp: 64,
+        lens,
+        aperture,
+        focus_distance: Some(focus),
+        seed,
+        ..scene.params.clone()
+    };
+    render(&scene, &params, SIZE, Traversal::Recursive)
+}
+
+const SIZE: (u32, u32) = (384, 216);
+
+/// The band of the floor in focus: the pixels near the middle of the picture (within a
+/// quarter of its half-diagonal, where the double Gauss's distortion moves the image by
+/// under a tenth of a pixel) whose pinhole ray meets the floor within 4 % of the focus
+/// distance. (The spheres' highlights are left out: where a highlight is depends on
+/// where it is seen from, and the real lens sees from its entrance pupil, centimetres
+/// from the thin lens's centre.)
+fn in_focus_band(focus: f32) -> Vec<usize> {
+    let scene = Scene::load("depth-of-field").unwrap();
+    let aspect = SIZE.0 as f32 / SIZE.1 as f32;
+    let hit = |film: Vec2| pick(&scene, &scene.camera, aspect, film);
+    // The middle of the picture's bottom edge is the floor.
+    let floor = hit(Vec2::new(0.5, 0.99)).unwrap().object;
+    let mut band = Vec::new();
+    for y in 0..SIZE.1 {
+        for x in 0..SIZE.0 {
+            let film = Vec2::new(
+                (x as f32 + 0.5) / SIZE.0 as f32,
+                (y as f32 + 0.5) / SIZE.1 as f32,
+            );
+            let off = (film - Vec2::splat(0.5)) * Vec2::new(aspect, 1.0);
+            let near_middle = off.length() < Vec2::new(aspect, 1.0).length() / 8.0;
+            let sharp = hit(film)
+                .is_some_and(|p| p.object == floor && (p.depth / focus - 1.0).abs() < 0.04);
+            if near_middle && sharp {
+                band.push((y * SIZE.0 + x) as usize);
+            }
+        }
+    }
+    band
+}
+
+/// The root mean square over `band` of the difference of `a` and `b`'s luminance.
+fn rms_difference(a: &Film, b: &Film, band: &[usize]) -> f32 {
+    let luminance = |c: Color| c.dot(Color::new(0.2126, 0.7152, 0.0722));
+    let (a, b): (Vec<Color>, Vec<Color>) = (a.pixels().collect(), b.pixels().collect());
+    let sum: f32 = band
+        .iter()
+        .map(|&i| (luminance(a[i]) - luminance(b[i])).powi(2))
+        .sum();
+    (sum / band.len() as f32).sqrt()
+}
+
+#[test]
+fn focused_alike_the_real_and_thin_lens_agree_in_the_band_in_focus() {
+    // The double Gauss at f/4 (a 6.25 mm pupil radius: wide open at f/2 its front and
+    // rear elements cut the pupil off the axis, vignetting the band) and a thin lens of
+    // the same radius, both focused on the third sphere.
+    let (focus, aperture) = (6.0, 0.00625);
+    let band = in_focus_band(focus);
+    assert!(band.len() > 200, "{} pixels in focus", band.len());
+    let (thin, real) = (LensModel::Thin, LensModel::DoubleGauss50);
+    let agree = rms_difference(
+        &dof(thin, aperture, focus, 0),
+        &dof(real, aperture, focus, 0),
+        &band,
+    );
+    // Two images of one lens with other seeds differ by their noise alone, √2 σ; a thin
+    // and a real one by √(σ_thin² + σ_real²) where they agree (the real lens adds noise:
+    // some of its rays are blocked in the pupil's bounds), and by what its distortion
+    // moves: the checker's edges, by under a tenth of a pixel here (0.2 % pincushion 30
+    // pixels from the middle), a pixel on an edge of contrast 0.7 by under 0.07, an rms
+    // over the band of 0.01.
+    let noise = |lens| {
+        let a = dof(lens, aperture, focus, 0);
+        rms_difference(&a, &dof(lens, aperture, focus, 1), &band)
+    };
+    let (thin_noise, real_noise) = (noise(thin), noise(real));
+    let expected = ((thin_noise.powi(2) + real_noise.powi(2)) / 2.0).sqrt();
+    let tolerance = 1.2 * expected.hypot(0.01);
+    assert!(
+        agree < tolerance,
+        "real against thin {agree}, noise {thin_noise} thin, {real_noise} real"
+    );
+    // Focused at 1 m, the band blurs (by 62 mm at 6 m, over three pixels) and the test
+    // sees it.
+    let blurred = rms_difference(
+        &dof(thin, aperture, focus, 0),
+        &dof(real, aperture, 1.0, 0),
+        &band,
+    );
+    assert!(
+        blurred > 2.0 * tolerance,
+        "misfocused {blurred}, {tolerance}"
+    );
+}
