@@ -124,6 +124,10 @@ enum Command {
     /// its camera ray and first normal, the angles and indices at each interface), or the
     /// interface workbench at one angle (--angle), as an SVG or a PNG.
     Section(SectionArgs),
+    /// Print a lens prescription's paraxial description (from its ray-transfer matrices):
+    /// effective, back and front focal lengths, entrance pupil, f-number and field of
+    /// view on 35 mm film. Built-in designs by name, or prescription files.
+    Lens(cli::lens::LensArgs),
     /// Print the completion script for a shell (bash, zsh, fish, powershell, elvish), e.g.
     /// `raylab completions bash > ~/.local/share/bash-completion/completions/raylab`.
     Completions {
@@ -313,6 +317,7 @@ fn run(cli: Cli) -> Result<()> {
         Some(Command::Inspect(args)) => inspect_command(&args),
         Some(Command::Section(args)) => section_command(&args),
         Some(Command::Compare(args)) => cli::compare::compare_command(&args),
+        Some(Command::Lens(args)) => cli::lens::lens_command(&args),
         Some(Command::Completions { shell }) => cli::shell::completions(shell, Cli::command()),
         Some(Command::Man) => cli::shell::man(Cli::command()),
         Some(Command::Lecture { markdown: true }) => {

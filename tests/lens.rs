@@ -118,7 +118,7 @@ fn focused_alike_the_real_and_thin_lens_agree_in_the_band_in_focus() {
     // Two images of one lens with other seeds differ by their noise alone, √2 σ; a thin
     // and a real one by √(σ_thin² + σ_real²) where they agree (the real lens adds noise:
     // some of its rays are blocked in the pupil's bounds), and by what its distortion
-    // moves: the checker's edges, by under a tenth of a pixel here (0.2 % pincushion 30
+    // moves: the checker's edges, by under a tenth of a pixel here (0.2 % barrel distortion 30
     // pixels from the middle), a pixel on an edge of contrast 0.7 by under 0.07, an rms
     // over the band of 0.01.
     let noise = |lens| {
@@ -143,4 +143,61 @@ fn focused_alike_the_real_and_thin_lens_agree_in_the_band_in_focus() {
         blurred > 2.0 * tolerance,
         "misfocused {blurred}, {tolerance}"
     );
+}
+
+#[test]
+fn lens_prints_the_paraxial_description_of_a_design_or_a_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = |args: &[&str]| {
+        let o = common::raylab(args, d);
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    // Every built-in design, the double Gauss at its published 50 mm and f/2.
+    let all = out(&["lens"]);
+    for name in ["double-gauss-50", "wide-22", "telephoto-250", "singlet-50"] {
+        assert!(all.contains(&format!("{name} (built in)")), "{all}");
+    }
+    let dgauss = out(&["lens", "double-gauss-50"]);
+    assert!(
+        dgauss.contains("effective focal length  49.999 mm"),
+        "{dgauss}"
+    );
+    assert!(dgauss.contains("f/2.03"), "{dgauss}");
+    // A biconvex lens in air, R = ±100 mm, 10 mm of n = 1.5, stop at its front: the thick
+    // lensmaker's equation 1/f = (n − 1)(2/R − (n − 1) d / (n R²)) gives f = 101.695 mm,
+    // its back focal length f (1 − (n − 1) d / (n R)) = 98.305 mm; a 20 mm stop in air is
+    // its own entrance pupil (f/5.08); on 24 mm film height it sees 2 atan(12 / f).
+    std::fs::write(
+        d.join("biconvex.lens"),
+        "# a test lens\n0 0 0 20\n100 10 1.5 40\n-100 0 1 40\n",
+    )
+    .unwrap();
+    let file = out(&["lens", "biconvex.lens"]);
+    for expected in [
+        "biconvex.lens (file): 1 element, 3 surfaces, the stop at surface 1",
+        "effective focal length  101.695 mm",
+        "back focal length       98.305 mm",
+        "entrance pupil          20.000 mm",
+        "f-number                f/5.08",
+        "× 13.5°",
+        "no Abbe numbers",
+    ] {
+        assert!(
+            file.contains(expected),
+            "`{expected}` missing from:\n{file}"
+        );
+    }
+    // Bad input: one line, with the file, line and column.
+    std::fs::write(d.join("bad.lens"), "0 0 0 20\n100 10 1.5 4O\n").unwrap();
+    let err = common::fails(
+        &["lens", "bad.lens"],
+        d,
+        "bad.lens:2:12: `4O` is not a number",
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    common::fails(&["lens", "no-such.lens"], d, "neither a built-in design");
+    std::fs::write(d.join("flat.lens"), "0 0 0 20\n0 10 1.5 40\n0 0 1 40\n").unwrap();
+    common::fails(&["lens", "flat.lens"], d, "flat.lens: no paraxial focus");
 }

@@ -5,6 +5,7 @@ mod bench_slides;
 pub mod compare;
 mod crop;
 pub mod inspect;
+pub mod lens;
 pub mod output;
 pub mod progress;
 mod reference;

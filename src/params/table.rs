@@ -393,7 +393,7 @@ pub const TABLE: &[Spec] = &[
             choice(
                 "telephoto-250",
                 "telephoto 250 mm f/5.6",
-                "A real telephoto of five elements (Sigler): a small image circle, so a wide view darkens towards the corners.",
+                "A real telephoto of four elements (Sigler): a small image circle, so a wide view darkens towards the corners, and pincushion distortion.",
             ),
             choice(
                 "singlet-50",

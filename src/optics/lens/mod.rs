@@ -6,8 +6,8 @@
 //!
 //! ```text
 //! # radius  thickness  ior    aperture  abbe
-//!   29.475  3.76       1.67   25.2      47.1
-//!   0       4.5        0      17.1            # radius 0 and ior 0: the stop
+//!   29.265  3.733      1.67   25.02     47.1
+//!   0       4.468      0      16.98           # radius 0 and ior 0: the stop
 //! ```
 //!
 //! - `radius`: of the surface's sphere; positive when its centre is behind the surface
@@ -19,8 +19,9 @@
 //! - `abbe` (optional): the Abbe number of that medium, for dispersion (0 or absent: none).
 //!
 //! The stop is the row with radius 0 and ior 0 (exactly one); stopping the lens down
-//! shrinks it. [`LensModel`] names the shipped designs, [`paraxial`] gives the focal lengths and f-number from ray-transfer
-//! matrices, [`RealLens`] traces rays through the glass.
+//! shrinks it. [`LensModel`] names the shipped designs, [`paraxial`] gives the focal
+//! lengths and f-number from ray-transfer matrices, [`RealLens`] traces rays through the
+//! glass. docs/scenes.md ("Real lenses") is the user's page for all of it.
 
 mod camera;
 pub mod paraxial;
