@@ -3,7 +3,7 @@
 use crate::math::lanes::{RayOf, Real, Vector};
 use crate::math::rng::SobolLanes;
 use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk_of};
-use crate::optics::lens::{LensModel, RealLens, stopped_f_number};
+use crate::optics::lens::{LensModel, LensRay, RealLens, stopped_f_number};
 use crate::params::Params;
 use glam::Vec2;
 
@@ -296,8 +296,29 @@ impl CameraFrame {
                 1.0,
             );
         };
+        self.out_of_lens(real.ray(film, lens, None), time_u)
+    }
+
+    /// [`CameraFrame::weighed_ray`] for `N` samples through a real lens, its glass traced
+    /// in lanes: each the same bits as alone.
+    #[inline(always)]
+    pub(crate) fn weighed_rays<const N: usize>(
+        &self,
+        real: &RealLens,
+        film: [Vec2; N],
+        lens: [Vec2; N],
+        time_u: [f32; N],
+    ) -> [(Ray, f32); N] {
+        let rays = real.rays(film, lens);
+        std::array::from_fn(|i| self.out_of_lens(rays[i], time_u[i]))
+    }
+
+    /// The scene's ray (and weight) of a ray out of the real lens at time sample `time_u`;
+    /// a NaN ray of weight 0 where the lens blocked it.
+    #[inline(always)]
+    fn out_of_lens(&self, ray: Option<LensRay>, time_u: f32) -> (Ray, f32) {
         let time = self.shutter.0 + time_u * (self.shutter.1 - self.shutter.0);
-        match real.ray(film, lens, None) {
+        match ray {
             Some(r) => {
                 // Lens space to the scene: x right, y up, z along the view, mm to units.
                 let world = |v: Vec3| v.x * self.lens_u + v.y * self.lens_v + v.z * self.forward;

@@ -73,9 +73,9 @@ fn describe(lens: &Prescription, origin: &str) -> Result<Vec<String>> {
     let (w, h) = FILM_MM;
     let diagonal = w.hypot(h);
     let dispersion = if lens.disperses() {
-        "Abbe numbers given: colour fringes with dispersion on"
+        "Abbe numbers given for its glass"
     } else {
-        "no Abbe numbers: the same for every wavelength"
+        "no Abbe numbers"
     };
     let rows = [
         ("effective focal length", format!("{:.3} mm", p.efl)),

@@ -335,13 +335,20 @@ impl<'a> Tracer<'a> {
     #[inline(always)]
     fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> (Ray, f32) {
         if !self.frame.in_lanes() {
-            let film = (Vec2::new(x as f32, y as f32) + cs.pixel)
-                / Vec2::new(self.width as f32, self.height as f32);
-            return self.frame.weighed_ray(film, cs.lens, cs.time);
+            return self
+                .frame
+                .weighed_ray(self.film_at(x, y, cs), cs.lens, cs.time);
         }
         let (pixel, lens) = ((cs.pixel.x, cs.pixel.y), (cs.lens.x, cs.lens.y));
         let ray = self.camera_ray_of((x as f32, y as f32), pixel, lens, cs.time);
         (ray.into(), 1.0)
+    }
+
+    /// The image position (0 to 1 across and down) of camera sample `cs` of pixel (x, y).
+    #[inline(always)]
+    pub(super) fn film_at(&self, x: u32, y: u32, cs: &CameraSample) -> Vec2 {
+        (Vec2::new(x as f32, y as f32) + cs.pixel)
+            / Vec2::new(self.width as f32, self.height as f32)
     }
 
     /// [`Tracer::camera_ray`] for one ray or one per lane: the pixel (x, y), and the camera

@@ -12,6 +12,7 @@
 use super::trace::Layout;
 use super::{Paraxial, Prescription};
 use crate::math::Vec3;
+use crate::math::lanes::{Lanes, Mask, V3};
 use glam::Vec2;
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
@@ -85,8 +86,8 @@ pub struct LensRay {
 impl RealLens {
     /// `lens` focused on a plane `focus` mm in front of its front principal plane (no
     /// nearer than twice its focal length), its stop closed so that its entrance pupil is
-    /// `pupil` mm across (at least [`MIN_STOP`] of its open stop, at most open), behind film of
-    /// aspect ratio `aspect` sized to see `fov_deg` vertically at the focus distance, as the
+    /// `pupil` mm across (at least a twentieth of its open stop, at most open), behind film
+    /// of aspect ratio `aspect` sized to see `fov_deg` vertically at the focus distance, as the
     /// thin lens does. `disperse`: its glass's Abbe numbers apply. `None` for a lens with
     /// no paraxial focus.
     pub fn new(
@@ -150,6 +151,53 @@ impl RealLens {
         mut visit: impl FnMut(Vec3),
     ) -> Option<LensRay> {
         let wavelength = wavelength.filter(|_| self.disperses);
+        let (from, dir, weight) = self.aim(film, lens)?;
+        let shift = Vec3::new(0.0, 0.0, self.z_principal);
+        let (origin, dir) = self
+            .layout
+            .trace(from, dir, wavelength, |v| visit(v - shift))?;
+        Some(LensRay {
+            origin: origin - shift,
+            dir,
+            weight,
+        })
+    }
+
+    /// [`RealLens::ray`] for `N` rays at once, traced through the glass in lanes: each
+    /// lane's ray is the one [`RealLens::ray`] gives it, bit for bit.
+    #[inline(always)]
+    pub(crate) fn rays<const N: usize>(
+        &self,
+        film: [Vec2; N],
+        lens: [Vec2; N],
+    ) -> [Option<LensRay>; N] {
+        let aimed: [Option<(Vec3, Vec3, f32)>; N] =
+            std::array::from_fn(|i| self.aim(film[i], lens[i]));
+        // A lane with nothing to trace follows the axis, masked off.
+        let or_axis = |i: usize| aimed[i].unwrap_or((Vec3::ZERO, Vec3::Z, 0.0));
+        let from = V3::from_fn(|i| or_axis(i).0);
+        let dir = V3::from_fn(|i| or_axis(i).1);
+        let alive = Mask(std::array::from_fn(|i| {
+            if aimed[i].is_some() { u32::MAX } else { 0 }
+        }));
+        let (origin, dir, through) =
+            self.layout
+                .trace_of::<Lanes<N>>(from, dir, alive, None, |_| {});
+        let shift = Vec3::new(0.0, 0.0, self.z_principal);
+        std::array::from_fn(|i| {
+            (through.0[i] != 0).then(|| LensRay {
+                origin: origin.get(i) - shift,
+                dir: dir.get(i),
+                weight: or_axis(i).2,
+            })
+        })
+    }
+
+    /// Where the ray through image position `film` from lens sample `lens` starts (on the
+    /// film), where it is aimed (unit), and its weight; `None` where its ring of the film
+    /// gets no light through.
+    #[inline(always)]
+    fn aim(&self, film: Vec2, lens: Vec2) -> Option<(Vec3, Vec3, f32)> {
         // The image is upside down on the film: the top left of the picture is at the
         // film's bottom right.
         let x = (2.0 * film.x - 1.0) * self.half_film.x;
@@ -170,18 +218,8 @@ impl RealLens {
             (1.0, 0.0)
         };
         let aim = Vec3::new(q.x * cos - q.y * sin, q.x * sin + q.y * cos, 0.0);
-        let shift = Vec3::new(0.0, 0.0, self.z_principal);
-        let (origin, dir) = self
-            .layout
-            .trace(from, (aim - from).normalize(), wavelength, |v| {
-                visit(v - shift)
-            })?;
         let area = (hi.x - lo.x) * (hi.y - lo.y);
-        Some(LensRay {
-            origin: origin - shift,
-            dir,
-            weight: area / p.on_axis,
-        })
+        Some((from, (aim - from).normalize(), area / p.on_axis))
     }
 }
 

@@ -27,7 +27,7 @@ mod camera;
 pub mod paraxial;
 mod trace;
 
-pub use camera::{RealLens, stopped_f_number};
+pub use camera::{LensRay, RealLens, stopped_f_number};
 pub use paraxial::Paraxial;
 
 use crate::optics::dispersion;

@@ -8,7 +8,8 @@
 
 use super::Prescription;
 use crate::math::Vec3;
-use crate::optics::refract;
+use crate::math::lanes::{Real, Vector, is_finite};
+use crate::optics::refract_of;
 
 /// A prescription laid out on the axis, with its stop's radius as set.
 #[derive(Clone, Debug)]
@@ -78,17 +79,38 @@ impl Layout {
         origin: Vec3,
         dir: Vec3,
         wavelength: Option<f32>,
-        mut visit: impl FnMut(Vec3),
+        visit: impl FnMut(Vec3),
     ) -> Option<(Vec3, Vec3)> {
-        let (mut p, mut d) = (origin, dir);
+        let (p, d, through) = self.trace_of::<f32>(origin, dir, true, wavelength, visit);
+        through.then_some((p, d))
+    }
+
+    /// [`Layout::trace`] for one ray or one per lane, those where `alive` holds: where
+    /// each leaves the front surface and its direction, and whether it got through. A
+    /// ray's lane does what [`Layout::trace`] does for it alone, bit for bit (the lanes
+    /// stop together, once none is left).
+    #[inline(always)]
+    pub(super) fn trace_of<R: Real>(
+        &self,
+        origin: R::V3,
+        dir: R::V3,
+        alive: R::Mask,
+        wavelength: Option<f32>,
+        mut visit: impl FnMut(R::V3),
+    ) -> (R::V3, R::V3, R::Mask) {
+        let (mut p, mut d, mut alive) = (origin, dir, alive);
         visit(p);
         for (i, s) in self.surfaces.iter().enumerate().rev() {
-            let (t, normal) = intersect(s, p, d)?;
-            p += t * d;
-            visit(p);
-            if p.x * p.x + p.y * p.y > s.clear_radius * s.clear_radius {
-                return None;
+            if !R::any(alive) {
+                break;
             }
+            let (t, normal, hit) = intersect_of::<R>(s, p, d);
+            alive = alive & hit;
+            p = R::V3::select(alive, p + d.scale(t), p);
+            visit(p);
+            let [x, y, _] = p.coords();
+            let clear = R::splat(s.clear_radius * s.clear_radius);
+            alive = alive & (x * x + y * y).less_eq(clear);
             // From the medium behind this surface into the one in front of it (air
             // before the first).
             let n1 = s.ior_at(wavelength);
@@ -98,37 +120,46 @@ impl Layout {
                 self.surfaces[i - 1].ior_at(wavelength)
             };
             if n1 != n2 {
-                d = refract(d, normal, n1, n2)?;
+                let (bent, ok) = refract_of::<R>(d, normal, R::splat(n1), R::splat(n2));
+                alive = alive & ok;
+                d = R::V3::select(alive, bent, d);
             }
         }
-        Some((p, d))
+        (p, d, alive)
     }
 }
 
-/// Where the ray from `p` along unit `d` meets surface `s`: the distance, and the unit
-/// normal there (the axis, for a flat surface). On a sphere, the cap around the vertex is
-/// taken, not the far side of the sphere.
-fn intersect(s: &Placed, p: Vec3, d: Vec3) -> Option<(f32, Vec3)> {
+/// Where the ray from `p` along unit `d` meets surface `s`: the distance, the unit normal
+/// there (the axis, for a flat surface), and whether it does. On a sphere, the cap around
+/// the vertex is taken, not the far side of the sphere.
+#[inline(always)]
+fn intersect_of<R: Real>(s: &Placed, p: R::V3, d: R::V3) -> (R, R::V3, R::Mask) {
+    let [_, _, pz] = p.coords();
+    let [_, _, dz] = d.coords();
+    let zero = R::splat(0.0);
     if s.radius == 0.0 {
-        let t = (s.z - p.z) / d.z;
-        return (t > 0.0 && t.is_finite()).then_some((t, Vec3::Z));
+        let t = (R::splat(s.z) - pz) / dz;
+        let hit = zero.less(t) & is_finite(t);
+        return (t, R::V3::splat(Vec3::Z), hit);
     }
     // The centre is `radius` behind the vertex (towards the film) for a positive radius.
     let centre = Vec3::new(0.0, 0.0, s.z - s.radius);
-    let oc = p - centre;
+    let oc = p - R::V3::splat(centre);
     // |oc + t d|² = r²: t² + 2 b t + c = 0 with b = oc·d, c = |oc|² − r².
     let b = oc.dot(d);
-    let c = oc.length_squared() - s.radius * s.radius;
+    let c = oc.length_squared() - R::splat(s.radius * s.radius);
     let disc = b * b - c;
-    if disc < 0.0 {
-        return None;
-    }
-    let root = disc.sqrt();
+    let meets = zero.less_eq(disc);
+    let root = R::select(meets, disc, zero).sqrt();
     // The vertex's cap is where (z − centre z) has the sign of the radius.
-    let on_cap = |t: f32| t > 0.0 && (p.z + t * d.z - centre.z) * s.radius > 0.0;
-    let t = [-b - root, -b + root].into_iter().find(|&t| on_cap(t))?;
-    let normal = (p + t * d - centre) / s.radius.abs();
-    Some((t, normal))
+    let on_cap =
+        |t: R| zero.less(t) & zero.less((pz + t * dz - R::splat(centre.z)) * R::splat(s.radius));
+    let (near, far) = (-b - root, -b + root);
+    let near_on_cap = on_cap(near);
+    let t = R::select(near_on_cap, near, far);
+    let hit = meets & (near_on_cap | on_cap(far));
+    let normal = (p + d.scale(t) - R::V3::splat(centre)).div(R::splat(s.radius.abs()));
+    (t, normal, hit)
 }
 
 #[cfg(test)]

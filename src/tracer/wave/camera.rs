@@ -54,8 +54,7 @@ impl LaneKernel for CameraRays<'_, '_> {
         self.roots.clear();
         self.level.clear();
         let t = self.tracer;
-        // A real lens's rays are traced through its glass one by one.
-        let sobol = t.params.pattern == Pattern::Sobol && t.frame.in_lanes();
+        let sobol = t.params.pattern == Pattern::Sobol;
         let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
         let (chunks, rest) = self.samples.split_at(in_lanes);
         for chunk in chunks.chunks_exact(N) {
@@ -63,6 +62,24 @@ impl LaneKernel for CameraRays<'_, '_> {
             let numbers = std::array::from_fn(|i| chunk[i].2);
             let mut lanes = SobolLanes::<N>::new(t.params.spp, t.seed_key, pixels, numbers);
             let cs = t.frame.draw_samples(&mut lanes);
+            if let Some(real) = t.frame.real_lens() {
+                // Through a real lens: its glass traced in lanes, the rays pushed one by
+                // one (some are blocked).
+                let film: [_; N] =
+                    std::array::from_fn(|i| t.film_at(chunk[i].0, chunk[i].1, &cs[i]));
+                let lens: [_; N] = std::array::from_fn(|i| cs[i].lens);
+                let time: [_; N] = std::array::from_fn(|i| cs[i].time);
+                for (i, (ray, weight)) in t
+                    .frame
+                    .weighed_rays(real, film, lens, time)
+                    .iter()
+                    .enumerate()
+                {
+                    let traced = *weight > 0.0 && ray.origin.is_finite() && ray.dir.is_finite();
+                    self.push(lanes.stream(i), traced.then_some(ray), *weight);
+                }
+                continue;
+            }
             let lane = |f: fn(&CameraSample) -> f32| Lanes::<N>::from_fn(|i| f(&cs[i]));
             let xy = (
                 Lanes::from_fn(|i| chunk[i].0 as f32),
