@@ -17,7 +17,7 @@ use raylab::light::{Background, Light};
 use raylab::material::{Diffuse, Material, Texture};
 use raylab::math::lanes::Width;
 use raylab::math::{Color, Vec3};
-use raylab::params::Params;
+use raylab::params::{LensModel, Params};
 use raylab::render::{Film, render, render_pass, render_pass_by};
 use raylab::scene::{Object, Scene, SceneDesc, SceneSource};
 use raylab::tracer::Traversal;
@@ -239,6 +239,10 @@ fn benches(c: &mut Criterion) {
     throughput(c, "a_default_scene", &default);
     throughput(c, "b_specular", &bench_scene("specular.toml"));
     throughput(c, "c_thin_lens", &bench_scene("thin-lens.toml"));
+    // (c) again through a real lens: the double Gauss wide open, its glass traced.
+    let mut real_lens = bench_scene("thin-lens.toml");
+    real_lens.params.lens = LensModel::DoubleGauss50;
+    throughput(c, "c_real_lens", &real_lens);
     traversals(c, "a_default_scene", &default);
     traversals(c, "b_specular", &bench_scene("specular.toml"));
     reuse(c);

@@ -12,8 +12,8 @@
 use super::trace::Layout;
 use super::{Paraxial, Prescription};
 use crate::math::Vec3;
-use crate::math::sampling::concentric_disk;
 use crate::math::lanes::{Lanes, Mask, V3};
+use crate::math::sampling::concentric_disk;
 use glam::Vec2;
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
