@@ -61,6 +61,10 @@ pub static BUILTIN_SCENES: &[BuiltinScene] = &[
         text: include_str!("../../scenes/depth-of-field.toml"),
     },
     BuiltinScene {
+        name: "real-lens",
+        text: include_str!("../../scenes/real-lens.toml"),
+    },
+    BuiltinScene {
         name: "motion-blur",
         text: include_str!("../../scenes/motion-blur.toml"),
     },
