@@ -261,12 +261,6 @@ impl CameraFrame {
         )
     }
 
-    /// Whether its rays are made `N` at a time in lanes ([`CameraFrame::ray_of`]): the
-    /// thin lens's are; a real lens's are traced one by one through its glass.
-    pub(crate) fn in_lanes(&self) -> bool {
-        self.real.is_none()
-    }
-
     /// The real lens, if the camera has one.
     pub fn real_lens(&self) -> Option<&RealLens> {
         self.real.as_ref()
@@ -334,8 +328,8 @@ impl CameraFrame {
 
     /// [`CameraFrame::ray`] for one ray or one per lane, the film position (`film_x`,
     /// `film_y`), the lens sample (`lens_x`, `lens_y`) and the time sample given
-    /// coordinate by coordinate: the thin lens (or pinhole) only, see
-    /// [`CameraFrame::in_lanes`].
+    /// coordinate by coordinate: the thin lens (or pinhole) only (a real lens's rays come
+    /// from [`CameraFrame::weighed_rays`]).
     #[inline(always)]
     pub(crate) fn ray_of<R: Real>(
         &self,

@@ -16,10 +16,6 @@ use raylab::render::Film;
 use raylab::scene::Scene;
 use raylab::tracer::{Traversal, pick};
 
-fn render(scene: &Scene, params: &Params, size: (u32, u32), traversal: Traversal) -> Film {
-    common::render_by(traversal, scene, params, size)
-}
-
 #[test]
 fn every_width_traces_every_design_as_the_recursion_does() {
     let scene = Scene::load("depth-of-field").unwrap();
@@ -29,12 +25,12 @@ fn every_width_traces_every_design_as_the_recursion_does() {
             lens,
             ..scene.params.clone()
         };
-        let reference = render(&scene, &params, (40, 30), Traversal::Recursive);
+        let reference = common::render_by(Traversal::Recursive, &scene, &params, (40, 30));
         // The lens blocks some rays (black) and lets most through.
         let lit = reference.pixels().filter(|p| p.max_element() > 0.0).count();
         assert!(lit > 40 * 30 / 3, "{lens:?}: {lit} pixels lit");
         for w in Width::ALL.into_iter().filter(|w| w.runs_here()) {
-            let film = render(&scene, &params, (40, 30), Traversal::Waves(w));
+            let film = common::render_by(Traversal::Waves(w), &scene, &params, (40, 30));
             assert_eq!(
                 common::bits(&film),
                 common::bits(&reference),
@@ -57,7 +53,7 @@ fn dof(lens: LensModel, aperture: f32, focus: f32, seed: u64) -> Film {
         seed,
         ..scene.params.clone()
     };
-    render(&scene, &params, SIZE, Traversal::Recursive)
+    common::render_by(Traversal::Recursive, &scene, &params, SIZE)
 }
 
 const SIZE: (u32, u32) = (384, 216);

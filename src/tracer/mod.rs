@@ -334,7 +334,7 @@ impl<'a> Tracer<'a> {
     /// counts for (0: the lens blocks it).
     #[inline(always)]
     fn camera_ray(&self, x: u32, y: u32, cs: &CameraSample) -> (Ray, f32) {
-        if !self.frame.in_lanes() {
+        if self.frame.real_lens().is_some() {
             return self
                 .frame
                 .weighed_ray(self.film_at(x, y, cs), cs.lens, cs.time);
@@ -352,8 +352,8 @@ impl<'a> Tracer<'a> {
     }
 
     /// [`Tracer::camera_ray`] for one ray or one per lane: the pixel (x, y), and the camera
-    /// sample's position in it, lens point and time, coordinate by coordinate. A frame
-    /// [`CameraFrame::in_lanes`] only.
+    /// sample's position in it, lens point and time, coordinate by coordinate. The thin
+    /// lens only (see [`CameraFrame::ray_of`]).
     #[inline(always)]
     fn camera_ray_of<R: Real>(
         &self,

@@ -300,21 +300,30 @@ impl Tracer<'_> {
             depth += 1;
         }
         sum_levels(&levels[..depth], radiance, below);
-        traced.clear();
-        traced.extend(roots.iter().zip(slots.iter()).map(|(root, slot)| Traced {
-            // The camera's weight as the recursion applies it (× 1 through the thin lens);
-            // black where a real lens blocked the ray, NaN for one that could not be
-            // traced.
-            radiance: match *root {
-                Some(r) => below[r as usize] * slot.weight,
-                None if slot.weight == 0.0 => Color::ZERO,
-                None => Color::NAN,
-            },
-            rays: slot.rays,
-            met: slot.met,
-        }));
+        sample_results(roots, slots, below, traced);
         traced
     }
+}
+
+/// Each sample's result from its root's sum (`below`): the camera's weight applied as the
+/// recursion applies it (× 1 through the thin lens); black where a real lens blocked the
+/// ray, NaN for one that could not be traced.
+fn sample_results(
+    roots: &[Option<u32>],
+    slots: &[Slot],
+    below: &[Color],
+    traced: &mut Vec<Traced>,
+) {
+    traced.clear();
+    traced.extend(roots.iter().zip(slots).map(|(root, slot)| Traced {
+        radiance: match *root {
+            Some(r) => below[r as usize] * slot.weight,
+            None if slot.weight == 0.0 => Color::ZERO,
+            None => Color::NAN,
+        },
+        rays: slot.rays,
+        met: slot.met,
+    }));
 }
 
 /// Completes a level's lights once its shadow rays are traced: each node's lights added in
