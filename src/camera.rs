@@ -3,7 +3,7 @@
 use crate::math::lanes::{RayOf, Real, Vector};
 use crate::math::rng::SobolLanes;
 use crate::math::{Ray, Uniform, Vec3, sampling::concentric_disk_of};
-use crate::optics::lens::{LensModel, LensRay, RealLens, stopped_f_number};
+use crate::optics::lens::{LensDispersion, LensModel, LensRay, RealLens, stopped_f_number};
 use crate::params::Params;
 use glam::Vec2;
 
@@ -28,6 +28,8 @@ pub struct Camera {
 pub struct Exposure {
     /// The thin lens, or a real design.
     pub lens: LensModel,
+    /// Whether a real lens's glass disperses.
+    pub lens_dispersion: LensDispersion,
     /// Lens radius (a real lens's entrance pupil radius); 0 is a pinhole (everything
     /// sharp).
     pub aperture: f32,
@@ -176,6 +178,7 @@ impl Camera {
     pub fn exposure(&self, params: &Params) -> Exposure {
         Exposure {
             lens: params.lens,
+            lens_dispersion: params.lens_dispersion,
             aperture: params.aperture,
             focus_distance: params
                 .focus_distance
@@ -205,6 +208,7 @@ impl Camera {
             aspect,
             Exposure {
                 lens: LensModel::Thin,
+                lens_dispersion: LensDispersion::Off,
                 aperture: 0.0,
                 focus_distance: self.look_distance(),
                 shutter: (0.0, 0.0),
@@ -220,7 +224,8 @@ impl Camera {
         let half_h = (self.fov_deg.to_radians() * 0.5).tan();
         let real = exposure.lens.prescription().and_then(|lens| {
             let (focus, pupil) = (exposure.focus_distance * MM, 2.0 * exposure.aperture * MM);
-            RealLens::new(&lens, focus, pupil, self.fov_deg, aspect, false)
+            let disperse = exposure.lens_dispersion == LensDispersion::On;
+            RealLens::new(&lens, focus, pupil, self.fov_deg, aspect, disperse)
         });
         CameraFrame {
             origin: self.position,
@@ -284,13 +289,32 @@ impl CameraFrame {
     /// where the lens blocks it.
     #[inline(always)]
     pub fn weighed_ray(&self, film: Vec2, lens: Vec2, time_u: f32) -> (Ray, f32) {
+        self.weighed_ray_at(film, lens, time_u, None)
+    }
+
+    /// [`CameraFrame::weighed_ray`] carrying `wavelength` (nm) through a real lens that
+    /// [`CameraFrame::disperses`]; `None`, or any other lens: at n_d.
+    #[inline(always)]
+    pub fn weighed_ray_at(
+        &self,
+        film: Vec2,
+        lens: Vec2,
+        time_u: f32,
+        wavelength: Option<f32>,
+    ) -> (Ray, f32) {
         let Some(real) = &self.real else {
             return (
                 self.ray_of(film.x, film.y, lens.x, lens.y, time_u).into(),
                 1.0,
             );
         };
-        self.out_of_lens(real.ray(film, lens, None), time_u)
+        self.out_of_lens(real.ray(film, lens, wavelength), time_u)
+    }
+
+    /// Whether its rays depend on their wavelength: through a real lens whose glass
+    /// disperses (`lens_dispersion`).
+    pub fn disperses(&self) -> bool {
+        self.real.as_ref().is_some_and(RealLens::disperses)
     }
 
     /// [`CameraFrame::weighed_ray`] for `N` samples through a real lens, its glass traced
@@ -467,6 +491,7 @@ mod tests {
             1.0,
             Exposure {
                 lens: LensModel::Thin,
+                lens_dispersion: LensDispersion::Off,
                 aperture: 0.5,
                 focus_distance: 3.0,
                 shutter: (0.0, 0.0),
@@ -493,6 +518,7 @@ mod tests {
         let c = cam();
         let lens = Exposure {
             lens: LensModel::Thin,
+            lens_dispersion: LensDispersion::Off,
             aperture: 0.3,
             focus_distance: 4.5,
             shutter: (0.25, 0.75),

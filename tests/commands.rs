@@ -506,6 +506,40 @@ fn section_writes_a_pixels_tree_and_the_workbench_as_svg_and_png() {
         "outside the 80x45 image",
     );
     assert!(!d.join("x.svg").exists() && !d.join("x.pdf").exists());
+    // The lens bench of a pixel through the double Gauss: its stop, its film, its angles.
+    let bench = [
+        "section",
+        "real-lens",
+        "--pixel",
+        "50,10",
+        "--size",
+        "96x64",
+        "--lens-bench",
+        "-o",
+        "bench.svg",
+    ];
+    let o = raylab(&bench, d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(d.join("bench.svg")).unwrap();
+    for text in [">stop</text>", ">film</text>", "θi/θt at each surface"] {
+        assert!(svg.contains(text), "{text} in:\n{svg}");
+    }
+    fails(
+        &[
+            "section",
+            "glass",
+            "--pixel",
+            "4,4",
+            "--size",
+            "80x45",
+            "--lens-bench",
+            "-o",
+            "x.svg",
+        ],
+        d,
+        "the camera has the thin lens",
+    );
+    assert!(!d.join("x.svg").exists());
 }
 
 #[test]

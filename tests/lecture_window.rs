@@ -434,6 +434,8 @@ fn declared(i: usize) -> Open {
         fresnel_plot: has(|i| matches!(i, Instrument::FresnelPlot { .. })),
         section: has(|i| matches!(i, Instrument::Section { .. })),
         workbench,
+        // No slide opens the lens bench.
+        lens_bench: false,
         outline: workbench,
         inspected: slide.inspected_pixel((960, 540)).is_some(),
         sides: slide.compare.map_or(0, |c| c.dividers(0.5).len()),

@@ -11,7 +11,7 @@ use glam::Vec2;
 use raylab::math::Color;
 use raylab::math::lanes::Width;
 use raylab::optics::lens::{Paraxial, Prescription, RealLens};
-use raylab::params::{LensModel, Params};
+use raylab::params::{LensDispersion, LensModel, Params};
 use raylab::render::Film;
 use raylab::scene::Scene;
 use raylab::tracer::{Traversal, pick};
@@ -19,10 +19,16 @@ use raylab::tracer::{Traversal, pick};
 #[test]
 fn every_width_traces_every_design_as_the_recursion_does() {
     let scene = Scene::load("depth-of-field").unwrap();
-    for lens in LensModel::DESIGNS {
+    let designs = LensModel::DESIGNS.map(|lens| (lens, LensDispersion::Off));
+    // (Through a dispersive lens the kernel traces by the recursion: the same bits.)
+    for (lens, lens_dispersion) in designs
+        .into_iter()
+        .chain([(LensModel::Singlet50, LensDispersion::On)])
+    {
         let params = Params {
             spp: 4,
             lens,
+            lens_dispersion,
             ..scene.params.clone()
         };
         let reference = common::render_by(Traversal::Recursive, &scene, &params, (40, 30));
@@ -252,4 +258,109 @@ fn mutated_prescriptions_are_read_or_refused_at_a_line_and_column() {
         read > 100 && refused > 100,
         "{read} read, {refused} refused"
     );
+}
+
+/// A small white sphere 2 m away, off the axis to the right, on black, through the singlet
+/// focused on it: the scene of [`lateral_colour_of_a_singlet`].
+fn white_point(dispersion: &str) -> (Scene, Params) {
+    let text = format!(
+        "[image]\nwidth = {W}\nheight = {H}\n\
+         [params]\nlens = \"singlet-50\"\nlens_dispersion = \"{dispersion}\"\n\
+         aperture = {APERTURE}\nfocus_distance = 2\nspp = 64\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -2]\nfov = {FOV}\n\
+         [background]\ncolor = [0, 0, 0]\n\
+         [material.white]\ntype = \"emissive\"\ncolor = [1, 1, 1]\n\
+         [[sphere]]\ncenter = [{X}, 0, -2]\nradius = 0.004\nmaterial = \"white\"\n"
+    );
+    let scene = Scene::from_toml_str(&text, "white-point.toml", std::path::Path::new(".")).unwrap();
+    let params = scene.params.clone();
+    (scene, params)
+}
+
+const W: u32 = 480;
+const H: u32 = 320;
+const FOV: f32 = 27.0;
+/// The sphere's distance right of the axis at 2 m: 80 % of the half-width.
+const X: f32 = 0.8 * 2.0 * 1.5 * 0.240_079; // tan 13.5°
+/// The entrance pupil's radius (m): the singlet at about f/8.
+const APERTURE: f32 = 0.003;
+
+/// Channel `c`'s centroid across the image, in pixels, within 20 pixels of the sphere.
+fn centroid_x(film: &Film, c: usize) -> f32 {
+    let (mut sum, mut weight) = (0.0f64, 0.0f64);
+    let centre = ((0.5 + 0.4) * W as f32) as usize;
+    for (i, p) in film.pixels().enumerate() {
+        let (x, y) = (i % W as usize, i / W as usize);
+        if x.abs_diff(centre) < 20 && y.abs_diff(H as usize / 2) < 20 {
+            sum += f64::from(p[c]) * (x as f64 + 0.5);
+            weight += f64::from(p[c]);
+        }
+    }
+    assert!(weight > 0.0, "channel {c} sees nothing");
+    (sum / weight) as f32
+}
+
+/// Where, across the image (pixels), the singlet images the sphere's centre at
+/// `wavelength`, traced through the prescription rather than rendered: for each point of
+/// a grid over the pupil, the film point whose ray through it meets the sphere's centre,
+/// averaged (as a small blur spot's centroid averages over the pupil).
+fn traced_image_x(wavelength: f32) -> f32 {
+    let prescription = LensModel::Singlet50.prescription().unwrap();
+    let (w, h) = (W as f32, H as f32);
+    let lens = RealLens::new(&prescription, 2000.0, 2000.0 * APERTURE, FOV, w / h, true).unwrap();
+    // Across the sphere's plane, minus the sphere's centre: the miss of the ray from film
+    // point `film_x` through pupil point `u` (None where the lens blocks it).
+    let miss = |film_x: f32, u: Vec2| {
+        let r = lens.ray(Vec2::new(film_x, 0.5), u, Some(wavelength))?;
+        Some(r.origin.x + r.dir.x * (2000.0 - r.origin.z) / r.dir.z - X * 1000.0)
+    };
+    let n = 16;
+    let (mut sum, mut count) = (0.0, 0);
+    for i in 0..n * n {
+        let u = Vec2::new((i % n) as f32 + 0.5, (i / n) as f32 + 0.5) / n as f32;
+        let (mut lo, mut hi) = (0.8f32, 1.0f32);
+        let (Some(a), Some(b)) = (miss(lo, u), miss(hi, u)) else {
+            continue;
+        };
+        if a.signum() == b.signum() {
+            continue;
+        }
+        for _ in 0..30 {
+            let mid = 0.5 * (lo + hi);
+            match miss(mid, u) {
+                Some(m) if m.signum() == a.signum() => lo = mid,
+                Some(_) => hi = mid,
+                None => break,
+            }
+        }
+        sum += 0.5 * (lo + hi);
+        count += 1;
+    }
+    assert!(count > n * n / 2, "{count} pupil points image the sphere");
+    sum / count as f32 * w
+}
+
+#[test]
+fn lateral_colour_of_a_singlet() {
+    // Through the singlet of N-BK7 (V_d = 64.2) with its glass dispersing, blue is bent
+    // more than red, so the sphere's blue image lies nearer the middle than its red one
+    // by what tracing the two wavelengths through the prescription predicts; with the
+    // glass at n_d every channel images it in one place.
+    let render = |dispersion| {
+        let (scene, params) = white_point(dispersion);
+        common::render_by(Traversal::Recursive, &scene, &params, (W, H))
+    };
+    let on = render("on");
+    let (red, blue) = (centroid_x(&on, 0), centroid_x(&on, 2));
+    let mid = |c| raylab::optics::dispersion::wavelength_in(c, 0.5);
+    let predicted = traced_image_x(mid(0)) - traced_image_x(mid(2));
+    assert!(predicted > 0.5, "predicted {predicted} px");
+    let measured = red - blue;
+    assert!(
+        (measured - predicted).abs() < 0.1 * predicted,
+        "red {red} px, blue {blue} px: {measured} apart, predicted {predicted}"
+    );
+    let off = render("off");
+    let apart = centroid_x(&off, 0) - centroid_x(&off, 2);
+    assert!(apart.abs() < 0.01, "without dispersion {apart} px apart");
 }

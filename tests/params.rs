@@ -53,6 +53,7 @@ fn case(
         "light_size" => ("soft-shadows", &[], "0", "2"),
         "phong_exponent" => ("glossy", &[], "5", "5000"),
         "lens" => ("depth-of-field", &[], "thin", "double-gauss-50"),
+        "lens_dispersion" => ("real-lens", &[("lens", "singlet-50")], "off", "on"),
         "aperture" => ("depth-of-field", &[], "0", "0.3"),
         "focus_distance" => ("depth-of-field", &[("aperture", "0.2")], "3", "9"),
         "shutter_open" => ("motion-blur", &[("shutter", "0")], "0", "0.8"),

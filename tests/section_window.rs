@@ -14,7 +14,7 @@ use egui_kittest::kittest::Queryable;
 use glam::Vec2;
 use raylab::app::RaylabApp;
 use raylab::section::{Anchor, Canvas, Fit, Room, Stroke, Theme, Workbench, paint, section};
-use window::{app, click_at, glass_sphere, step_until};
+use window::{app, choose_from_menu, click_at, glass_sphere, step_until};
 
 /// Opens the section view from the Instruments menu.
 fn open_section(h: &mut Harness<'static, RaylabApp>) {
@@ -351,4 +351,31 @@ fn snells_section_keeps_its_hit_and_labels_legible_over_the_iors_range() {
             "{size:?}: the way through the glass from {lo} to {hi} points"
         );
     }
+}
+
+#[test]
+fn the_lens_bench_draws_the_picked_pixels_rays_through_the_real_lens() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = app("real-lens", dir.path());
+    step_until(&mut h, "a frame", |a| a.latest_frame().is_some());
+    open_section(&mut h);
+    h.get_by_label("Lens bench").click();
+    h.run_steps(3);
+    h.get_by_label(
+        "Click a pixel of the image: the lens bench draws its rays through the camera's lens.",
+    );
+    let picked = glass_sphere(&h, "Section view");
+    click_at(&mut h, picked);
+    h.run_steps(3);
+    assert!(h.state().inspected_pixel().is_some(), "a pixel picked");
+    h.get_by_label("Lens bench diagram");
+    assert!(h.state().open().lens_bench);
+    // The thin lens has no glass to draw: the bench says so instead.
+    choose_from_menu(&mut h, "Lens", "thin lens (the lecture)");
+    step_until(&mut h, "the pixel traced again", |a| {
+        a.inspected_pixel().is_some() && a.params().lens == raylab::params::LensModel::Thin
+    });
+    h.run_steps(3);
+    assert!(h.query_by_label("Lens bench diagram").is_none());
+    h.get_by_label("The camera has the thin lens, an ideal disk with no glass to draw: choose a real lens under the Lens menu under Camera.");
 }

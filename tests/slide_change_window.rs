@@ -41,6 +41,8 @@ fn opens(slide: &Slide) -> Open {
         fresnel_plot: has(|i| matches!(i, Instrument::FresnelPlot { .. })),
         section: has(|i| matches!(i, Instrument::Section { .. })),
         workbench: has(|i| matches!(i, Instrument::Workbench { .. })),
+        // No slide opens the lens bench.
+        lens_bench: false,
         outline: has(|i| matches!(i, Instrument::Workbench { .. })),
         inspected: has(|i| matches!(i, Instrument::RayTree { .. } | Instrument::Section { .. })),
         sides: slide.compare.map_or(0, |c| c.labels().len() - 1),

@@ -63,7 +63,7 @@ impl Section {
             Section::Sampling => &["spp", "noise_target", "pattern", "seed"],
             Section::SoftShadows => &["light_size"],
             Section::Glossy => &["phong_exponent"],
-            Section::Camera => &["lens", "aperture", "focus_distance"],
+            Section::Camera => &["lens", "lens_dispersion", "aperture", "focus_distance"],
             Section::Polariser => &["polarizer"],
             Section::MotionBlur => &["shutter_open", "shutter"],
             Section::Display => &["exposure"],

@@ -18,6 +18,8 @@ pub struct Open {
     pub section: bool,
     /// The section view on the interface workbench.
     pub workbench: bool,
+    /// The section view on the lens bench.
+    pub lens_bench: bool,
     /// The workbench's outline over the image.
     pub outline: bool,
     /// An inspected pixel (its tree drawn over the image).
@@ -109,6 +111,7 @@ impl RaylabApp {
             fresnel_plot: i.show_fresnel,
             section: i.show_section && i.section.mode == SectionMode::Pixel,
             workbench: i.show_section && i.section.mode == SectionMode::Workbench,
+            lens_bench: i.show_section && i.section.mode == SectionMode::LensBench,
             outline: i.outline_shown(),
             inspected: i.inspection.is_some(),
             sides: self.compare.as_ref().map_or(0, |c| c.sides.len()),

@@ -5,7 +5,9 @@
 use crate::camera::Camera;
 use crate::material::Material;
 use crate::optics::{FresnelMode, brewster_angle, critical_angle};
-use crate::params::{Kind, LensModel, Params, SliderRange, choice_of, choices, spec};
+use crate::params::{
+    Kind, LensDispersion, LensModel, Params, SliderRange, choice_of, choices, spec,
+};
 use crate::scene::Scene;
 use egui::{ComboBox, DragValue, Slider, Ui};
 
@@ -222,6 +224,23 @@ pub(crate) fn param_ui(ui: &mut Ui, c: &mut Controls, name: &str) -> bool {
         }
         "transport" => choice_menu(ui, name, &mut p.transport, None),
         "lens" => choice_menu(ui, name, &mut p.lens, None),
+        "lens_dispersion" => {
+            let mut on = p.lens_dispersion == LensDispersion::On;
+            let label = "Chromatic aberration (the glass disperses)";
+            let check = egui::Checkbox::new(&mut on, label);
+            if ui
+                .add_enabled(p.lens != LensModel::Thin, check)
+                .hint(tip(name))
+                .on_disabled_hover_text("The thin lens is ideal: it has no glass to disperse.")
+                .changed()
+            {
+                p.lens_dispersion = if on {
+                    LensDispersion::On
+                } else {
+                    LensDispersion::Off
+                };
+            }
+        }
         "spp" => {
             slider_ui(ui, &mut p.spp, name);
             ui.checkbox(c.unlimited, "Keep refining")

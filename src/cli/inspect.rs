@@ -61,6 +61,8 @@ pub struct Traced {
     pub radiance: raylab::math::Color,
     /// The camera frame its camera ray came through.
     pub frame: raylab::camera::CameraFrame,
+    /// Its image position (0 to 1 across and down) and point on the lens (unit square).
+    pub camera_point: (glam::Vec2, glam::Vec2),
 }
 
 /// Traces the sample `args` names of `pixel` in `scene` (a file or built-in name): the
@@ -85,6 +87,7 @@ pub fn trace_pixel(
     tracer.prepare_photons(sample);
     let (tree, radiance) = tracer.inspect(x, y, sample);
     let frame = tracer.frame().clone();
+    let camera_point = tracer.camera_point(x, y, sample);
     drop(tracer);
     Ok(Traced {
         scene,
@@ -92,6 +95,7 @@ pub fn trace_pixel(
         tree,
         radiance,
         frame,
+        camera_point,
     })
 }
 

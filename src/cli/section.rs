@@ -5,7 +5,7 @@ use super::inspect::{SampleArgs, Traced, parse_pixel, trace_pixel};
 use super::output::check_writable;
 use crate::{parse_ior, parse_size};
 use anyhow::{Context, Result, bail};
-use raylab::section::{Room, Theme, Workbench, section, text_size, to_png, to_svg};
+use raylab::section::{Bench, Room, Theme, Workbench, section, text_size, to_png, to_svg};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -41,6 +41,11 @@ pub struct SectionArgs {
     /// tree, up to 50.
     #[arg(long, value_name = "F", default_value_t = 1.0, value_parser = parse_zoom, conflicts_with = "angle")]
     zoom: f32,
+    /// The lens bench instead of the pixel's section: the camera's real lens (the `lens`
+    /// parameter) cut through its axis and the pixel's film point, and the pixel's rays
+    /// through its glass with their angles at each surface.
+    #[arg(long, conflicts_with_all = ["angle", "zoom"])]
+    lens_bench: bool,
 }
 
 /// A zoom factor, 1 to the section's deepest.
@@ -79,6 +84,34 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
             theta_i,
         }
         .diagram(),
+        (None, Some(pixel)) if args.lens_bench => {
+            let Traced {
+                scene,
+                frame,
+                camera_point: (film, sample),
+                ..
+            } = trace_pixel(&args.scene, &args.sample, pixel)?;
+            let lens = frame.real_lens().with_context(|| {
+                format!(
+                    "{}: the camera has the thin lens, which has no glass to draw; add --set lens=double-gauss-50 (or another design)",
+                    scene.name
+                )
+            })?;
+            let bench = Bench {
+                lens,
+                film,
+                sample,
+                wavelength: None,
+            };
+            let mut d = bench
+                .diagram()
+                .context("no ray from the pixel's film point gets through the lens")?;
+            d.title = format!(
+                "{}: lens bench at pixel ({}, {}), sample {}",
+                scene.name, pixel.0, pixel.1, args.sample.sample
+            );
+            d
+        }
         (None, Some(pixel)) => {
             let Traced {
                 scene, tree, frame, ..

@@ -2,15 +2,16 @@
 //! `--set name=value`, scene files' `[params]` and snapshot sidecars all use. Each
 //! parameter's range, unit and documentation are in `table`.
 
+mod spec;
 mod table;
 
 pub use crate::math::Pattern;
 use crate::optics::FresnelMode;
-pub use crate::optics::lens::LensModel;
+pub use crate::optics::lens::{LensDispersion, LensModel};
 use serde::{Deserialize, Serialize};
+pub use spec::{Choice, Kind, SliderRange, Spec};
 pub use table::{
-    ABBE_RANGE, Choice, IOR_RANGE, Kind, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, ROUGHNESS_RANGE,
-    SliderRange, Spec, TABLE, spec,
+    ABBE_RANGE, IOR_RANGE, MAX_DEPTH, MAX_PHONG_EXPONENT, MAX_SPP, ROUGHNESS_RANGE, TABLE, spec,
 };
 
 /// How the ray tree branches at a dielectric.
@@ -115,6 +116,9 @@ pub struct Params {
     pub phong_exponent: Option<f32>,
     /// The camera's lens: the thin lens, or a real design traced through its glass.
     pub lens: LensModel,
+    /// Whether a real lens's glass disperses (chromatic aberration); the thin lens never
+    /// does.
+    pub lens_dispersion: LensDispersion,
     /// Lens radius of the thin-lens camera, in scene units; 0 is a pinhole. A real lens is
     /// stopped down to an entrance pupil of this radius.
     #[serde(deserialize_with = "real::required")]
@@ -255,6 +259,7 @@ impl Default for Params {
             light_size: 1.0,
             phong_exponent: None,
             lens: LensModel::Thin,
+            lens_dispersion: LensDispersion::Off,
             aperture: 0.0,
             focus_distance: None,
             shutter_open: 0.0,

@@ -8,6 +8,7 @@
 
 mod cut;
 mod framing;
+mod lens_bench;
 mod paint;
 mod raster;
 mod svg;
@@ -15,6 +16,7 @@ mod tree;
 mod workbench;
 
 pub use framing::MAX_ZOOM;
+pub use lens_bench::Bench;
 pub use paint::{Canvas, Fit, Stroke, paint, room};
 pub use raster::to_png;
 pub use svg::{text_size, to_svg};
@@ -431,6 +433,18 @@ mod tests {
             titled: true,
         };
         diagrams.push(section(&scene, tracer.frame(), &tree, (40, 27), room).unwrap());
+        let lens = crate::optics::lens::LensModel::Singlet50
+            .prescription()
+            .unwrap();
+        let lens =
+            crate::optics::lens::RealLens::new(&lens, 2000.0, 8.0, 27.0, 1.5, false).unwrap();
+        let bench = Bench {
+            lens: &lens,
+            film: Vec2::new(0.8, 0.2),
+            sample: Vec2::new(0.3, 0.7),
+            wavelength: None,
+        };
+        diagrams.push(bench.diagram().unwrap());
         for d in &diagrams {
             let texts = d.labels.iter().map(|l| &l.text).chain(&d.notes);
             for text in texts.chain([&d.title]) {

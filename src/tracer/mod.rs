@@ -234,7 +234,8 @@ impl<'a> Tracer<'a> {
     /// records it; `None` where it first meets anything else, a light, or nothing. The
     /// interface workbench outlines the pixels at its angle by it.
     pub fn first_incidence(&self, x: u32, y: u32, sample: u32) -> Option<f32> {
-        let (_, ray, _) = self.camera_sample(x, y, sample);
+        let (_, cs) = self.camera_draw(x, y, sample);
+        let (ray, _) = self.camera_ray(x, y, &cs);
         let hit = self.scene.intersect(&ray, f32::INFINITY)?;
         let mut nearest = hit.surface.t;
         if self.light_seen(&ray, &mut nearest).is_some() {
@@ -243,6 +244,14 @@ impl<'a> Tracer<'a> {
         self.materials[hit.material as usize].dielectric()?;
         let at = self.interaction(&ray, &hit, &Media::default(), None);
         Some(at.cos_i().acos().to_degrees())
+    }
+
+    /// Where sample `sample` of pixel (x, y) leaves the camera: its image position (0 to 1
+    /// across and down) and its point on the lens (unit square); the lens bench draws its
+    /// ray from them.
+    pub fn camera_point(&self, x: u32, y: u32, sample: u32) -> (Vec2, Vec2) {
+        let (_, cs) = self.camera_draw(x, y, sample);
+        (self.film_at(x, y, &cs), cs.lens)
     }
 
     /// The camera's frame the tracer shoots its camera rays through.
@@ -266,19 +275,8 @@ impl<'a> Tracer<'a> {
         stats: &mut Stats,
         rec: &mut R,
     ) -> (Color, Met) {
-        let p = self.params;
-        let (mut rng, ray, weight) = self.camera_sample(x, y, sample);
+        let (mut rng, cs) = self.camera_draw(x, y, sample);
         stats.samples += 1;
-        if weight == 0.0 {
-            // The lens blocked it: black, and counted.
-            return (Color::ZERO, Met::default());
-        }
-        if !(ray.origin.is_finite() && ray.dir.is_finite()) {
-            // Not traced: the kernel counts and drops the sample, where the background
-            // would have turned a NaN direction into a colour.
-            return (Color::NAN, Met::default());
-        }
-        stats.camera_rays += 1;
         let mut walk = Walk {
             rng: &mut rng,
             stats,
@@ -286,33 +284,55 @@ impl<'a> Tracer<'a> {
             tree_rays: 0,
             met: Met::default(),
         };
-        let root = Branch::CAMERA;
+        let c = if self.frame.disperses() {
+            self.sample_through_dispersive_lens(self.film_at(x, y, &cs), &cs, &mut walk)
+        } else {
+            let (ray, weight) = self.camera_ray(x, y, &cs);
+            self.trace_camera_ray(&ray, weight, None, &mut walk)
+        };
+        (c, walk.met)
+    }
+
+    /// The radiance camera ray `ray` brings back, times `weight`, what it counts for, by
+    /// the parameters' transport (and through the polariser, if any), carrying `wavelength`
+    /// from the camera (through a dispersive lens). Black where the lens blocked it (weight
+    /// 0); NaN, untraced, where the ray is not finite (the kernel counts and drops the
+    /// sample, where the background would have turned a NaN direction into a colour).
+    fn trace_camera_ray<R: Recorder>(
+        &self,
+        ray: &Ray,
+        weight: f32,
+        wavelength: Option<f32>,
+        walk: &mut Walk<R>,
+    ) -> Color {
+        if weight == 0.0 {
+            return Color::ZERO;
+        }
+        if !(ray.origin.is_finite() && ray.dir.is_finite()) {
+            return Color::NAN;
+        }
+        walk.stats.camera_rays += 1;
+        let root = Branch {
+            wavelength,
+            ..Branch::CAMERA
+        };
         let media = Media::default();
-        let c = match (p.transport.traces_paths(), p.polarizer) {
-            (true, None) => self.path(&ray, &mut walk, None::<Unpolarized>),
+        let c = match (self.params.transport.traces_paths(), self.params.polarizer) {
+            (true, None) => self.path(ray, walk, None::<Unpolarized>, wavelength),
             (true, Some(angle)) => {
                 let axis = self.frame.polarizer_axis(angle, ray.dir);
-                self.path(&ray, &mut walk, Some(Analyzer::linear_polarizer(axis)))
+                let analyzer = Some(Analyzer::linear_polarizer(axis));
+                self.path(ray, walk, analyzer, wavelength)
             }
-            (false, None) => self.trace_in(&ray, root, &media, &mut walk, &Unpolarized),
+            (false, None) => self.trace_in(ray, root, &media, walk, &Unpolarized),
             (false, Some(angle)) => {
                 let axis = self.frame.polarizer_axis(angle, ray.dir);
                 let analyzer = Analyzer::linear_polarizer(axis);
-                self.trace_in(&ray, root, &media, &mut walk, &analyzer)
+                self.trace_in(ray, root, &media, walk, &analyzer)
             }
         };
         // (× 1 through the thin lens: the same bits.)
-        (c * weight, walk.met)
-    }
-
-    /// Sample `sample` of pixel (x, y): its camera ray and what its radiance counts for
-    /// ([`CameraFrame::weighed_ray`]), and its random numbers from the tree's first
-    /// dimension on (the camera's are drawn first).
-    #[inline(always)]
-    fn camera_sample(&self, x: u32, y: u32, sample: u32) -> (SampleStream, Ray, f32) {
-        let (rng, cs) = self.camera_draw(x, y, sample);
-        let (ray, weight) = self.camera_ray(x, y, &cs);
-        (rng, ray, weight)
+        c * weight
     }
 
     /// Sample `sample` of pixel (x, y): its random numbers, with the camera's drawn.
@@ -468,7 +488,9 @@ impl<'a> Tracer<'a> {
             met: Met::default(),
         };
         match self.params.transport {
-            Transport::Path | Transport::Photons => self.path(ray, &mut walk, None::<Unpolarized>),
+            Transport::Path | Transport::Photons => {
+                self.path(ray, &mut walk, None::<Unpolarized>, None)
+            }
             Transport::Whitted | Transport::TransmissiveShadows => self.trace_in(
                 ray,
                 Branch::CAMERA,

@@ -215,18 +215,20 @@ enum Next {
 impl Tracer<'_> {
     /// The radiance one path from the camera ray `ray` brings back. `pol`: the camera
     /// polariser's analyzer, until the path meets a diffuse or glossy surface (which
-    /// depolarises what it sends on).
+    /// depolarises what it sends on). `wavelength`: the one it carries from the camera
+    /// (through a dispersive lens); `None`: none until its first dispersive surface.
     pub(super) fn path<R: Recorder, P: Polarization>(
         &self,
         ray: &Ray,
         w: &mut Walk<R>,
         pol: Option<P>,
+        wavelength: Option<f32>,
     ) -> Color {
         let mut st = PathState {
             ray: *ray,
             media: Media::default(),
             throughput: Color::ONE,
-            wavelength: None,
+            wavelength,
             came: None,
             kind: RayKind::Camera,
             parent: None,

@@ -2,6 +2,7 @@
 //! three wavelengths, one per colour channel (see optics::dispersion).
 
 use super::{Branch, End, Tracer, Walk};
+use crate::camera::CameraSample;
 use crate::math::{Color, SampleStream};
 use crate::optics::dispersion;
 use crate::params::TreeMode;
@@ -45,6 +46,43 @@ impl Tracer<'_> {
                     end = e;
                 }
                 (sum, end)
+            }
+        }
+    }
+
+    /// The radiance of camera sample `cs` at image position `film` through a real lens
+    /// whose glass disperses: the sample's wavelengths are drawn at the camera, as
+    /// [`Tracer::wavelengths`] draws them at a scene's first dispersive surface, and each
+    /// is traced out through the lens on its own ray and then into the scene carrying its
+    /// wavelength (so the scene's own glass does not split it again). In the split tree
+    /// each colour channel comes from its own wavelength's ray (weight 1 each); in the
+    /// stochastic tree and in path tracing (one path per sample) from one wavelength
+    /// uniform over 400–700 nm, in its box's channel times 3.
+    pub(super) fn sample_through_dispersive_lens<R: Recorder>(
+        &self,
+        film: glam::Vec2,
+        cs: &CameraSample,
+        w: &mut Walk<R>,
+    ) -> Color {
+        let at = |lambda: f32, w: &mut Walk<R>| {
+            let (ray, weight) = self
+                .frame
+                .weighed_ray_at(film, cs.lens, cs.time, Some(lambda));
+            self.trace_camera_ray(&ray, weight, Some(lambda), w)
+        };
+        let wavelengths = if self.params.transport.traces_paths() {
+            Wavelengths::One(dispersion::wavelength(w.rng.with_image_position()))
+        } else {
+            self.wavelengths(w.rng)
+        };
+        match wavelengths {
+            Wavelengths::One(lambda) => dispersion::channel_weight(lambda) * at(lambda, w),
+            Wavelengths::PerChannel(lambdas) => {
+                let mut sum = Color::ZERO;
+                for (c, lambda) in lambdas.into_iter().enumerate() {
+                    sum[c] = at(lambda, w)[c];
+                }
+                sum
             }
         }
     }

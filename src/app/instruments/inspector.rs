@@ -15,6 +15,10 @@ pub(crate) struct Inspection {
     pub tree: crate::tracer::RayTree,
     /// The radiance the sample returned.
     pub radiance: crate::math::Color,
+    /// Its image position (0 to 1 across and down), for the lens bench.
+    pub film: glam::Vec2,
+    /// Its point on the lens (unit square), for the lens bench.
+    pub lens_point: glam::Vec2,
 }
 
 /// A ray's colour by its kind: the section view's palette, so that the overlay, the list

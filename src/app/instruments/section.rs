@@ -8,7 +8,7 @@ use crate::camera::Camera;
 use crate::params::Params;
 use crate::scene::Scene;
 use crate::section::{
-    Anchor, Canvas, Dash, Diagram, Fit, MAX_ZOOM, Room, Stroke, Theme, Workbench, section,
+    Anchor, Bench, Canvas, Dash, Diagram, Fit, MAX_ZOOM, Room, Stroke, Theme, Workbench, section,
 };
 use egui::{Color32, Pos2, Sense, pos2};
 use glam::Vec2;
@@ -22,6 +22,9 @@ pub(crate) enum SectionMode {
     Pixel,
     /// One flat interface and one ray: the lecture's Snell and Fresnel figure.
     Workbench,
+    /// The camera's real lens cut through its axis, and the inspected pixel's rays through
+    /// its glass.
+    LensBench,
 }
 
 /// The section view's state.
@@ -180,6 +183,8 @@ pub(crate) fn section_ui(
             .on_hover_text("The inspected pixel's ray tree, in the plane of its camera ray and the normal where it first meets a surface.");
         ui.selectable_value(&mut state.mode, SectionMode::Workbench, "Interface workbench")
             .on_hover_text("One flat interface, one ray: drag the angle.");
+        ui.selectable_value(&mut state.mode, SectionMode::LensBench, "Lens bench")
+            .on_hover_text("The camera's real lens (the Lens menu under Camera) cut through its axis: its elements, its stop, the film, and the inspected pixel's rays through the glass with their angles at each surface.");
         });
     }
     match state.mode {
@@ -196,7 +201,51 @@ pub(crate) fn section_ui(
             workbench_ui(ui, state, (scene.medium_ior, ior), (hall, shared));
             None
         }
+        SectionMode::LensBench => {
+            match inspection {
+                Some(i) => lens_bench_ui(ui, i, hall),
+                None => {
+                    ui.label("Click a pixel of the image: the lens bench draws its rays through the camera's lens.");
+                }
+            }
+            None
+        }
     }
+}
+
+/// The lens bench of the inspected pixel's sample, or why there is none.
+fn lens_bench_ui(ui: &mut egui::Ui, inspection: &Inspection, hall: bool) {
+    let (w, h) = inspection.size;
+    let camera = &inspection.camera;
+    let frame = camera.frame(w as f32 / h as f32, camera.exposure(&inspection.params));
+    let Some(lens) = frame.real_lens() else {
+        ui.label("The camera has the thin lens, an ideal disk with no glass to draw: choose a real lens under the Lens menu under Camera.");
+        return;
+    };
+    let bench = Bench {
+        lens,
+        film: inspection.film,
+        sample: inspection.lens_point,
+        wavelength: None,
+    };
+    let Some(mut diagram) = bench.diagram() else {
+        ui.label("No ray from this pixel's film point gets through the lens.");
+        return;
+    };
+    if !hall {
+        let (x, y) = inspection.pixel;
+        diagram.title = format!("Lens bench at pixel ({x}, {y}), sample 0");
+    }
+    let (response, painter) = canvas(ui, "Lens bench diagram", Sense::hover(), 200.0);
+    let rect = response.rect;
+    let size = Vec2::new(rect.width(), rect.height());
+    let fit = Fit::new(
+        &diagram,
+        Vec2::new(rect.min.x, rect.min.y),
+        size,
+        text_height(ui),
+    );
+    paint_on(&painter, &diagram, &fit, None);
 }
 
 /// The canvas's text height: the window's body text (the caption's size in a hall).

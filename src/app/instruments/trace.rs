@@ -33,7 +33,10 @@ pub(crate) struct Tracing {
 fn trace(tracer: &mut Tracer, asked: &Asked) -> Inspection {
     tracer.prepare_photons(0);
     let (tree, radiance) = tracer.inspect(asked.pixel.0, asked.pixel.1, 0);
+    let (film, lens_point) = tracer.camera_point(asked.pixel.0, asked.pixel.1, 0);
     Inspection {
+        film,
+        lens_point,
         pixel: asked.pixel,
         size: asked.size,
         params: asked.params.clone(),

@@ -58,6 +58,10 @@ pub struct RealLens {
     half_film: Vec2,
     pupils: Arc<Pupils>,
     disperses: bool,
+    /// The stop's surface.
+    stop: usize,
+    /// How far the stop is closed (its share of the open diameter).
+    stop_scale: f32,
 }
 
 /// The exit pupils of a focused, stopped lens: per film ring, the rectangle on the rear
@@ -70,6 +74,46 @@ struct Pupils {
     bounds: Vec<(Vec2, Vec2)>,
     /// The area of the pupil seen from the film's centre, mm².
     on_axis: f32,
+}
+
+/// One surface of a laid-out lens, as a lens bench draws it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceProfile {
+    /// Its vertex's z in the camera's frame (mm).
+    pub z: f32,
+    /// Its radius of curvature (mm; positive: its centre towards the film; 0: flat).
+    pub radius: f32,
+    /// Half its clear aperture (mm), the stop's as stopped down.
+    pub clear_radius: f32,
+    /// n_d of the medium behind it (1: air).
+    pub ior: f32,
+    /// Whether it is the stop.
+    pub stop: bool,
+}
+
+impl SurfaceProfile {
+    /// The z of the surface at `h` mm from the axis (its sag from the vertex), clamped to
+    /// the sphere's rim.
+    pub fn z_at(&self, h: f32) -> f32 {
+        if self.radius == 0.0 {
+            return self.z;
+        }
+        let r = self.radius;
+        let h = h.abs().min(r.abs());
+        // The sphere's centre is at z − r: the surface point at height h is
+        // z − r + sign(r)·√(r² − h²).
+        self.z - r + r.signum() * (r * r - h * h).sqrt()
+    }
+
+    /// Its unit normal at the point `p` on it (camera frame), facing the scene (+z).
+    pub fn normal_at(&self, p: Vec3) -> Vec3 {
+        if self.radius == 0.0 {
+            return Vec3::Z;
+        }
+        let centre = Vec3::new(0.0, 0.0, self.z - self.radius);
+        let n = (p - centre).normalize_or(Vec3::Z);
+        if n.z < 0.0 { -n } else { n }
+    }
 }
 
 /// A ray the lens lets out, in the camera's frame (mm, +z along the view, the front
@@ -122,12 +166,30 @@ impl RealLens {
             half_film,
             pupils,
             disperses: disperse && lens.disperses(),
+            stop: lens.stop(),
+            stop_scale,
         })
     }
 
     /// Whether its rays depend on the wavelength.
     pub fn disperses(&self) -> bool {
         self.disperses
+    }
+
+    /// Its surfaces in the camera's frame (mm, +z towards the scene, the front principal
+    /// plane at z = 0), front to back, as stopped down: for the lens bench.
+    pub fn profile(&self) -> Vec<SurfaceProfile> {
+        self.layout.profile(self.z_principal, self.stop)
+    }
+
+    /// The film's z in the camera's frame (mm).
+    pub fn film_z(&self) -> f32 {
+        self.film_z - self.z_principal
+    }
+
+    /// Its f-number as stopped down: f over the entrance pupil's diameter.
+    pub fn f_number(&self) -> f64 {
+        self.paraxial.f_number() / f64::from(self.stop_scale)
     }
 
     /// Its paraxial description.

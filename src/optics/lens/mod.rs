@@ -27,7 +27,7 @@ mod camera;
 pub mod paraxial;
 mod trace;
 
-pub use camera::{LensRay, RealLens, stopped_f_number};
+pub use camera::{LensRay, RealLens, SurfaceProfile, stopped_f_number};
 pub use paraxial::Paraxial;
 
 use crate::optics::dispersion;
@@ -95,6 +95,21 @@ impl LensModel {
             .into_iter()
             .find(|m| m.table().is_some_and(|(n, _)| n == name))
     }
+}
+
+/// Whether a real lens's glass disperses (the `lens_dispersion` parameter): off, every
+/// element refracts at its n_d; on, at n(λ) from its Abbe number, so each wavelength is
+/// focused and magnified a little differently (chromatic aberration).
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "snake_case")]
+pub enum LensDispersion {
+    /// Every element at n_d: one image for all wavelengths.
+    #[default]
+    Off,
+    /// Each element at n(λ) (Cauchy, through n_d and its Abbe number).
+    On,
 }
 
 /// Most surfaces a prescription may have: real designs have a few dozen.

@@ -59,6 +59,22 @@ impl Layout {
         Layout { surfaces }
     }
 
+    /// Each surface as drawn on a lens bench, front to back, its vertex at `z` less
+    /// `shift`.
+    pub(super) fn profile(&self, shift: f32, stop: usize) -> Vec<super::SurfaceProfile> {
+        self.surfaces
+            .iter()
+            .enumerate()
+            .map(|(i, s)| super::SurfaceProfile {
+                z: s.z - shift,
+                radius: s.radius,
+                clear_radius: s.clear_radius,
+                ior: s.ior,
+                stop: i == stop,
+            })
+            .collect()
+    }
+
     /// The clear radius of the last surface (the rear element), mm.
     pub(super) fn rear_radius(&self) -> f32 {
         self.surfaces.last().map_or(0.0, |s| s.clear_radius)

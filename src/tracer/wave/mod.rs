@@ -137,10 +137,12 @@ pub const MAX_WAVE_LIGHTS: usize = 64;
 
 impl Tracer<'_> {
     /// Whether the kernel traces this tracer's samples in waves: the ray tree, without a
-    /// polariser, in a scene of at most [`MAX_WAVE_LIGHTS`] lights.
+    /// polariser or a dispersive lens (whose sample is three camera rays), in a scene of at
+    /// most [`MAX_WAVE_LIGHTS`] lights.
     pub fn traces_waves(&self) -> bool {
         !self.params.transport.traces_paths()
             && self.params.polarizer.is_none()
+            && !self.frame.disperses()
             && self.lights.len() <= MAX_WAVE_LIGHTS
     }
 
