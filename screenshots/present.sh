@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Screenshots of presentation mode, as a hall sees it: the window under Xvfb at 1920x1080
-# (a projector) and at 1280x720 (a laptop), F5, then Page Down to ten slides, each shot
+# (a projector) and at 1280x720 (a laptop), F5, then Page Down to eleven slides, each shot
 # 12 s after it opens (on 2 cores most reach their target by then; soft shadows' 256 spp
 # at the display's size do not, and look clean at about 60 to 70). Writes
 # screenshots/present-{1080,720}-{snell,ray-tree,tir,pruning,reflectance,schlick,sampling,
-# soft-shadows,depth-of-field,polarization}.png; and for the slides a lecturer drags on
+# soft-shadows,depth-of-field,real-lens,polarization}.png; and for the slides a lecturer drags on
 # (Snell, reflectance, Schlick, soft shadows, depth of field, polarisation) the frame in
 # the middle of a drag, -drag.png: ] held down (the slide's first control stepped at the
 # keyboard's repeat rate), or the workbench's drawing dragged with the mouse; the shot
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 # Slide numbers and names, in the lecture's order (raylab lecture lists them).
-slides=(2:snell 3:ray-tree 4:tir 5:pruning 6:reflectance 8:schlick 11:sampling 13:soft-shadows 15:depth-of-field 17:polarization)
+slides=(2:snell 3:ray-tree 4:tir 5:pruning 6:reflectance 8:schlick 11:sampling 13:soft-shadows 16:depth-of-field 17:real-lens 19:polarization)
 # Slides shot mid-drag, and how: `key` holds ], `bench` drags the workbench's drawing.
 declare -A drags=([snell]=key [reflectance]=bench [schlick]=bench [soft-shadows]=key [depth-of-field]=key [polarization]=key)
 display=${RAYLAB_DISPLAY:-96}

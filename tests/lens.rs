@@ -364,3 +364,34 @@ fn lateral_colour_of_a_singlet() {
     let apart = centroid_x(&off, 0) - centroid_x(&off, 2);
     assert!(apart.abs() < 0.01, "without dispersion {apart} px apart");
 }
+
+#[test]
+fn inspect_says_when_the_lens_blocks_a_sample_and_lists_each_wavelengths_ray() {
+    let dir = tempfile::tempdir().unwrap();
+    let inspect = |args: &[&str]| {
+        let o = common::raylab(&[&["inspect", "real-lens"], args].concat(), dir.path());
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    // The corner's fifth sample falls outside the pupil (the double Gauss wide open).
+    let blocked = inspect(&["--pixel", "0,0", "--sample", "4"]);
+    assert!(blocked.contains("0 rays"), "{blocked}");
+    assert!(
+        blocked.contains("The lens blocks this sample's ray"),
+        "{blocked}"
+    );
+    // Through the dispersing singlet, one camera ray per colour channel's wavelength.
+    let split = inspect(&[
+        "--pixel",
+        "147,545",
+        "--set",
+        "lens=singlet-50",
+        "--set",
+        "lens_dispersion=on",
+    ]);
+    let cameras: Vec<&str> = split
+        .lines()
+        .filter(|l| l.starts_with("Camera ray at"))
+        .collect();
+    assert_eq!(cameras.len(), 3, "{split}");
+}

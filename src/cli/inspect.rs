@@ -105,6 +105,7 @@ pub fn inspect_command(args: &InspectArgs) -> Result<()> {
         size: (width, height),
         tree,
         radiance,
+        frame,
         ..
     } = trace_pixel(&args.scene, &args.sample, args.pixel)?;
     let (x, y) = args.pixel;
@@ -130,8 +131,11 @@ pub fn inspect_command(args: &InspectArgs) -> Result<()> {
         radiance.z,
         tree.nodes.len()
     );
-    if !tree.nodes.is_empty() {
-        print_node(&tree, 0, 0, &scene);
+    for root in tree.roots() {
+        print_node(&tree, root, 0, &scene);
+    }
+    if tree.nodes.is_empty() && frame.real_lens().is_some() {
+        say!("The lens blocks this sample's ray: it brings back black.");
     }
     Ok(())
 }

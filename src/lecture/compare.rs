@@ -2,7 +2,7 @@
 //! sides, or three for regular, random and jittered samples).
 
 use crate::optics::FresnelMode;
-use crate::params::{Params, Pattern, Transport, TreeMode};
+use crate::params::{LensModel, Params, Pattern, Transport, TreeMode};
 
 /// Two (or three) images of one scene that differ in one thing the lecture compares.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,12 +29,15 @@ pub enum Comparison {
     Blurring,
     /// No polariser against a vertical one in front of the lens.
     Polariser,
+    /// The lecture's thin lens against a real one of glass (the double Gauss), of the same
+    /// entrance pupil and focused at the same distance.
+    ThinReal,
 }
 
 impl Comparison {
     /// The comparisons the window's A/B menu offers, with their menu entries: those that
     /// change one setting and keep the rest.
-    pub const PRESETS: [(&'static str, Comparison); 7] = [
+    pub const PRESETS: [(&'static str, Comparison); 8] = [
         ("Schlick | exact", Comparison::SchlickExact),
         (
             "regular | random | jittered",
@@ -48,6 +51,7 @@ impl Comparison {
         ),
         ("whitted | path", Comparison::WhittedPath),
         ("whitted | path + photons", Comparison::WhittedPhotons),
+        ("thin lens | double Gauss", Comparison::ThinReal),
     ];
 
     /// The labels of its sides, A first, left to right.
@@ -63,6 +67,7 @@ impl Comparison {
             Comparison::Supersampling => &["A: 1 sample, centre", "B: 4 jittered"],
             Comparison::Blurring => &["A: 1 ray, point light", "B: 256 rays, area light"],
             Comparison::Polariser => &["A: no polariser", "B: vertical polariser"],
+            Comparison::ThinReal => &["A: thin lens", "B: double Gauss 50 mm"],
         }
     }
 
@@ -96,6 +101,7 @@ impl Comparison {
                 }
             }
             Comparison::Polariser => p.polarizer = None,
+            Comparison::ThinReal => p.lens = LensModel::Thin,
         }
         p
     }
@@ -135,6 +141,7 @@ impl Comparison {
                 p.light_size = 1.0;
             }
             Comparison::Polariser => p.polarizer = Some(90.0),
+            Comparison::ThinReal => p.lens = LensModel::DoubleGauss50,
         }
         p
     }

@@ -179,6 +179,14 @@ pub const LECTURE: &[Slide] = &[
                 None => "Eye rays from random points on the lens meet on the plane of focus: what lies there is sharp, the rest blurs. Try Click to focus.".into(),
             }
         }),
+    // The real lens of `real-lens` wide open at f/2, where its barrel cuts the pupil.
+    slide("Thin lens against a real lens", "real-lens")
+        .set(&[("spp", "128")])
+        .compare(Comparison::ThinReal)
+        .asks(&["aperture"])
+        .says(
+            "Left: the lecture's thin lens, an ideal disk. Right: a 50 mm f/2 double Gauss of the same pupil, six glass elements traced by Snell's law, focused as far: the same framing and focus, but off the axis its barrel cuts the pupil and the corners darken. Drag the Aperture down: they brighten.",
+        ),
     // A fifth of the frame: the spheres smear over a fifth of their travel and stay
     // solid enough to see (over the whole frame they were faint ghosts).
     slide("Motion blur", "motion-blur")

@@ -231,6 +231,15 @@ pub struct RayTree {
 }
 
 impl RayTree {
+    /// Its camera rays: one, or one per wavelength through a lens whose glass disperses.
+    pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {
+        self.nodes
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| n.parent.is_none())
+            .map(|(id, _)| id)
+    }
+
     /// The children of node `id`, in order.
     pub fn children(&self, id: usize) -> impl Iterator<Item = (usize, &TreeNode)> {
         self.nodes

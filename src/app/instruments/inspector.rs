@@ -119,7 +119,9 @@ pub(crate) fn inspector_ui(
                 materials,
                 highlight,
             };
-            node_ui(ui, &list, 0, &mut hovered);
+            for root in inspection.tree.roots() {
+                node_ui(ui, &list, root, &mut hovered);
+            }
         });
     hovered
 }
