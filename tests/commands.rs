@@ -478,6 +478,33 @@ fn section_writes_a_pixels_tree_and_the_workbench_as_svg_and_png() {
     let svg = std::fs::read_to_string(d.join("tir.svg")).unwrap();
     assert!(svg.contains(">total internal reflection</text>"));
     assert!(svg.contains(">critical angle 41.8°</text>"));
+    // Rough: the lobes, and the title says so.
+    let rough = [
+        "section",
+        "--angle",
+        "40",
+        "--roughness",
+        "0.2",
+        "-o",
+        "rough.svg",
+    ];
+    let o = raylab(&rough, d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let svg = std::fs::read_to_string(d.join("rough.svg")).unwrap();
+    assert!(svg.contains("rough: GGX α = 0.2"), "{svg}");
+    fails(
+        &[
+            "section",
+            "--angle",
+            "40",
+            "--roughness",
+            "2",
+            "-o",
+            "x.svg",
+        ],
+        d,
+        "out of range",
+    );
     // A pixel's section, as a PNG of the size asked for.
     let args = [
         "section", "glass", "--pixel", "40,22", "--size", "80x45", "--figure", "480x360", "-o",
@@ -556,6 +583,7 @@ fn the_workbench_shows_what_raylab_fresnel_prints_at_every_angle() {
                 n1: n1.parse().unwrap(),
                 n2: n2.parse().unwrap(),
                 theta_i,
+                roughness: 0.0,
             };
             let r = bench.row();
             let theta_t = r.theta_t.map(|t| format!("{t:.4}")).unwrap_or_default();

@@ -166,6 +166,7 @@ fn the_workbench_shows_raylab_fresnels_numbers_at_every_angle() {
                 n1,
                 n2,
                 theta_i: row.theta_i,
+                roughness: 0.0,
             };
             assert_eq!(bench.row(), row, "{n1} → {n2} at {}°", row.theta_i);
             let notes = bench.diagram().notes.join("\n");
@@ -182,7 +183,13 @@ fn total_internal_reflection_appears_exactly_past_the_critical_angle() {
     let (n1, n2) = (1.5, 1.0);
     let critical = critical_angle(n1, n2).unwrap().to_degrees();
     let refracted = |theta_i: f32| {
-        let d = Workbench { n1, n2, theta_i }.diagram();
+        let d = Workbench {
+            n1,
+            n2,
+            theta_i,
+            roughness: 0.0,
+        }
+        .diagram();
         let ray = d.rays().any(|r| r.kind == RayKind::Refract);
         let label = d
             .labels
@@ -198,6 +205,7 @@ fn total_internal_reflection_appears_exactly_past_the_critical_angle() {
         n1: 1.0,
         n2: 1.5,
         theta_i: 89.0,
+        roughness: 0.0,
     };
     assert!(into.diagram().rays().any(|r| r.kind == RayKind::Refract));
     assert_eq!(into.critical_angle(), None);
@@ -210,6 +218,7 @@ fn the_workbench_draws_widths_r_and_one_minus_r() {
         n1: 1.0,
         n2: 1.5,
         theta_i: 60.0,
+        roughness: 0.0,
     };
     let row = bench.row();
     let d = bench.diagram();

@@ -137,6 +137,7 @@ fn dragging_the_workbench_sets_the_angle_and_outlines_the_image() {
         n1: 1.0,
         n2: 1.5,
         theta_i: h.state().workbench_angle(),
+        roughness: 0.0,
     };
     let fit = Fit::new(
         &bench.diagram(),

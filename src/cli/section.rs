@@ -28,6 +28,10 @@ pub struct SectionArgs {
     /// The workbench's index of refraction on the other side.
     #[arg(long, default_value_t = 1.5, value_parser = parse_ior, requires = "angle")]
     n2: f32,
+    /// The workbench's GGX roughness α (0 to 1): above 0 it draws the rough interface's
+    /// reflection and transmission lobes.
+    #[arg(long, value_name = "ALPHA", default_value_t = 0.0, value_parser = parse_roughness, requires = "angle")]
+    roughness: f32,
     /// The file to write: .svg (text stays text, for slides) or .png.
     #[arg(short, long, value_name = "FILE")]
     output: PathBuf,
@@ -51,6 +55,12 @@ pub struct SectionArgs {
 /// A zoom factor, 1 to the section's deepest.
 fn parse_zoom(s: &str) -> Result<f32, String> {
     number_in(s, 1.0, raylab::section::MAX_ZOOM, "")
+}
+
+/// A roughness α, 0 (smooth) to the largest a material takes.
+fn parse_roughness(s: &str) -> Result<f32, String> {
+    let (lo, hi) = raylab::params::ROUGHNESS_RANGE;
+    number_in(s, lo, hi, "")
 }
 
 /// An angle of incidence in degrees, 0 to the workbench's largest.
@@ -82,6 +92,7 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
             n1: args.n1,
             n2: args.n2,
             theta_i,
+            roughness: args.roughness,
         }
         .diagram(),
         (None, Some(pixel)) if args.lens_bench => {

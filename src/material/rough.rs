@@ -108,9 +108,8 @@ impl Microfacet {
 
     /// What the lobe on `side` passes from direction `dir` towards the viewer of `at`
     /// (f cos θo), the density with which it draws `dir`, and the facet that sends the
-    /// view there (world space): the half vector m, D_v(m) times the Jacobian of reflection
-    /// (1/(4|o·m|)) or refraction, and f cos θo = that density times the weight the lobe
-    /// would carry, F(m) G1(o) or (1 − F(m)) G1(o). `None` where no facet sends it there.
+    /// view there (world space): [`Microfacet::lobe`] in the hit's frame, where `dir`
+    /// leaves on `side` of the geometric surface too.
     fn lobe_eval(
         &self,
         at: &Interaction,
@@ -118,15 +117,29 @@ impl Microfacet {
         side: Side,
         dir: Vec3,
     ) -> Option<(f32, f32, Vec3)> {
-        let (v, o) = (frame.local(-at.dir), frame.local(dir));
         let leaves_here = dir.dot(at.n_geom) > 0.0;
+        if leaves_here != (side == Side::Reflect) {
+            return None;
+        }
+        let (f_cos, pdf, m) = self.lobe(frame.local(-at.dir), frame.local(dir), side)?;
+        Some((f_cos, pdf, frame.world(m)))
+    }
+
+    /// What the lobe on `side` passes from `v` (towards the viewer) to `o` in the macro
+    /// surface's frame (n = +z): f cos θo, the density with which the lobe draws `o`, and
+    /// the facet m that sends the view there: the half vector, D_v(m) times the Jacobian
+    /// of reflection (1/(4|o·m|)) or refraction, and f cos θo = that density times the
+    /// weight the lobe would carry, F(m) G1(o) or (1 − F(m)) G1(o). `None` where `o` is on
+    /// the other side or no facet sends the view there. The interface workbench draws
+    /// the lobes with it.
+    pub fn lobe(&self, v: Vec3, o: Vec3, side: Side) -> Option<(f32, f32, Vec3)> {
         let (m, jacobian, share) = match side {
-            Side::Reflect if o.z > 0.0 && leaves_here => {
+            Side::Reflect if o.z > 0.0 => {
                 let m = reflection_normal(v, o)?;
                 let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
                 (m, 1.0 / (4.0 * o.dot(m).abs()), f)
             }
-            Side::Transmit if o.z < 0.0 && !leaves_here => {
+            Side::Transmit if o.z < 0.0 => {
                 let m = refraction_normal(v, o, self.n1, self.n2)?;
                 let f = self.reflectance(v.dot(m).clamp(0.0, 1.0));
                 (m, refraction_jacobian(v, o, m, self.n1, self.n2), 1.0 - f)
@@ -134,8 +147,7 @@ impl Microfacet {
             _ => return None,
         };
         let pdf = visible_normal_pdf(v, m, self.alpha) * jacobian;
-        (pdf > 0.0 && pdf.is_finite())
-            .then(|| (share * smith_g1(o.z, self.alpha) * pdf, pdf, frame.world(m)))
+        (pdf > 0.0 && pdf.is_finite()).then(|| (share * smith_g1(o.z, self.alpha) * pdf, pdf, m))
     }
 
     /// What the lobe on `side` passes from `dir` towards the viewer of `at` (f cos θo),

@@ -417,7 +417,15 @@ mod tests {
         let font = ab_glyph::FontRef::try_from_slice(epaint_default_fonts::UBUNTU_LIGHT).unwrap();
         let mut diagrams: Vec<Diagram> = [(1.0, 1.5, 30.0), (1.5, 1.0, 60.0)]
             .into_iter()
-            .map(|(n1, n2, theta_i)| Workbench { n1, n2, theta_i }.diagram())
+            .map(|(n1, n2, theta_i)| {
+                Workbench {
+                    n1,
+                    n2,
+                    theta_i,
+                    roughness: 0.3,
+                }
+                .diagram()
+            })
             .collect();
         let scene = crate::scene::Scene::load("ray-tree").unwrap();
         let params = crate::params::Params {

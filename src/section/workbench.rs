@@ -4,9 +4,12 @@
 //! the angles, F_s and F_p, exact R and Schlick's, the critical and Brewster angles.
 
 use super::{Anchor, Dash, Diagram, Ink, Item, Label, RayLine, angle_marks, degrees, index};
-use crate::optics::{FresnelRow, brewster_angle, critical_angle, fresnel_row};
+use crate::material::{Microfacet, Side};
+use crate::math::Vec3;
+use crate::optics::{FresnelMode, FresnelRow, brewster_angle, critical_angle, fresnel_row};
 use crate::tracer::{End, RayKind};
 use glam::Vec2;
+use std::f32::consts::PI;
 
 /// One interface, one incoming ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,7 +20,17 @@ pub struct Workbench {
     pub n2: f32,
     /// The angle of incidence, degrees from the normal, 0 to 90.
     pub theta_i: f32,
+    /// The interface's GGX roughness α: 0 is smooth; above, the figure draws the rough
+    /// interface's reflection and transmission lobes.
+    pub roughness: f32,
 }
+
+/// Directions per lobe's outline across its half of the plane, and again within
+/// [`FINE`] of its smooth ray.
+const LOBE_STEPS: usize = 180;
+/// The span about a lobe's smooth ray traced finely (radians, 12°): a transmission lobe
+/// of small α is about a degree wide.
+const FINE: f32 = 0.21;
 
 /// The largest angle of incidence the workbench takes: at 90° the ray runs along the
 /// interface and never meets it.
@@ -187,7 +200,76 @@ impl Workbench {
         ));
         d.labels.extend(guides);
         d.notes = self.notes(&row);
+        if self.roughness > 0.0 {
+            let theta_t = row.theta_t.map(|t| t.to_radians());
+            self.lobes(&mut d, [Some(self.theta_i.to_radians()), theta_t]);
+        }
         d
+    }
+
+    /// The rough interface's two lobes in the plane of incidence: for each direction o
+    /// leaving the hit, f cos θo of the reflection lobe (above) and of the transmission lobe
+    /// (below) as the split tree's jittered children carry it ([`Microfacet::lobe`], exact
+    /// Fresnel at each facet), drawn as a polar outline, each to its own peak (the rays'
+    /// widths give their shares): their shapes show how far each child is jittered. Into
+    /// glass the refracted lobe is the narrower (refraction bends less than reflection
+    /// turns), so each lobe is traced finely about its smooth ray, `smooth` (radians from
+    /// the normal, towards +x).
+    fn lobes(&self, d: &mut Diagram, smooth: [Option<f32>; 2]) {
+        let facets = Microfacet {
+            alpha: self.roughness,
+            n1: self.n1,
+            n2: self.n2,
+            fresnel: FresnelMode::Exact,
+            constant_reflectance: 0.0,
+        };
+        let theta = self.theta_i.to_radians();
+        // Towards the viewer, back along the incoming ray: the plane's (x, y) is the
+        // surface frame's (x, z).
+        let v = Vec3::new(-theta.sin(), 0.0, theta.cos());
+        let half_pi = std::f32::consts::FRAC_PI_2;
+        for ((side, kind), about) in [
+            (Side::Reflect, RayKind::Reflect),
+            (Side::Transmit, RayKind::Refract),
+        ]
+        .into_iter()
+        .zip(smooth)
+        {
+            let sign = if side == Side::Reflect { 1.0 } else { -1.0 };
+            let coarse = (0..=LOBE_STEPS).map(|k| (k as f32 / LOBE_STEPS as f32 - 0.5) * PI);
+            let fine = about.into_iter().flat_map(|a| {
+                (0..=LOBE_STEPS).map(move |k| a + (k as f32 / LOBE_STEPS as f32 - 0.5) * FINE)
+            });
+            let mut phis: Vec<f32> = coarse.chain(fine).filter(|p| p.abs() < half_pi).collect();
+            phis.sort_by(f32::total_cmp);
+            let points: Vec<(Vec2, f32)> = phis
+                .iter()
+                .map(|&phi| {
+                    let o = Vec3::new(phi.sin(), 0.0, sign * phi.cos());
+                    let f_cos = facets.lobe(v, o, side).map_or(0.0, |l| l.0);
+                    (Vec2::new(o.x, o.z), f_cos)
+                })
+                .collect();
+            let peak = points.iter().map(|p| p.1).fold(0.0, f32::max);
+            if peak <= 0.0 {
+                continue;
+            }
+            let polar: Vec<Vec2> = points.iter().map(|(o, f)| *o * (f / peak)).collect();
+            for pair in polar.windows(2).filter(|p| p[0] != p[1]) {
+                d.items.push(Item::Line {
+                    a: pair[0],
+                    b: pair[1],
+                    ink: Ink::Ray(kind),
+                    width: 2.0,
+                    dash: Dash::Solid,
+                });
+            }
+        }
+        d.title = format!("{}, rough: GGX α = {}", d.title, self.roughness);
+        d.notes.push(format!(
+            "Lobes (α = {}): f cos θo of the jittered reflected (above) and refracted (below) rays in this plane, each to its own peak; the straight rays are the smooth interface's.",
+            self.roughness
+        ));
     }
 
     /// The line a hall has room for: R and Schlick's approximation of it at the angle.
@@ -250,5 +332,81 @@ mod tests {
         assert_eq!(Workbench::angle_at(Vec2::new(0.0, 1.0)), 0.0);
         // Below the interface: as far as the workbench goes.
         assert_eq!(Workbench::angle_at(Vec2::new(-1.0, -1.0)), MAX_ANGLE);
+    }
+
+    /// The points of the lobe outlines of `bench`: reflection's, then transmission's.
+    fn lobe_points(bench: Workbench) -> (Vec<Vec2>, Vec<Vec2>) {
+        let d = bench.diagram();
+        let mut lobes = (Vec::new(), Vec::new());
+        for item in &d.items {
+            if let Item::Line {
+                a,
+                ink: Ink::Ray(kind),
+                ..
+            } = item
+            {
+                match kind {
+                    RayKind::Reflect => lobes.0.push(*a),
+                    RayKind::Refract => lobes.1.push(*a),
+                    _ => {}
+                }
+            }
+        }
+        lobes
+    }
+
+    #[test]
+    fn the_rough_lobes_peak_near_the_mirror_and_snell_directions_and_widen_with_alpha() {
+        let bench = |roughness| Workbench {
+            n1: 1.0,
+            n2: 1.5,
+            theta_i: 30.0,
+            roughness,
+        };
+        // Smooth: no lobes.
+        let (r, t) = lobe_points(bench(0.0));
+        assert!(r.is_empty() && t.is_empty());
+        let spread = |points: &[Vec2]| {
+            let far = points.iter().map(|p| p.length()).fold(0.0, f32::max);
+            let peak = points.iter().find(|p| p.length() == far).copied().unwrap();
+            // The angle from the normal (up or down) where the outline reaches furthest,
+            // and how wide it is at half its reach.
+            let angle = peak.x.atan2(peak.y.abs()).to_degrees();
+            let half: Vec<f32> = points
+                .iter()
+                .filter(|p| p.length() > 0.5 * far)
+                .map(|p| p.x.atan2(p.y.abs()).to_degrees())
+                .collect();
+            let width = half.iter().fold(f32::MIN, |a, &b| a.max(b))
+                - half.iter().fold(f32::MAX, |a, &b| a.min(b));
+            (angle, width)
+        };
+        let theta_t = (30f32.to_radians().sin() / 1.5).asin().to_degrees();
+        let (mut last_r, mut last_t) = (0.0, 0.0);
+        for alpha in [0.05, 0.15, 0.3] {
+            let (r, t) = lobe_points(bench(alpha));
+            let ((angle_r, width_r), (angle_t, width_t)) = (spread(&r), spread(&t));
+            // At small α each lobe peaks within a few degrees of its smooth ray: the
+            // mirror direction (30° on the other side of the normal) and Snell's θt.
+            if alpha == 0.05 {
+                assert!(
+                    (angle_r - 30.0).abs() < 3.0,
+                    "reflection peaks at {angle_r}°"
+                );
+                assert!(
+                    (angle_t - theta_t).abs() < 3.0,
+                    "transmission peaks at {angle_t}°"
+                );
+            }
+            assert!(
+                width_r > last_r && width_t > last_t,
+                "α = {alpha}: widths {width_r}° and {width_t}° after {last_r}° and {last_t}°"
+            );
+            (last_r, last_t) = (width_r, width_t);
+        }
+        // Into glass refraction bends the ray less than reflection turns it as the facet
+        // tilts: the refracted lobe is the narrower.
+        let (r, t) = lobe_points(bench(0.15));
+        assert!(spread(&t).1 < 0.6 * spread(&r).1);
     }
 }

@@ -288,6 +288,16 @@ impl RaylabApp {
                 .iter()
                 .find_map(|m| m.dielectric().filter(|d| !d.ior_fixed).map(|d| d.ior))
         });
+        // The roughness the Roughness α slider shows: the parameter's, else the scene's.
+        let roughness = params
+            .roughness
+            .or_else(|| {
+                self.scene
+                    .materials
+                    .iter()
+                    .find_map(crate::material::Material::roughness)
+            })
+            .unwrap_or(0.0);
         let i = &mut self.instruments;
         if i.show_fresnel && shows(Tab::Fresnel) {
             // The inspected ray's angle, where it meets a dielectric interface (a diffuse
@@ -313,7 +323,7 @@ impl RaylabApp {
                 ui,
                 &mut i.section,
                 i.inspection.as_ref(),
-                (&self.scene, ior.unwrap_or(1.5)),
+                (&self.scene, ior.unwrap_or(1.5), roughness),
                 i.hover,
                 (hall, together),
             );

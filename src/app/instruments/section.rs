@@ -172,7 +172,7 @@ pub(crate) fn section_ui(
     ui: &mut egui::Ui,
     state: &mut SectionState,
     inspection: Option<&Inspection>,
-    (scene, ior): (&Scene, f32),
+    (scene, ior, roughness): (&Scene, f32, f32),
     highlight: Option<usize>,
     (hall, shared): (bool, bool),
 ) -> Option<usize> {
@@ -198,7 +198,12 @@ pub(crate) fn section_ui(
             }
         },
         SectionMode::Workbench => {
-            workbench_ui(ui, state, (scene.medium_ior, ior), (hall, shared));
+            workbench_ui(
+                ui,
+                state,
+                (scene.medium_ior, ior, roughness),
+                (hall, shared),
+            );
             None
         }
         SectionMode::LensBench => {
@@ -319,7 +324,7 @@ fn pixel_ui(
 fn workbench_ui(
     ui: &mut egui::Ui,
     state: &mut SectionState,
-    (medium, ior): (f32, f32),
+    (medium, ior, roughness): (f32, f32, f32),
     (hall, shared): (bool, bool),
 ) {
     let (n1, n2) = if state.out {
@@ -336,6 +341,7 @@ fn workbench_ui(
         n1,
         n2,
         theta_i: state.angle,
+        roughness,
     };
     let (response, painter) = canvas(ui, "Workbench diagram", Sense::click_and_drag(), least);
     let rect = response.rect;
