@@ -144,7 +144,12 @@ impl Dielectric {
     /// The Mueller matrix of the reflected or refracted ray from `n1` into `n2`: the
     /// Fresnel amplitudes with the exact model; the others do not polarise.
     pub(super) fn mueller(&self, hit: &Interaction, n1: f32, n2: f32, side: Side) -> Mueller {
-        let cos_i = hit.cos_i();
+        self.mueller_at(hit.cos_i(), n1, n2, side)
+    }
+
+    /// [`Dielectric::mueller`] of a ray meeting the interface (or a facet of it) at
+    /// `cos_i`.
+    pub(super) fn mueller_at(&self, cos_i: f32, n1: f32, n2: f32, side: Side) -> Mueller {
         if self.fresnel != FresnelMode::Exact {
             let r = Color::splat(self.reflectance(cos_i, n1, n2));
             return match side {

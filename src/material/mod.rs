@@ -293,17 +293,25 @@ impl Material {
         }
     }
 
-    /// The Mueller matrix (in the s/p frame of `hit`) of the child ray on `side`, or for a
+    /// The normal whose plane of incidence the Mueller matrix of child `lobe` of `hit` is
+    /// written in, where it is not the surface's: a rough interface's facet.
+    pub fn facet(&self, hit: &Interaction, lobe: &Lobe) -> Option<Vec3> {
+        match self {
+            Material::Dielectric(d) if d.is_rough() => d.facet_mueller(hit, lobe).map(|(m, _)| m),
+            _ => None,
+        }
+    }
+
+    /// The Mueller matrix (in the s/p frame of `hit`, or of [`Material::facet`]) of the child ray on `side`, or for a
     /// glaze's `Transmit` the way its base's light comes out through the coat. Mirrors and
     /// glossy metals reflect without polarising; materials without that lobe, `None`.
     pub fn mueller(&self, hit: &Interaction, lobe: Option<&Lobe>, side: Side) -> Option<Mueller> {
         match (self, side) {
-            // A rough interface's facets each polarise in their own plane of incidence:
-            // not modelled, its lobes pass the light's state as they find it.
-            (Material::Dielectric(d), _) if d.is_rough() => lobe.map(|l| match side {
-                Side::Reflect => Mueller::neutral_reflection(l.weight),
-                Side::Transmit => Mueller::neutral_transmission(l.weight),
-            }),
+            // A rough interface's child polarises in its facet's plane of incidence
+            // ([`Material::facet`] gives the frame this matrix is in).
+            (Material::Dielectric(d), _) if d.is_rough() => {
+                lobe.and_then(|l| d.facet_mueller(hit, l)).map(|(_, m)| m)
+            }
             (Material::Dielectric(d), _) => Some(d.child_mueller(hit, side)),
             (Material::Glazed(g), _) => Some(g.mueller(hit, side)),
             (Material::Conductor(c), Side::Reflect) => Some(c.mueller(hit)),

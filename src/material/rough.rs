@@ -9,11 +9,12 @@
 //! on a rough surface loses it. α → 0 is the smooth dielectric.
 
 use super::{Dielectric, Interaction, Interface, Lobe, LobeKind, Scatter, Side};
-use crate::math::{Uniform, Vec3, orthonormal_basis};
+use crate::math::{Color, Uniform, Vec3, orthonormal_basis};
 use crate::optics::microfacet::{
     reflection_normal, refraction_jacobian, refraction_normal, sample_visible_normal, smith_g1,
     visible_normal_pdf,
 };
+use crate::optics::polarization::Mueller;
 use crate::optics::{FresnelMode, reflect, refract};
 
 /// A rough interface as one hit sees it: what its lobes need to say how much light they
@@ -191,6 +192,33 @@ impl Microfacet {
 }
 
 impl Dielectric {
+    /// The facet a rough interface's child `lobe` of `hit` left from (world space, facing
+    /// the incoming ray), and the Mueller matrix of that child in the facet's own s/p frame:
+    /// the smooth interface's at the facet's angle, scaled by the masking G1 the lobe's
+    /// weight carries (weight = F(m) G1 or (1 − F(m)) G1). Each facet polarises in its own
+    /// plane of incidence, as the lecture's interface does in its one plane.
+    pub(super) fn facet_mueller(&self, hit: &Interaction, lobe: &Lobe) -> Option<(Vec3, Mueller)> {
+        let (n1, n2) = self.sides(hit);
+        let v = -hit.dir;
+        // The half vector of reflection, or Walter's generalized one of refraction.
+        let h = match lobe.side {
+            Side::Reflect => v + lobe.dir,
+            Side::Transmit => -(n1 * v + n2 * lobe.dir),
+        };
+        let m = h.try_normalize()?;
+        let m = if m.dot(v) < 0.0 { -m } else { m };
+        let facet = self.mueller_at(v.dot(m).clamp(0.0, 1.0), n1, n2, lobe.side);
+        // G1 per channel: the lobe's weight over the facet's Fresnel share.
+        let g1 = (lobe.weight / facet.a.max(Color::splat(1e-12))).min(Color::ONE);
+        let scaled = Mueller {
+            a: facet.a * g1,
+            b: facet.b * g1,
+            c: facet.c * g1,
+            s: facet.s * g1,
+        };
+        Some((m, scaled))
+    }
+
     /// This interface as rough ([`Dielectric::roughness`] above 0): one facet drawn among
     /// those the ray sees (two numbers from `u`), and the ray reflected and refracted there.
     pub(super) fn rough_scatter(&self, hit: &Interaction, u: &mut impl Uniform) -> Scatter {

@@ -72,10 +72,15 @@ impl Polarization for Analyzer {
     /// Through the lobe's Mueller matrix (a lobe the material does not polarise passes as
     /// it is), its x axis kept perpendicular to the child's direction.
     fn child(&self, material: &Material, at: &Interaction, lobe: &Lobe) -> Self {
+        // A rough interface's child: in its facet's s/p frame.
+        let framed = match material.facet(at, lobe) {
+            Some(m) => self.at_interface(at.dir, m),
+            None => *self,
+        };
         let m = material
             .mueller(at, Some(lobe), lobe.side)
             .unwrap_or_else(|| Mueller::neutral_transmission(lobe.weight));
-        let a = self.through(&m);
+        let a = framed.through(&m);
         // A jittered glossy ray leaves the plane of incidence a little: square s up to it.
         let x = a.x - a.x.dot(lobe.dir) * lobe.dir;
         let len = x.length();
