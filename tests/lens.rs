@@ -11,7 +11,7 @@ use glam::Vec2;
 use raylab::math::Color;
 use raylab::math::lanes::Width;
 use raylab::optics::lens::{Paraxial, Prescription, RealLens};
-use raylab::params::{LensDispersion, LensModel, Params};
+use raylab::params::{LensDispersion, LensModel, Params, TreeMode};
 use raylab::render::Film;
 use raylab::scene::Scene;
 use raylab::tracer::{Traversal, pick};
@@ -19,16 +19,17 @@ use raylab::tracer::{Traversal, pick};
 #[test]
 fn every_width_traces_every_design_as_the_recursion_does() {
     let scene = Scene::load("depth-of-field").unwrap();
-    let designs = LensModel::DESIGNS.map(|lens| (lens, LensDispersion::Off));
-    // (Through a dispersive lens the kernel traces by the recursion: the same bits.)
-    for (lens, lens_dispersion) in designs
-        .into_iter()
-        .chain([(LensModel::Singlet50, LensDispersion::On)])
-    {
+    let designs = LensModel::DESIGNS.map(|lens| (lens, LensDispersion::Off, TreeMode::Split));
+    // And through the singlet's dispersing glass: three camera rays a sample in the split
+    // tree, one at a wavelength of its own in the stochastic tree.
+    let dispersed = [TreeMode::Split, TreeMode::Stochastic]
+        .map(|tree| (LensModel::Singlet50, LensDispersion::On, tree));
+    for (lens, lens_dispersion, tree) in designs.into_iter().chain(dispersed) {
         let params = Params {
             spp: 4,
             lens,
             lens_dispersion,
+            tree,
             ..scene.params.clone()
         };
         let reference = common::render_by(Traversal::Recursive, &scene, &params, (40, 30));
@@ -40,7 +41,7 @@ fn every_width_traces_every_design_as_the_recursion_does() {
             assert_eq!(
                 common::bits(&film),
                 common::bits(&reference),
-                "{lens:?}: {w:?} lanes"
+                "{lens:?} {lens_dispersion:?} {tree:?}: {w:?} lanes"
             );
             assert_eq!(film.cost(), reference.cost(), "{lens:?}: {w:?}: rays");
         }

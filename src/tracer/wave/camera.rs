@@ -1,10 +1,12 @@
 //! Level 0 of a wave: each sample's camera ray, its random numbers, its slot and its root.
 
-use super::types::{Node, Rays, Slot};
+use super::types::{Node, Rays, Root, Slot};
 use crate::camera::CameraSample;
 use crate::math::lanes::{LaneKernel, Lanes, Real, V3, is_finite};
 use crate::math::rng::SobolLanes;
 use crate::math::{Pattern, Ray, SampleStream};
+use crate::optics::dispersion;
+use crate::tracer::spectral::Wavelengths;
 use crate::tracer::{Met, Stats, Tracer};
 
 /// The camera rays of a wave, with each sample's random numbers after the camera's, into
@@ -15,7 +17,7 @@ pub(super) struct CameraRays<'a, 't> {
     pub(super) samples: &'a [(u32, u32, u32)],
     pub(super) stats: &'a mut Stats,
     pub(super) slots: &'a mut Vec<Slot>,
-    pub(super) roots: &'a mut Vec<Option<u32>>,
+    pub(super) roots: &'a mut Vec<Root>,
     pub(super) level: &'a mut Rays,
 }
 
@@ -35,12 +37,48 @@ impl CameraRays<'_, '_> {
     fn push_slot(&mut self, rng: SampleStream, root: Option<u32>, weight: f32) {
         self.stats.samples += 1;
         self.stats.camera_rays += root.is_some() as u64;
-        self.roots.push(root);
+        self.roots.push(Root::One(root));
         self.slots.push(Slot {
             rng,
             weight,
             tree_rays: 0,
             rays: root.is_some() as u32,
+            met: Met::default(),
+        });
+    }
+
+    /// Sample `s` of pixel (x, y) through a lens whose glass disperses: its wavelengths
+    /// drawn at the camera as the recursion draws them
+    /// (`Tracer::sample_through_dispersive_lens`), and a camera ray traced out through the
+    /// glass at each, a root carrying its wavelength.
+    fn push_dispersed(&mut self, (x, y, s): (u32, u32, u32)) {
+        let t = self.tracer;
+        let (mut rng, cs) = t.camera_draw(x, y, s);
+        let film = t.film_at(x, y, &cs);
+        let slot = self.slots.len() as u32;
+        let mut traced = 0;
+        let mut root = |lambda: f32| {
+            let (ray, weight) = t.frame.weighed_ray_at(film, cs.lens, cs.time, Some(lambda));
+            let node = (weight > 0.0 && ray.origin.is_finite() && ray.dir.is_finite()).then(|| {
+                traced += 1;
+                self.level.push(&ray, Node::new(slot, 0, 1.0, Some(lambda)))
+            });
+            (node, weight)
+        };
+        let roots = match t.wavelengths(&mut rng) {
+            Wavelengths::One(lambda) => {
+                Root::Spectrum(root(lambda), dispersion::channel_weight(lambda))
+            }
+            Wavelengths::PerChannel(lambdas) => Root::PerChannel(lambdas.map(root)),
+        };
+        self.stats.samples += 1;
+        self.stats.camera_rays += traced as u64;
+        self.roots.push(roots);
+        self.slots.push(Slot {
+            rng,
+            weight: 1.0,
+            tree_rays: 0,
+            rays: traced,
             met: Met::default(),
         });
     }
@@ -54,6 +92,14 @@ impl LaneKernel for CameraRays<'_, '_> {
         self.roots.clear();
         self.level.clear();
         let t = self.tracer;
+        if t.frame.disperses() {
+            // Each sample is three camera rays (or one at a wavelength of its own): made
+            // one sample at a time.
+            for &sample in self.samples {
+                self.push_dispersed(sample);
+            }
+            return;
+        }
         let sobol = t.params.pattern == Pattern::Sobol;
         let in_lanes = if sobol { self.samples.len() / N * N } else { 0 };
         let (chunks, rest) = self.samples.split_at(in_lanes);
@@ -101,7 +147,8 @@ impl LaneKernel for CameraRays<'_, '_> {
                 // (Counted once for the `N`: an add to memory per sample waited on the last.)
                 self.stats.samples += N as u64;
                 self.stats.camera_rays += N as u64;
-                self.roots.extend((first..first + N as u32).map(Some));
+                self.roots
+                    .extend((first..first + N as u32).map(|r| Root::One(Some(r))));
                 self.slots.extend((0..N).map(|i| Slot {
                     rng: lanes.stream(i),
                     weight: 1.0,

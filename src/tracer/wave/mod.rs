@@ -14,7 +14,8 @@
 //!
 //! The waves take the lecture's ray tree (not paths or photons), without a polariser; a
 //! dispersive surface splits a node into its wavelengths as the recursion splits its tree
-//! (`tracer/spectral.rs`). The recursion ([`Tracer::sample`]) stays the reference, and
+//! (`tracer/spectral.rs`), and a lens whose glass disperses gives a sample a camera ray per
+//! wavelength, each a root of its own (`camera.rs`). The recursion ([`Tracer::sample`]) stays the reference, and
 //! what the inspector records. Both walks ask the same functions for each rule of the
 //! tree (which children a hit has, the media a child crosses into, the shadow rays' tests,
 //! the transmittance along a segment, the wavelength split), so that they cannot part.
@@ -38,7 +39,7 @@ use crate::tracer::{Media, Met, Stats, Tracer};
 use camera::CameraRays;
 use hits::{Hits, Splits, Surfaces};
 use lights::{Asked, Lit, Seen, Shadows};
-use types::{Level, Lights, Node, Queue, Rays, Slot, Surface, Value};
+use types::{Level, Lights, Node, Queue, Rays, Root, Slot, Surface, Value};
 
 /// How the kernel walks each sample's ray tree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -102,7 +103,7 @@ pub struct Traced {
 #[derive(Default)]
 pub struct Waves {
     slots: Vec<Slot>,
-    roots: Vec<Option<u32>>,
+    roots: Vec<Root>,
     level: Rays,
     next: Rays,
     // Every medium the wave's rays travel through: a reflected ray shares its parent's.
@@ -137,12 +138,10 @@ pub const MAX_WAVE_LIGHTS: usize = 64;
 
 impl Tracer<'_> {
     /// Whether the kernel traces this tracer's samples in waves: the ray tree, without a
-    /// polariser or a dispersive lens (whose sample is three camera rays), in a scene of at
-    /// most [`MAX_WAVE_LIGHTS`] lights.
+    /// polariser, in a scene of at most [`MAX_WAVE_LIGHTS`] lights.
     pub fn traces_waves(&self) -> bool {
         !self.params.transport.traces_paths()
             && self.params.polarizer.is_none()
-            && !self.frame.disperses()
             && self.lights.len() <= MAX_WAVE_LIGHTS
     }
 
@@ -307,21 +306,29 @@ impl Tracer<'_> {
     }
 }
 
-/// Each sample's result from its root's sum (`below`): the camera's weight applied as the
+/// Each sample's result from its roots' sums (`below`): the camera's weight applied as the
 /// recursion applies it (× 1 through the thin lens); black where a real lens blocked the
-/// ray, NaN for one that could not be traced.
-fn sample_results(
-    roots: &[Option<u32>],
-    slots: &[Slot],
-    below: &[Color],
-    traced: &mut Vec<Traced>,
-) {
+/// ray, NaN for one that could not be traced; through a dispersive lens, each channel from
+/// its wavelength's ray, or the one wavelength's times its channel weight, as
+/// `Tracer::sample_through_dispersive_lens` makes them.
+fn sample_results(roots: &[Root], slots: &[Slot], below: &[Color], traced: &mut Vec<Traced>) {
+    let of = |(root, weight): (Option<u32>, f32)| match root {
+        Some(r) => below[r as usize] * weight,
+        None if weight == 0.0 => Color::ZERO,
+        None => Color::NAN,
+    };
     traced.clear();
     traced.extend(roots.iter().zip(slots).map(|(root, slot)| Traced {
         radiance: match *root {
-            Some(r) => below[r as usize] * slot.weight,
-            None if slot.weight == 0.0 => Color::ZERO,
-            None => Color::NAN,
+            Root::One(r) => of((r, slot.weight)),
+            Root::PerChannel(rays) => {
+                let mut sum = Color::ZERO;
+                for (c, ray) in rays.into_iter().enumerate() {
+                    sum[c] = of(ray)[c];
+                }
+                sum
+            }
+            Root::Spectrum(ray, channel_weight) => channel_weight * of(ray),
         },
         rays: slot.rays,
         met: slot.met,

@@ -69,6 +69,21 @@ pub(super) struct Level {
     pub(super) children: Vec<Child>,
 }
 
+/// A sample's camera rays among level 0's nodes, and how its radiance is made from
+/// theirs. Each ray is its node and what it counts for (its camera weight); no node: black
+/// where the lens blocked it (weight 0), NaN where it could not be traced.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Root {
+    /// One camera ray: its radiance times the slot's weight.
+    One(Option<u32>),
+    /// Through a dispersive lens in the split tree: one ray per colour channel at a
+    /// wavelength in its box, each bringing back its own channel.
+    PerChannel([(Option<u32>, f32); 3]),
+    /// Through a dispersive lens in the stochastic tree: one ray at one wavelength over the
+    /// spectrum, times its channel weight.
+    Spectrum((Option<u32>, f32), Color),
+}
+
 /// A sample's state while its tree is traced.
 pub(super) struct Slot {
     pub(super) rng: SampleStream,
