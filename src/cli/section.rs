@@ -108,12 +108,7 @@ pub fn section_command(args: &SectionArgs) -> Result<()> {
                     scene.name
                 )
             })?;
-            let bench = Bench {
-                lens,
-                film,
-                sample,
-                wavelength: None,
-            };
+            let bench = Bench { lens, film, sample };
             let mut d = bench
                 .diagram()
                 .context("no ray from the pixel's film point gets through the lens")?;

@@ -293,22 +293,24 @@ impl Material {
         }
     }
 
-    /// The normal whose plane of incidence the Mueller matrix of child `lobe` of `hit` is
-    /// written in, where it is not the surface's: a rough interface's facet.
-    pub fn facet(&self, hit: &Interaction, lobe: &Lobe) -> Option<Vec3> {
+    /// Where child `lobe` of `hit` is polarised in a plane of incidence that is not the
+    /// surface's (a rough interface's facet): that facet's normal and the child's Mueller
+    /// matrix in its s/p frame.
+    pub fn facet_mueller(&self, hit: &Interaction, lobe: &Lobe) -> Option<(Vec3, Mueller)> {
         match self {
-            Material::Dielectric(d) if d.is_rough() => d.facet_mueller(hit, lobe).map(|(m, _)| m),
+            Material::Dielectric(d) if d.is_rough() => d.facet_mueller(hit, lobe),
             _ => None,
         }
     }
 
-    /// The Mueller matrix (in the s/p frame of `hit`, or of [`Material::facet`]) of the child ray on `side`, or for a
+    /// The Mueller matrix (in the s/p frame of `hit`, or of [`Material::facet_mueller`]'s
+    /// facet) of the child ray on `side`, or for a
     /// glaze's `Transmit` the way its base's light comes out through the coat. Mirrors and
     /// glossy metals reflect without polarising; materials without that lobe, `None`.
     pub fn mueller(&self, hit: &Interaction, lobe: Option<&Lobe>, side: Side) -> Option<Mueller> {
         match (self, side) {
             // A rough interface's child polarises in its facet's plane of incidence
-            // ([`Material::facet`] gives the frame this matrix is in).
+            // ([`Material::facet_mueller`] gives the frame this matrix is in).
             (Material::Dielectric(d), _) if d.is_rough() => {
                 lobe.and_then(|l| d.facet_mueller(hit, l)).map(|(_, m)| m)
             }

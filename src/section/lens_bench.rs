@@ -18,9 +18,8 @@ const FAN: usize = 9;
 /// Segments per surface's arc.
 const ARC: usize = 24;
 
-/// What the bench shows: the lens, the film point (0 to 1 across and down the image), the
-/// inspected sample's lens point (unit square) and the wavelength its rays carry (nm;
-/// `None`: n_d).
+/// What the bench shows: the lens, the film point (0 to 1 across and down the image) and
+/// the inspected sample's lens point (unit square). Its rays are traced at n_d.
 #[derive(Clone, Copy, Debug)]
 pub struct Bench<'l> {
     /// The camera's real lens, focused and stopped as it renders.
@@ -29,8 +28,6 @@ pub struct Bench<'l> {
     pub film: Vec2,
     /// The inspected sample's point on the lens (unit square).
     pub sample: Vec2,
-    /// The wavelength, for a lens that disperses.
-    pub wavelength: Option<f32>,
 }
 
 /// One ray's way out: the points it reaches (the film point, then each surface) and, if
@@ -45,7 +42,7 @@ impl Bench<'_> {
         let mut points = Vec::with_capacity(32);
         let out = self
             .lens
-            .traced(self.film, lens, self.wavelength, |p| points.push(p))
+            .traced(self.film, lens, None, |p| points.push(p))
             .map(|r| (r.origin, r.dir));
         Way { points, out }
     }
@@ -136,10 +133,13 @@ fn elements(d: &mut Diagram, surfaces: &[SurfaceProfile], height: f32, film_z: f
             })
             .collect()
     };
-    let mut number = 0;
-    for (i, s) in surfaces.iter().enumerate() {
+    let length = surfaces.first().map_or(0.0, |s| s.z) - film_z;
+    // Where the last label above a rim is.
+    let mut above = None;
+    for (i, (s, number)) in surfaces.iter().zip(numbers(surfaces)).enumerate() {
         let h = s.clear_radius;
-        if s.stop {
+        let Some(number) = number else {
+            // The stop.
             for sign in [-1.0, 1.0] {
                 d.items.push(Item::Line {
                     a: Vec2::new(-s.z, sign * h),
@@ -152,20 +152,23 @@ fn elements(d: &mut Diagram, surfaces: &[SurfaceProfile], height: f32, film_z: f
             d.labels
                 .push(label(Vec2::new(-s.z, 1.15 * height), "stop", -14.0));
             continue;
-        }
+        };
+        let outline = arc(s, -h, h);
         if s.ior > 1.0
             && let Some(next) = surfaces.get(i + 1)
         {
-            let mut points = arc(s, -h, h);
             let back = next.clear_radius;
-            points.extend(arc(next, back, -back));
+            let points = outline
+                .iter()
+                .copied()
+                .chain(arc(next, back, -back))
+                .collect();
             d.items.push(Item::Region {
                 points,
                 ink: Ink::Glass,
             });
         }
-        let points = arc(s, -h, h);
-        for pair in points.windows(2) {
+        for pair in outline.windows(2) {
             d.items.push(Item::Line {
                 a: pair[0],
                 b: pair[1],
@@ -174,16 +177,18 @@ fn elements(d: &mut Diagram, surfaces: &[SurfaceProfile], height: f32, film_z: f
                 dash: Dash::Solid,
             });
         }
-        number += 1;
-        // Above the surface, or below it where the last one labelled is too near to read
-        // both (a cemented pair, an air gap of a millimetre).
-        let crowded = i > 0 && (surfaces[i - 1].z - s.z) < 0.04 * (surfaces[0].z - film_z);
-        let below = crowded && number % 2 == 0;
+        // Above the surface's rim, or below it where the last label above is too near to
+        // read both (a cemented pair, a thin element).
+        let x = -s.z_at(h);
+        let below = above.is_some_and(|last: f32| (x - last).abs() < 0.05 * length);
         let text = number.to_string();
-        d.labels.push(match below {
-            true => label(Vec2::new(-s.z_at(h), -h), &text, 12.0),
-            false => label(Vec2::new(-s.z_at(h), h), &text, -12.0),
-        });
+        if below {
+            d.labels.push(label(Vec2::new(x, -h), &text, 12.0));
+            above = None;
+        } else {
+            d.labels.push(label(Vec2::new(x, h), &text, -12.0));
+            above = Some(x);
+        }
     }
 }
 
@@ -231,11 +236,9 @@ fn draw_way(
     }
 }
 
-/// The angles of incidence and refraction of the way `own` at each surface it crosses
-/// but the stop: (its index, its number from the front, θi, θt in degrees), back to front
-/// as it meets them.
-fn angles(surfaces: &[SurfaceProfile], own: &Way) -> Vec<(usize, usize, f32, f32)> {
-    let numbers: Vec<Option<usize>> = surfaces
+/// Each surface's number as the bench labels it, from the front, the stop unnumbered.
+fn numbers(surfaces: &[SurfaceProfile]) -> Vec<Option<usize>> {
+    surfaces
         .iter()
         .scan(0, |n, s| {
             Some((!s.stop).then(|| {
@@ -243,7 +246,14 @@ fn angles(surfaces: &[SurfaceProfile], own: &Way) -> Vec<(usize, usize, f32, f32
                 *n
             }))
         })
-        .collect();
+        .collect()
+}
+
+/// The angles of incidence and refraction of the way `own` at each surface it crosses
+/// but the stop: (its index, its number from the front, θi, θt in degrees), back to front
+/// as it meets them.
+fn angles(surfaces: &[SurfaceProfile], own: &Way) -> Vec<(usize, usize, f32, f32)> {
+    let numbers = numbers(surfaces);
     // points[0] is the film point; points[k] is on surface n − k (the ray meets them
     // from the back).
     let n = surfaces.len();
@@ -313,17 +323,17 @@ mod tests {
         RealLens::new(&prescription, 2000.0, 20.0, 27.0, 1.5, false).unwrap()
     }
 
+    /// The bench of `lens` at image position `film`, its sample at lens point `sample`.
+    fn bench(lens: &RealLens, film: Vec2, sample: Vec2) -> Bench<'_> {
+        Bench { lens, film, sample }
+    }
+
     #[test]
     fn the_angles_at_every_surface_obey_snells_law() {
         // n_behind sin θi = n_front sin θt at each surface the sample's ray crosses, the
         // ray leaving each medium for the one in front of it.
         let lens = double_gauss();
-        let bench = Bench {
-            lens: &lens,
-            film: Vec2::new(0.7, 0.3),
-            sample: Vec2::new(0.3, 0.6),
-            wavelength: None,
-        };
+        let bench = bench(&lens, Vec2::new(0.7, 0.3), Vec2::new(0.3, 0.6));
         let surfaces = lens.profile();
         let own = bench.way(bench.sample);
         assert!(own.out.is_some(), "the ray gets through");
@@ -349,12 +359,7 @@ mod tests {
     #[test]
     fn the_bench_draws_every_surface_the_stop_the_film_and_the_fan() {
         let lens = double_gauss();
-        let bench = Bench {
-            lens: &lens,
-            film: Vec2::new(0.5, 0.5),
-            sample: Vec2::splat(0.5),
-            wavelength: None,
-        };
+        let bench = bench(&lens, Vec2::splat(0.5), Vec2::splat(0.5));
         let d = bench.diagram().unwrap();
         let labels: Vec<&str> = d.labels.iter().map(|l| l.text.as_str()).collect();
         for text in ["1", "10", "stop", "film"] {

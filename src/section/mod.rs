@@ -450,7 +450,6 @@ mod tests {
             lens: &lens,
             film: Vec2::new(0.8, 0.2),
             sample: Vec2::new(0.3, 0.7),
-            wavelength: None,
         };
         diagrams.push(bench.diagram().unwrap());
         for d in &diagrams {

@@ -6,6 +6,7 @@
 //! there too), so the factors of entering and leaving a medium cancel; leaving them out
 //! keeps R + (1 − R) = 1 at every split, which the white-furnace test checks.
 
+mod crossing;
 mod emitters;
 mod media;
 mod met;

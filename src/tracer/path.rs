@@ -23,6 +23,7 @@
 //! [`ROULETTE_AFTER`] bounces a path of small weight ends at random, its survivors
 //! divided by the chance to survive (Russian roulette); `max_depth` bounds every path.
 
+use super::crossing::cross;
 use super::media::transmittance;
 use super::polarized::Polarization;
 use super::record::{record_hit, record_interface, shadow_node};
@@ -30,7 +31,6 @@ use super::shadow::SHADOW_REACH;
 use super::{End, Media, RayKind, Recorder, Stats, Tracer, TreeNode, Walk};
 use crate::material::{Interaction, Material, Part, Scatter, Side};
 use crate::math::{Color, Ray, SampleStream, Vec3, offset_ray_origin};
-use crate::optics::dispersion;
 use crate::scene::Hit;
 
 /// Bounces before Russian roulette may end a path.
@@ -55,18 +55,6 @@ fn light_weight(alone: bool, light_pdf: f32, bsdf_pdf: f32) -> f32 {
         1.0
     } else {
         power_heuristic(light_pdf, bsdf_pdf)
-    }
-}
-
-/// A path (or photon) leaving a surface on `side`: the media it is in from there, and the
-/// normal its next ray sets out along.
-pub(super) fn cross(media: &mut Media, at: &Interaction, hit: &Hit, side: Side) -> Vec3 {
-    match side {
-        Side::Reflect => at.n_geom,
-        Side::Transmit => {
-            *media = media.crossed(at.entering, hit);
-            -at.n_geom
-        }
     }
 }
 
@@ -427,26 +415,6 @@ impl Tracer<'_> {
         lit
     }
 
-    /// The hit as its material sees it, for a path (or photon) through `media` carrying
-    /// `wavelength`: the first dispersive surface on the way picks one, and `weight` takes
-    /// its channel's weight.
-    pub(super) fn meet(
-        &self,
-        ray: &Ray,
-        hit: &Hit,
-        media: &Media,
-        wavelength: &mut Option<f32>,
-        weight: &mut Color,
-        rng: &mut SampleStream,
-    ) -> Interaction {
-        if self.splits_into_wavelengths(hit.material, *wavelength) {
-            let lambda = dispersion::wavelength(rng.with_image_position());
-            *wavelength = Some(lambda);
-            *weight *= dispersion::channel_weight(lambda);
-        }
-        self.interaction(ray, hit, media, *wavelength)
-    }
-
     /// Light arriving at the vertex `v` through its part: one sample of each light and one
     /// of the emitting surfaces, each weighed against the part drawing its direction
     /// (unless the vertex stands alone).
@@ -588,7 +556,7 @@ fn next_direction<P: Polarization>(
 }
 
 /// The part that the number `u` (uniform over 0 to the parts' summed weight) falls in.
-pub(super) fn pick_part<'p, 's>(parts: &'p [Option<Part<'s>>; 3], u: f32) -> Option<&'p Part<'s>> {
+fn pick_part<'p, 's>(parts: &'p [Option<Part<'s>>; 3], u: f32) -> Option<&'p Part<'s>> {
     let mut cumulative = 0.0;
     let mut chosen = None;
     for part in parts.iter().flatten() {

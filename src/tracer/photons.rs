@@ -12,8 +12,8 @@
 //! mapping, α = 2/3), so the average over samples converges: blurred at first, sharp in
 //! the end.
 
+use super::crossing::cross;
 use super::media::transmittance;
-use super::path::cross;
 use super::{Media, Tracer};
 use crate::geometry::{KeyHasher, Shape};
 use crate::material::{Brdf, Interaction, Part};

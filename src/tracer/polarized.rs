@@ -73,14 +73,14 @@ impl Polarization for Analyzer {
     /// it is), its x axis kept perpendicular to the child's direction.
     fn child(&self, material: &Material, at: &Interaction, lobe: &Lobe) -> Self {
         // A rough interface's child: in its facet's s/p frame.
-        let framed = match material.facet(at, lobe) {
-            Some(m) => self.at_interface(at.dir, m),
-            None => *self,
+        let a = match material.facet_mueller(at, lobe) {
+            Some((facet, m)) => self.at_interface(at.dir, facet).through(&m),
+            None => self.through(
+                &material
+                    .mueller(at, Some(lobe), lobe.side)
+                    .unwrap_or_else(|| Mueller::neutral_transmission(lobe.weight)),
+            ),
         };
-        let m = material
-            .mueller(at, Some(lobe), lobe.side)
-            .unwrap_or_else(|| Mueller::neutral_transmission(lobe.weight));
-        let a = framed.through(&m);
         // A jittered glossy ray leaves the plane of incidence a little: square s up to it.
         let x = a.x - a.x.dot(lobe.dir) * lobe.dir;
         let len = x.length();

@@ -25,29 +25,20 @@ impl Tracer<'_> {
         w: &mut Walk<R>,
         shade: impl Fn(Branch, &mut Walk<R>) -> (Color, End),
     ) -> (Color, End) {
-        let shade_at = |lambda: f32, w: &mut Walk<R>| {
-            let b = Branch {
-                wavelength: Some(lambda),
-                ..b
-            };
-            shade(b, w)
-        };
-        match self.wavelengths(w.rng) {
-            Wavelengths::One(lambda) => {
-                let (l, end) = shade_at(lambda, w);
-                (dispersion::channel_weight(lambda) * l, end)
-            }
-            Wavelengths::PerChannel(lambdas) => {
-                let mut sum = Color::ZERO;
-                let mut end = End::Split;
-                for (c, lambda) in lambdas.into_iter().enumerate() {
-                    let (l, e) = shade_at(lambda, w);
-                    sum[c] = l[c];
-                    end = e;
-                }
-                (sum, end)
-            }
-        }
+        let mut end = End::Split;
+        let wavelengths = self.wavelengths(w.rng);
+        let l = wavelengths.gather(|lambda| {
+            let (l, e) = shade(
+                Branch {
+                    wavelength: Some(lambda),
+                    ..b
+                },
+                w,
+            );
+            end = e;
+            l
+        });
+        (l, end)
     }
 
     /// The radiance of camera sample `cs` at image position `film` through a real lens
@@ -64,27 +55,12 @@ impl Tracer<'_> {
         cs: &CameraSample,
         w: &mut Walk<R>,
     ) -> Color {
-        let at = |lambda: f32, w: &mut Walk<R>| {
+        self.wavelengths(w.rng).gather(|lambda| {
             let (ray, weight) = self
                 .frame
                 .weighed_ray_at(film, cs.lens, cs.time, Some(lambda));
             self.trace_camera_ray(&ray, weight, Some(lambda), w)
-        };
-        let wavelengths = if self.params.transport.traces_paths() {
-            Wavelengths::One(dispersion::wavelength(w.rng.with_image_position()))
-        } else {
-            self.wavelengths(w.rng)
-        };
-        match wavelengths {
-            Wavelengths::One(lambda) => dispersion::channel_weight(lambda) * at(lambda, w),
-            Wavelengths::PerChannel(lambdas) => {
-                let mut sum = Color::ZERO;
-                for (c, lambda) in lambdas.into_iter().enumerate() {
-                    sum[c] = at(lambda, w)[c];
-                }
-                sum
-            }
-        }
+        })
     }
 
     /// Whether a ray carrying `wavelength` (`None`: none yet) that meets `material` splits
@@ -97,15 +73,16 @@ impl Tracer<'_> {
             && self.materials[material as usize].needs_wavelength()
     }
 
-    /// The wavelengths a branch takes at its first dispersive surface, from one number u
-    /// (the third coordinate of the sample's image position, drawn from `rng`): in the
-    /// split tree one in each colour channel's box, each brought back in its channel only
-    /// (weight 1); in the stochastic tree one uniform over 400–700 nm, brought back in its
+    /// The wavelengths a branch takes at its first dispersive surface (or a sample at a
+    /// dispersive lens), from one number u (the third coordinate of the sample's image
+    /// position, drawn from `rng`): in the split tree one in each colour channel's box,
+    /// each brought back in its channel only (weight 1); in the stochastic tree and in
+    /// path tracing (one path a sample) one uniform over 400–700 nm, brought back in its
     /// box's channel times 3 ([`dispersion::channel_weight`]).
     #[inline(always)]
     pub(super) fn wavelengths(&self, rng: &mut SampleStream) -> Wavelengths {
         let u = rng.with_image_position();
-        if self.params.tree == TreeMode::Stochastic {
+        if self.params.tree == TreeMode::Stochastic || self.params.transport.traces_paths() {
             Wavelengths::One(dispersion::wavelength(u))
         } else {
             Wavelengths::PerChannel([0, 1, 2].map(|c| dispersion::wavelength_in(c, u)))
@@ -115,8 +92,26 @@ impl Tracer<'_> {
 
 /// The wavelengths (nm) a branch splits into ([`Tracer::wavelengths`]).
 pub(super) enum Wavelengths {
-    /// One, over the whole spectrum (the stochastic tree).
+    /// One, over the whole spectrum (the stochastic tree, paths).
     One(f32),
     /// One in each colour channel's box (the split tree).
     PerChannel([f32; 3]),
+}
+
+impl Wavelengths {
+    /// The colour they bring back, from the radiance `at` each brings: the one wavelength's
+    /// times its channel weight, or each channel from its own wavelength.
+    #[inline(always)]
+    pub(super) fn gather(self, mut at: impl FnMut(f32) -> Color) -> Color {
+        match self {
+            Wavelengths::One(lambda) => dispersion::channel_weight(lambda) * at(lambda),
+            Wavelengths::PerChannel(lambdas) => {
+                let mut sum = Color::ZERO;
+                for (c, lambda) in lambdas.into_iter().enumerate() {
+                    sum[c] = at(lambda)[c];
+                }
+                sum
+            }
+        }
+    }
 }

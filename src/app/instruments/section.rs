@@ -231,7 +231,6 @@ fn lens_bench_ui(ui: &mut egui::Ui, inspection: &Inspection, hall: bool) {
         lens,
         film: inspection.film,
         sample: inspection.lens_point,
-        wavelength: None,
     };
     let Some(mut diagram) = bench.diagram() else {
         ui.label("No ray from this pixel's film point gets through the lens.");
